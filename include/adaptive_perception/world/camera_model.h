@@ -1,0 +1,53 @@
+#pragma once
+// Pinhole camera (no distortion) and the AIBO head chain that places it on the robot.
+//
+// Frames (REP-103/105): base_link on the body, x forward, z up, at ground level under the body centre;
+// head_pan_link rotates about z (pan, positive = left); head_tilt_link rotates about y (tilt, positive =
+// nose down); camera_link is the lens, x forward; camera_optical_frame is z forward, x right, y down.
+#include <Eigen/Geometry>
+
+#include "adaptive_perception/math/se2.h"
+
+namespace adaptive_perception::world {
+
+struct PinholeCamera {
+  int width_px = 208;   // AIBO ERS-7 camera, high-resolution layer
+  int height_px = 160;
+  double fx_px = 0.0, fy_px = 0.0, cx_px = 0.0, cy_px = 0.0;
+
+  /// A camera of the given size whose image spans the given full fields of view (ERS-7: 56.9 x 45.2 deg).
+  static PinholeCamera fromFieldOfView(int width_px, int height_px, double hfov_rad, double vfov_rad);
+  /// The ERS-7-like default: 208 x 160, 56.9 x 45.2 degrees.
+  static PinholeCamera aiboErs7();
+
+  /// Unit-free ray through pixel centre (u + 0.5, v + 0.5) in the optical frame, z = 1.
+  Eigen::Vector3d rayThrough(double u_px, double v_px) const {
+    return {(u_px + 0.5 - cx_px) / fx_px, (v_px + 0.5 - cy_px) / fy_px, 1.0};
+  }
+  /// Projects a point in the optical frame; false when behind the camera.
+  bool project(const Eigen::Vector3d& p_optical, Eigen::Vector2d* uv_px) const;
+  /// Throws std::invalid_argument on a non-positive size or focal length.
+  void validate() const;
+};
+
+/// Geometry of the head chain; translations in metres in the parent frame.
+struct HeadChain {
+  Eigen::Vector3d base_to_pan_m{0.07, 0.0, 0.19};   // neck joint above the shoulders
+  Eigen::Vector3d pan_to_tilt_m{0.0, 0.0, 0.04};
+  Eigen::Vector3d tilt_to_camera_m{0.075, 0.0, 0.02};  // snout camera ahead of the tilt axis
+  double min_pan_rad = -1.62, max_pan_rad = 1.62;    // ERS-7: +-93 degrees
+  double min_tilt_rad = -0.78, max_tilt_rad = 1.3;
+
+  Eigen::Isometry3d basePan(double pan_rad) const;    // base_link -> head_pan_link
+  Eigen::Isometry3d panTilt(double tilt_rad) const;   // head_pan_link -> head_tilt_link
+  Eigen::Isometry3d tiltCamera() const;               // head_tilt_link -> camera_link (fixed)
+  static Eigen::Isometry3d cameraOptical();           // camera_link -> camera_optical_frame (fixed)
+  /// base_link -> camera_optical_frame.
+  Eigen::Isometry3d baseToOptical(double pan_rad, double tilt_rad) const;
+};
+
+/// The 3-D pose of a planar base pose (map -> base_link), with optional body height/pitch/roll.
+Eigen::Isometry3d planarToIsometry(const math::SE2& pose, double z_m = 0.0, double roll_rad = 0.0,
+                                   double pitch_rad = 0.0);
+
+}  // namespace adaptive_perception::world

@@ -1,0 +1,68 @@
+#pragma once
+// Label renderer: for a camera pose in the map, the expected colour class of each pixel (or of a given
+// list of pixels), by casting the pixel's ray against the field map's primitives.
+//
+// It is the inner loop of the particle filter (one call per particle per frame on a pixel subsample), so
+// per camera pose it precomputes what does not depend on the pixel (the ray origin terms of every
+// primitive, culls primitives behind the camera) and per pixel does only a few multiply-adds per
+// primitive, with no allocation.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "adaptive_perception/world/camera_model.h"
+#include "adaptive_perception/world/field_map.h"
+
+namespace adaptive_perception::world {
+
+struct RayHit {
+  double range_m = 0.0;  // distance along the unit ray; 0 when nothing was hit
+  Eigen::Vector3d point_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, facing the ray origin
+  ColorClass color = kBackground;
+  SurfaceKind kind = SurfaceKind::kNone;
+};
+
+struct PixelCoord {
+  std::uint16_t u, v;
+};
+
+class LabelRenderer {
+ public:
+  LabelRenderer(const FieldMap& map, const PinholeCamera& camera);
+
+  const PinholeCamera& camera() const { return camera_; }
+  const FieldMap& map() const { return map_; }
+
+  /// Fills `labels` (width*height, row-major) with the class of every pixel.
+  /// `map_to_optical` is the pose of camera_optical_frame in map.
+  void renderImage(const Eigen::Isometry3d& map_to_optical, std::uint8_t* labels) const;
+  /// The class of each listed pixel, into out[i].
+  void renderPixels(const Eigen::Isometry3d& map_to_optical, const PixelCoord* pixels,
+                    std::size_t count, std::uint8_t* out) const;
+  void renderPixels(const Eigen::Isometry3d& map_to_optical, const std::vector<PixelCoord>& pixels,
+                    std::vector<std::uint8_t>* out) const;
+
+  /// Full hit record of one ray in the map frame (`dir` need not be unit); for the simulator.
+  RayHit castRay(const Eigen::Vector3d& origin_m, const Eigen::Vector3d& dir) const;
+
+ private:
+  struct PoseSetup;  // per-pose precomputation, on the stack of each render call
+  template <bool kFullHit>
+  void trace(const PoseSetup& s, double dx, double dy, double dz, RayHit* hit,
+             std::uint8_t* label) const;
+  void setup(const Eigen::Vector3d& origin, const Eigen::Matrix3d* rot, PoseSetup* s) const;
+
+  FieldMap map_;
+  PinholeCamera camera_;
+  std::vector<Eigen::Vector3f> rays_optical_;  // per pixel, z = 1
+
+  // Flattened primitives for the hot loop.
+  struct QuadP { double p0x, p0y, ex, ey, len, nx, ny, z0, z1; std::uint8_t color, kind; };
+  struct CylP { double cx, cy, r2; std::vector<CylinderBand> bands; double zmin, zmax; };
+  std::vector<QuadP> quads_;
+  std::vector<CylP> cylinders_;
+};
+
+}  // namespace adaptive_perception::world

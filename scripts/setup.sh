@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Installs every Debian package the project needs (idempotent: a quick dpkg check when all is present),
+# then builds the package in the git-ignored catkin workspace .ws/. Works from any directory, as root
+# (or with sudo available). Usage: scripts/setup.sh [--no-build]
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+
+PACKAGES=(
+  # toolchain: a minimal Debian 12 has none of it
+  build-essential cmake git pkg-config
+  # ROS 1 as Debian ships it (no /opt/ros)
+  catkin ros-message-generation ros-base-dev python3-rostest python3-roslaunch python3-rosbag
+  python3-rosunit librostest-dev
+  librosbag-dev libcv-bridge-dev libimage-transport-dev libtf2-ros-dev libtf2-geometry-msgs-dev
+  libtf2-eigen-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
+  libdiagnostic-updater-dev libdiagnostic-msgs-dev libdynamic-reconfigure-config-init-mutex-dev
+  python3-dynamic-reconfigure rosbash
+  # core libraries
+  libeigen3-dev libopencv-dev libyaml-cpp-dev
+  # tests and benchmarks
+  libgtest-dev googletest libbenchmark-dev
+  # plots, rviz under a virtual display
+  python3-matplotlib python3-yaml python3-numpy rviz xvfb xauth
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+[ "${1:-}" = "--no-build" ] && exit 0
+
+mkdir -p "$AP_WS/src"
+ln -sfn "$AP_ROOT" "$AP_WS/src/adaptive_perception"
+cd "$AP_WS"
+JOBS="${AP_JOBS:-$(nproc)}"
+echo "setup: building in $AP_WS (-j$JOBS)"
+catkin_make -DCMAKE_BUILD_TYPE=Release -j"$JOBS" > "$AP_WS/build.log" 2>&1 || {
+  tail -n 60 "$AP_WS/build.log"; echo "setup: build FAILED (full log: $AP_WS/build.log)"; exit 1; }
+echo "setup: build ok"
