@@ -44,6 +44,9 @@ class LabelRenderer {
   void renderPixels(const Eigen::Isometry3d& map_to_optical, const std::vector<PixelCoord>& pixels,
                     std::vector<std::uint8_t>* out) const;
 
+  /// Full hit record of every pixel (row-major), for the simulator's shading.
+  void renderHitImage(const Eigen::Isometry3d& map_to_optical, std::vector<RayHit>* hits) const;
+
   /// Full hit record of one ray in the map frame (`dir` need not be unit); for the simulator.
   RayHit castRay(const Eigen::Vector3d& origin_m, const Eigen::Vector3d& dir) const;
 

@@ -252,6 +252,18 @@ void LabelRenderer::renderPixels(const Eigen::Isometry3d& map_to_optical,
   renderPixels(map_to_optical, pixels.data(), pixels.size(), out->data());
 }
 
+void LabelRenderer::renderHitImage(const Eigen::Isometry3d& map_to_optical,
+                                   std::vector<RayHit>* hits) const {
+  PoseSetup s;
+  const Eigen::Matrix3d rot = map_to_optical.linear();
+  setup(map_to_optical.translation(), &rot, &s);
+  hits->resize(rays_optical_.size());
+  for (size_t i = 0; i < rays_optical_.size(); ++i) {
+    const Eigen::Vector3d d = rot * rays_optical_[i].cast<double>();
+    trace<true>(s, d.x(), d.y(), d.z(), &(*hits)[i], nullptr);
+  }
+}
+
 RayHit LabelRenderer::castRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir) const {
   PoseSetup s;
   setup(origin, nullptr, &s);

@@ -1,0 +1,74 @@
+#include "adaptive_perception/color/color_space.h"
+
+#include <cmath>
+#include <stdexcept>
+
+
+namespace adaptive_perception::color {
+
+namespace {
+inline std::uint8_t clip8(float x) {
+  return static_cast<std::uint8_t>(x <= 0.f ? 0 : (x >= 255.f ? 255 : std::lround(x)));
+}
+}  // namespace
+
+cv::Mat packUyvy(const cv::Mat& y, const cv::Mat& u, const cv::Mat& v) {
+  if (y.type() != CV_32F || u.type() != CV_32F || v.type() != CV_32F || y.size() != u.size() ||
+      y.size() != v.size()) {
+    throw std::invalid_argument("packUyvy: expects three CV_32F planes of one size");
+  }
+  if (y.cols % 2 != 0) throw std::invalid_argument("packUyvy: UYVY needs an even image width");
+  cv::Mat out(y.rows, y.cols, CV_8UC2);
+  for (int r = 0; r < y.rows; ++r) {
+    const float* py = y.ptr<float>(r);
+    const float* pu = u.ptr<float>(r);
+    const float* pv = v.ptr<float>(r);
+    std::uint8_t* o = out.ptr<std::uint8_t>(r);
+    for (int c = 0; c < y.cols; c += 2) {
+      o[2 * c + 0] = clip8(0.5f * (pu[c] + pu[c + 1]));
+      o[2 * c + 1] = clip8(py[c]);
+      o[2 * c + 2] = clip8(0.5f * (pv[c] + pv[c + 1]));
+      o[2 * c + 3] = clip8(py[c + 1]);
+    }
+  }
+  return out;
+}
+
+cv::Mat unpackUyvy(const cv::Mat& uyvy) {
+  if (uyvy.type() != CV_8UC2 || uyvy.cols % 2 != 0)
+    throw std::invalid_argument("unpackUyvy: expects CV_8UC2 of even width");
+  cv::Mat out(uyvy.rows, uyvy.cols, CV_8UC3);
+  for (int r = 0; r < uyvy.rows; ++r) {
+    const std::uint8_t* s = uyvy.ptr<std::uint8_t>(r);
+    std::uint8_t* o = out.ptr<std::uint8_t>(r);
+    for (int c = 0; c < uyvy.cols; c += 2) {
+      const std::uint8_t u = s[2 * c], y0 = s[2 * c + 1], v = s[2 * c + 2], y1 = s[2 * c + 3];
+      o[3 * c + 0] = y0;
+      o[3 * c + 1] = u;
+      o[3 * c + 2] = v;
+      o[3 * c + 3] = y1;
+      o[3 * c + 4] = u;
+      o[3 * c + 5] = v;
+    }
+  }
+  return out;
+}
+
+cv::Mat uyvyToBgr(const cv::Mat& uyvy) {
+  // Not cv::cvtColor(COLOR_YUV2BGR_UYVY): OpenCV assumes limited-range (16..235) luma there.
+  const cv::Mat yuv = unpackUyvy(uyvy);
+  cv::Mat bgr(yuv.rows, yuv.cols, CV_8UC3);
+  for (int r = 0; r < yuv.rows; ++r) {
+    const std::uint8_t* s = yuv.ptr<std::uint8_t>(r);
+    std::uint8_t* o = bgr.ptr<std::uint8_t>(r);
+    for (int c = 0; c < yuv.cols; ++c) {
+      const Eigen::Vector3d rgb = yuvToRgb({double(s[3 * c]), double(s[3 * c + 1]), double(s[3 * c + 2])});
+      o[3 * c + 0] = clip8(static_cast<float>(rgb[2]));
+      o[3 * c + 1] = clip8(static_cast<float>(rgb[1]));
+      o[3 * c + 2] = clip8(static_cast<float>(rgb[0]));
+    }
+  }
+  return bgr;
+}
+
+}  // namespace adaptive_perception::color
