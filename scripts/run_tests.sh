@@ -6,7 +6,7 @@ set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 "$AP_ROOT/scripts/setup.sh" || { echo "tests: 0 passed, 1 failed"; exit 1; }
 cd "$AP_WS"
-source devel/setup.bash
+set +u; source devel/setup.bash; set -u
 export ROS_HOME="$AP_WS/ros_home" ROS_LOG_DIR="$AP_WS/ros_home/log"
 results="$AP_WS/build/test_results"
 rm -rf "$results"

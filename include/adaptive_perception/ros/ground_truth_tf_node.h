@@ -1,0 +1,55 @@
+#pragma once
+// ground_truth_tf_publisher: turns the simulator's ground truth into the `map -> odom` transform, so that
+// nodes that need the camera pose in `map` (color_estimator with known poses) and rviz can run on a
+// simulator bag without a localizer. map -> odom = (map -> base_link)_truth * (odom -> base_link)^-1,
+// both at the same stamp (the simulator writes them together).
+//
+// Parameters (private):
+//   ~map_frame (string, "map"), ~odom_frame (string, "odom"), ~base_frame (string, "base_link").
+//   ~path_length (int, 2000, 0..100000): poses kept in the published path (0 = no path).
+// Subscribed:
+//   ground_truth/pose (geometry_msgs/PoseStamped): base_link in map.
+//   odom (nav_msgs/Odometry): base_link in odom.
+// Published:
+//   tf map -> odom, stamped with the pair's stamp.
+//   ground_truth/path (nav_msgs/Path): the true trajectory, for rviz.
+//   /diagnostics: rate of matched pairs.
+#include <deque>
+#include <memory>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <message_filters/subscriber.h>
+#include <message_filters/sync_policies/exact_time.h>
+#include <message_filters/synchronizer.h>
+#include <nav_msgs/Odometry.h>
+#include <nav_msgs/Path.h>
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+namespace adaptive_perception {
+
+class GroundTruthTfNode {
+ public:
+  GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+ private:
+  void callback(const geometry_msgs::PoseStampedConstPtr& truth, const nav_msgs::OdometryConstPtr& odom);
+
+  using Policy = message_filters::sync_policies::ExactTime<geometry_msgs::PoseStamped, nav_msgs::Odometry>;
+  std::string map_frame_, odom_frame_, base_frame_;
+  int path_length_ = 2000;
+  message_filters::Subscriber<geometry_msgs::PoseStamped> truth_sub_;
+  message_filters::Subscriber<nav_msgs::Odometry> odom_sub_;
+  std::unique_ptr<message_filters::Synchronizer<Policy>> sync_;
+  tf2_ros::TransformBroadcaster broadcaster_;
+  ros::Publisher path_pub_;
+  nav_msgs::Path path_;
+  ros::Time last_stamp_;
+  diagnostic_updater::Updater diagnostics_;
+  double min_freq_ = 1.0, max_freq_ = 1000.0;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+};
+
+}  // namespace adaptive_perception

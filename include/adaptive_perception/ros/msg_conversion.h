@@ -1,0 +1,53 @@
+#pragma once
+// Message <-> core conversion. The ONLY place that touches cv_bridge and message layouts of images.
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Geometry>
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <opencv2/core.hpp>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <std_msgs/Header.h>
+#include <ros/time.h>
+
+#include "adaptive_perception/math/se2.h"
+#include "adaptive_perception/world/camera_model.h"
+
+namespace adaptive_perception::ros_conv {
+
+/// Thrown for an image the project cannot read; the message names the encoding or size problem.
+class ImageFormatError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The image as per-pixel YUV (CV_8UC3, channels Y U V, BT.601 full range). Accepts `yuv422` (UYVY),
+/// `bgr8` and `rgb8`; throws ImageFormatError naming any other encoding or a malformed buffer.
+cv::Mat imageToYuv(const sensor_msgs::Image& msg);
+/// UYVY (CV_8UC2) as a `yuv422` image message.
+sensor_msgs::Image uyvyToImage(const cv::Mat& uyvy, const std_msgs::Header& header);
+/// mono8 (CV_8UC1) / bgr8 (CV_8UC3) image messages.
+sensor_msgs::Image mono8ToImage(const cv::Mat& mono, const std_msgs::Header& header);
+sensor_msgs::Image bgr8ToImage(const cv::Mat& bgr, const std_msgs::Header& header);
+/// A mono8 image as CV_8UC1 (shares no memory with the message); throws ImageFormatError otherwise.
+cv::Mat imageToMono8(const sensor_msgs::Image& msg);
+
+/// CameraInfo of a pinhole camera without distortion.
+sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& camera, const std_msgs::Header& header);
+/// A pinhole camera from CameraInfo (K); throws std::invalid_argument on a zero focal length.
+world::PinholeCamera fromCameraInfo(const sensor_msgs::CameraInfo& info);
+
+geometry_msgs::Pose toPose(const math::SE2& pose);
+geometry_msgs::Pose toPose(const Eigen::Isometry3d& pose);
+/// Planar pose (x, y, yaw) of a 3-D pose.
+math::SE2 toSE2(const geometry_msgs::Pose& pose);
+Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& pose);
+Eigen::Isometry3d toIsometry(const geometry_msgs::Transform& t);
+geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& parent_to_child,
+                                            const std::string& parent, const std::string& child,
+                                            const ros::Time& stamp);
+
+}  // namespace adaptive_perception::ros_conv

@@ -1,0 +1,45 @@
+#pragma once
+// Reading and validating private parameters. A node given a bad value refuses to start: the thrown
+// ParamError names the parameter, the value and the allowed range.
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <ros/node_handle.h>
+
+namespace adaptive_perception::ros_params {
+
+class ParamError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+template <typename T>
+T get(const ros::NodeHandle& nh, const std::string& name, const T& def) {
+  T value = def;
+  if (nh.hasParam(name) && !nh.getParam(name, value)) {
+    throw ParamError("parameter " + nh.resolveName(name) + " has the wrong type");
+  }
+  return value;
+}
+
+/// A number in [lo, hi].
+template <typename T>
+T getInRange(const ros::NodeHandle& nh, const std::string& name, const T& def, const T& lo, const T& hi) {
+  const T v = get<T>(nh, name, def);
+  if (!(v >= lo && v <= hi)) {
+    std::ostringstream ss;
+    ss << "parameter " << nh.resolveName(name) << " = " << v << " is out of range [" << lo << ", " << hi << "]";
+    throw ParamError(ss.str());
+  }
+  return v;
+}
+
+/// A frame id or topic: must be non-empty.
+std::string getName(const ros::NodeHandle& nh, const std::string& name, const std::string& def);
+
+/// A file in the package's share directory (e.g. "config/field_4legged.yaml") when `value` is relative
+/// and not found from the current directory; `value` itself otherwise.
+std::string resolvePackagePath(const std::string& value);
+
+}  // namespace adaptive_perception::ros_params

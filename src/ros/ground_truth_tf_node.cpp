@@ -1,0 +1,59 @@
+#include "adaptive_perception/ros/ground_truth_tf_node.h"
+
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+
+namespace adaptive_perception {
+
+GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+  map_frame_ = ros_params::getName(pnh, "map_frame", ros_topics::kMapFrame);
+  odom_frame_ = ros_params::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
+  base_frame_ = ros_params::getName(pnh, "base_frame", ros_topics::kBaseFrame);
+  path_length_ = ros_params::getInRange(pnh, "path_length", 2000, 0, 100000);
+
+  truth_sub_.subscribe(nh, ros_topics::kGroundTruthPose, 20);
+  odom_sub_.subscribe(nh, ros_topics::kOdom, 20);
+  sync_ = std::make_unique<message_filters::Synchronizer<Policy>>(Policy(50), truth_sub_, odom_sub_);
+  sync_->registerCallback(&GroundTruthTfNode::callback, this);
+  path_pub_ = nh.advertise<nav_msgs::Path>(ros_topics::kGroundTruthPath, 1);
+  path_.header.frame_id = map_frame_;
+
+  diagnostics_.setHardwareID("ground_truth");
+  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
+  diagnostics_.add(*freq_);
+}
+
+void GroundTruthTfNode::callback(const geometry_msgs::PoseStampedConstPtr& truth,
+                                 const nav_msgs::OdometryConstPtr& odom) {
+  if (truth->header.frame_id != map_frame_) {
+    ROS_WARN_THROTTLE(5.0, "ground_truth/pose is in frame '%s', expected '%s': skipped",
+                      truth->header.frame_id.c_str(), map_frame_.c_str());
+    return;
+  }
+  if (!last_stamp_.isZero() && truth->header.stamp < last_stamp_) {
+    ROS_WARN("ground truth time jumped backwards (%.3f -> %.3f s): bag looped? Path cleared.",
+             last_stamp_.toSec(), truth->header.stamp.toSec());
+    path_.poses.clear();
+  }
+  last_stamp_ = truth->header.stamp;
+  const Eigen::Isometry3d map_base = ros_conv::toIsometry(truth->pose);
+  const Eigen::Isometry3d odom_base = ros_conv::toIsometry(odom->pose.pose);
+  if (!map_base.matrix().allFinite() || !odom_base.matrix().allFinite()) {
+    ROS_WARN_THROTTLE(5.0, "non-finite ground truth or odometry pose: skipped");
+    return;
+  }
+  broadcaster_.sendTransform(
+      ros_conv::toTransform(map_base * odom_base.inverse(), map_frame_, odom_frame_, truth->header.stamp));
+  freq_->tick();
+  diagnostics_.update();
+  if (path_length_ > 0) {
+    path_.header.stamp = truth->header.stamp;
+    path_.poses.push_back(*truth);
+    if (static_cast<int>(path_.poses.size()) > path_length_) path_.poses.erase(path_.poses.begin());
+    path_pub_.publish(path_);
+  }
+}
+
+}  // namespace adaptive_perception

@@ -1,0 +1,157 @@
+#include "adaptive_perception/ros/msg_conversion.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <cv_bridge/cv_bridge.h>
+#include <sensor_msgs/image_encodings.h>
+
+#include "adaptive_perception/color/color_space.h"
+
+namespace adaptive_perception::ros_conv {
+
+namespace enc = sensor_msgs::image_encodings;
+
+namespace {
+void checkBuffer(const sensor_msgs::Image& msg, int bytes_per_pixel) {
+  if (msg.width == 0 || msg.height == 0)
+    throw ImageFormatError("image is empty (" + std::to_string(msg.width) + "x" + std::to_string(msg.height) + ")");
+  if (msg.step < msg.width * bytes_per_pixel || msg.data.size() < static_cast<size_t>(msg.step) * msg.height)
+    throw ImageFormatError("image buffer too small for " + std::to_string(msg.width) + "x" +
+                           std::to_string(msg.height) + " " + msg.encoding + " (step " +
+                           std::to_string(msg.step) + ", " + std::to_string(msg.data.size()) + " bytes)");
+}
+}  // namespace
+
+cv::Mat imageToYuv(const sensor_msgs::Image& msg) {
+  if (msg.encoding == enc::YUV422) {
+    checkBuffer(msg, 2);
+    if (msg.width % 2 != 0) throw ImageFormatError("yuv422 image of odd width " + std::to_string(msg.width));
+    const cv::Mat uyvy(msg.height, msg.width, CV_8UC2, const_cast<std::uint8_t*>(msg.data.data()), msg.step);
+    return color::unpackUyvy(uyvy);
+  }
+  if (msg.encoding == enc::BGR8 || msg.encoding == enc::RGB8) {
+    checkBuffer(msg, 3);
+    const bool bgr = msg.encoding == enc::BGR8;
+    cv::Mat out(msg.height, msg.width, CV_8UC3);
+    for (unsigned r = 0; r < msg.height; ++r) {
+      const std::uint8_t* s = msg.data.data() + static_cast<size_t>(r) * msg.step;
+      std::uint8_t* o = out.ptr<std::uint8_t>(r);
+      for (unsigned c = 0; c < msg.width; ++c) {
+        const double red = s[3 * c + (bgr ? 2 : 0)], green = s[3 * c + 1], blue = s[3 * c + (bgr ? 0 : 2)];
+        const Eigen::Vector3d yuv = color::rgbToYuv({red, green, blue});
+        for (int k = 0; k < 3; ++k)
+          o[3 * c + k] = static_cast<std::uint8_t>(std::clamp(std::lround(yuv[k]), 0L, 255L));
+      }
+    }
+    return out;
+  }
+  throw ImageFormatError("unsupported image encoding '" + msg.encoding +
+                         "' (accepted: yuv422, bgr8, rgb8)");
+}
+
+sensor_msgs::Image uyvyToImage(const cv::Mat& uyvy, const std_msgs::Header& header) {
+  return *cv_bridge::CvImage(header, enc::YUV422, uyvy).toImageMsg();
+}
+
+sensor_msgs::Image mono8ToImage(const cv::Mat& mono, const std_msgs::Header& header) {
+  return *cv_bridge::CvImage(header, enc::MONO8, mono).toImageMsg();
+}
+
+sensor_msgs::Image bgr8ToImage(const cv::Mat& bgr, const std_msgs::Header& header) {
+  return *cv_bridge::CvImage(header, enc::BGR8, bgr).toImageMsg();
+}
+
+cv::Mat imageToMono8(const sensor_msgs::Image& msg) {
+  if (msg.encoding != enc::MONO8 && msg.encoding != enc::TYPE_8UC1)
+    throw ImageFormatError("expected a mono8 image, got encoding '" + msg.encoding + "'");
+  checkBuffer(msg, 1);
+  return cv::Mat(msg.height, msg.width, CV_8UC1, const_cast<std::uint8_t*>(msg.data.data()), msg.step).clone();
+}
+
+sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& c, const std_msgs::Header& header) {
+  sensor_msgs::CameraInfo info;
+  info.header = header;
+  info.width = c.width_px;
+  info.height = c.height_px;
+  info.distortion_model = "plumb_bob";
+  info.D.assign(5, 0.0);
+  info.K = {c.fx_px, 0.0, c.cx_px, 0.0, c.fy_px, c.cy_px, 0.0, 0.0, 1.0};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {c.fx_px, 0.0, c.cx_px, 0.0, 0.0, c.fy_px, c.cy_px, 0.0, 0.0, 0.0, 1.0, 0.0};
+  return info;
+}
+
+world::PinholeCamera fromCameraInfo(const sensor_msgs::CameraInfo& info) {
+  world::PinholeCamera c;
+  c.width_px = static_cast<int>(info.width);
+  c.height_px = static_cast<int>(info.height);
+  c.fx_px = info.K[0];
+  c.fy_px = info.K[4];
+  c.cx_px = info.K[2];
+  c.cy_px = info.K[5];
+  c.validate();
+  return c;
+}
+
+geometry_msgs::Pose toPose(const math::SE2& p) {
+  geometry_msgs::Pose m;
+  m.position.x = p.x_m;
+  m.position.y = p.y_m;
+  m.orientation.z = std::sin(0.5 * p.yaw_rad);
+  m.orientation.w = std::cos(0.5 * p.yaw_rad);
+  return m;
+}
+
+geometry_msgs::Pose toPose(const Eigen::Isometry3d& t) {
+  geometry_msgs::Pose m;
+  m.position.x = t.translation().x();
+  m.position.y = t.translation().y();
+  m.position.z = t.translation().z();
+  const Eigen::Quaterniond q(t.linear());
+  m.orientation.x = q.x();
+  m.orientation.y = q.y();
+  m.orientation.z = q.z();
+  m.orientation.w = q.w();
+  return m;
+}
+
+Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& p) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  t.linear() = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z)
+                   .normalized()
+                   .toRotationMatrix();
+  return t;
+}
+
+Eigen::Isometry3d toIsometry(const geometry_msgs::Transform& tr) {
+  geometry_msgs::Pose p;
+  p.position.x = tr.translation.x;
+  p.position.y = tr.translation.y;
+  p.position.z = tr.translation.z;
+  p.orientation = tr.rotation;
+  return toIsometry(p);
+}
+
+math::SE2 toSE2(const geometry_msgs::Pose& p) {
+  const Eigen::Isometry3d t = toIsometry(p);
+  const Eigen::Vector3d x_axis = t.linear().col(0);
+  return math::SE2(t.translation().x(), t.translation().y(), std::atan2(x_axis.y(), x_axis.x()));
+}
+
+geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& t, const std::string& parent,
+                                            const std::string& child, const ros::Time& stamp) {
+  geometry_msgs::TransformStamped m;
+  m.header.stamp = stamp;
+  m.header.frame_id = parent;
+  m.child_frame_id = child;
+  const geometry_msgs::Pose p = toPose(t);
+  m.transform.translation.x = p.position.x;
+  m.transform.translation.y = p.position.y;
+  m.transform.translation.z = p.position.z;
+  m.transform.rotation = p.orientation;
+  return m;
+}
+
+}  // namespace adaptive_perception::ros_conv

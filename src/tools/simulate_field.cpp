@@ -1,0 +1,195 @@
+// simulate_field: a legged robot on the four-legged-league field, written to a bag.
+//
+//   simulate_field --output FILE.bag [--script bright|dark|switching|drift|kidnap] [--seed N]
+//                  [--environment_seed N] [--duration_s S] [--rate_hz HZ] [--odom_rate_hz HZ]
+//                  [--switch_period_s S] [--field FILE.yaml] [--start_time_s T] [--overwrite] [--no_compression]
+//
+// Same arguments give a byte-identical bag. Topics (DESIGN.md): camera/image_raw (yuv422),
+// camera/camera_info, camera/labels (mono8 class ids, 255 = background), odom + tf odom -> base_link,
+// joint_states + tf of the head chain (tf_static for the fixed links, latched), ground_truth/pose
+// (PoseStamped of base_link in map), lighting/state (adaptive_perception/LightingState).
+// The bag is written to FILE.bag.tmp and renamed when complete; an existing FILE.bag is kept unless
+// --overwrite is given.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+#include <nav_msgs/Odometry.h>
+#include <ros/time.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/JointState.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include "adaptive_perception/LightingState.h"
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/sim/field_simulator.h"
+#include "tool_args.h"
+
+using namespace adaptive_perception;
+namespace T = adaptive_perception::ros_topics;
+
+namespace {
+std::string slash(const char* topic) { return std::string("/") + topic; }
+}  // namespace
+
+int main(int argc, char** argv) {
+  tools::Args args(argc, argv,
+                   "simulate_field --output FILE.bag [--script bright|dark|switching|drift|kidnap] "
+                   "[--seed N] [--environment_seed N] [--duration_s S] [--rate_hz HZ] [--odom_rate_hz HZ] "
+                   "[--switch_period_s S] "
+                   "[--field FILE.yaml] [--start_time_s T] [--overwrite] [--no_compression]");
+  const std::string output = args.get("output", "");
+  sim::FieldSimConfig cfg;
+  const std::string script = args.get("script", "bright");
+  cfg.seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
+  cfg.environment_seed = static_cast<std::uint64_t>(args.getInt("environment_seed", 0));
+  cfg.duration_s = args.getDouble("duration_s", 20.0);
+  cfg.camera_rate_hz = args.getDouble("rate_hz", 10.0);
+  cfg.odom_rate_hz = args.getDouble("odom_rate_hz", 30.0);
+  cfg.switch_period_s = args.getDouble("switch_period_s", cfg.switch_period_s);
+  const std::string field = args.get("field", "config/field_4legged.yaml");
+  const double start_time_s = args.getDouble("start_time_s", 1.6e9);
+  const bool overwrite = args.has("overwrite");
+  const bool compress = !args.has("no_compression");
+  args.finish();
+  if (output.empty()) args.fail("--output FILE.bag is required");
+  if (std::filesystem::exists(output) && !overwrite)
+    args.fail("'" + output + "' exists; pass --overwrite to replace it");
+
+  try {
+    cfg.script = sim::parseLightingScript(script);
+    cfg.validate();
+    const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));
+    const world::PinholeCamera camera = world::PinholeCamera::aiboErs7();
+    const world::HeadChain head;
+    sim::FieldSimulator simulator(map, camera, head, cfg);
+
+    const std::string tmp = output + ".tmp";
+    rosbag::Bag bag(tmp, rosbag::bagmode::Write);
+    if (compress) bag.setCompression(rosbag::compression::LZ4);
+
+    const ros::Time t0(start_time_s);
+    // Fixed links of the head chain, latched.
+    {
+      tf2_msgs::TFMessage tf_static;
+      tf_static.transforms.push_back(ros_conv::toTransform(head.tiltCamera(), T::kHeadTiltFrame, T::kCameraFrame, t0));
+      tf_static.transforms.push_back(
+          ros_conv::toTransform(world::HeadChain::cameraOptical(), T::kCameraFrame, T::kCameraOpticalFrame, t0));
+      auto header = boost::make_shared<ros::M_string>();
+      // A custom connection header replaces rosbag's own, so it carries the type fields too.
+      (*header)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
+      (*header)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
+      (*header)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
+      (*header)["latching"] = "1";
+      (*header)["callerid"] = "/simulate_field";
+      bag.write("/tf_static", t0, tf_static, header);
+    }
+
+    // Event times in integer nanoseconds: odometry ticks and camera ticks, merged.
+    std::set<std::int64_t> odom_ticks, camera_ticks, events;
+    const auto dur_ns = static_cast<std::int64_t>(cfg.duration_s * 1e9);
+    for (std::int64_t k = 0;; ++k) {
+      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / cfg.odom_rate_hz));
+      if (t > dur_ns) break;
+      odom_ticks.insert(t);
+    }
+    for (std::int64_t k = 0;; ++k) {
+      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / cfg.camera_rate_hz));
+      if (t > dur_ns) break;
+      camera_ticks.insert(t);
+    }
+    events = odom_ticks;
+    events.insert(camera_ticks.begin(), camera_ticks.end());
+
+    math::SE2 prev_odom = simulator.state().odom_pose;
+    double prev_t = 0.0;
+    std::uint32_t seq = 0, frames = 0;
+    for (const std::int64_t ns : events) {
+      const double t = ns * 1e-9;
+      simulator.advanceTo(t);
+      const sim::SimState& s = simulator.state();
+      const ros::Time stamp = t0 + ros::Duration(t);
+
+      tf2_msgs::TFMessage tf;
+      tf.transforms.push_back(ros_conv::toTransform(world::planarToIsometry(s.odom_pose), T::kOdomFrame, T::kBaseFrame, stamp));
+      tf.transforms.push_back(ros_conv::toTransform(head.basePan(s.pan_rad), T::kBaseFrame, T::kHeadPanFrame, stamp));
+      tf.transforms.push_back(ros_conv::toTransform(head.panTilt(s.tilt_rad), T::kHeadPanFrame, T::kHeadTiltFrame, stamp));
+      bag.write("/tf", stamp, tf);
+
+      nav_msgs::Odometry odom;
+      odom.header.stamp = stamp;
+      odom.header.seq = seq;
+      odom.header.frame_id = T::kOdomFrame;
+      odom.child_frame_id = T::kBaseFrame;
+      odom.pose.pose = ros_conv::toPose(s.odom_pose);
+      if (t > prev_t) {
+        const math::SE2 d = math::between(prev_odom, s.odom_pose);
+        odom.twist.twist.linear.x = d.x_m / (t - prev_t);
+        odom.twist.twist.linear.y = d.y_m / (t - prev_t);
+        odom.twist.twist.angular.z = d.yaw_rad / (t - prev_t);
+      }
+      // Legged odometry is poor: a loose covariance (x, y in m^2, yaw in rad^2).
+      odom.pose.covariance[0] = odom.pose.covariance[7] = 0.01;
+      odom.pose.covariance[35] = 0.02;
+      odom.pose.covariance[14] = odom.pose.covariance[21] = odom.pose.covariance[28] = 1e6;
+      bag.write(slash(T::kOdom), stamp, odom);
+      prev_odom = s.odom_pose;
+      prev_t = t;
+
+      geometry_msgs::PoseStamped truth;
+      truth.header = odom.header;
+      truth.header.frame_id = T::kMapFrame;
+      truth.pose = ros_conv::toPose(s.true_pose);
+      bag.write(slash(T::kGroundTruthPose), stamp, truth);
+
+      sensor_msgs::JointState joints;
+      joints.header.stamp = stamp;
+      joints.header.seq = seq;
+      joints.name = {T::kHeadPanJoint, T::kHeadTiltJoint};
+      joints.position = {s.pan_rad, s.tilt_rad};
+      bag.write(slash(T::kJointStates), stamp, joints);
+      ++seq;
+
+      if (!camera_ticks.count(ns)) continue;
+      const sim::CameraImage image = simulator.renderCamera();
+      std_msgs::Header h;
+      h.stamp = stamp;
+      h.seq = frames++;
+      h.frame_id = T::kCameraOpticalFrame;
+      bag.write(slash(T::kCameraImage), stamp, ros_conv::uyvyToImage(image.uyvy, h));
+      bag.write(slash(T::kCameraInfo), stamp, ros_conv::toCameraInfo(camera, h));
+      bag.write(slash(T::kCameraLabels), stamp, ros_conv::mono8ToImage(image.labels, h));
+
+      const sim::LightingSnapshot light = simulator.lightingAt(t);
+      adaptive_perception::LightingState ls;
+      ls.header.stamp = stamp;
+      ls.header.seq = h.seq;
+      ls.header.frame_id = T::kMapFrame;
+      for (const auto& b : light.lighting.banks) {
+        ls.bank_names.push_back(b.name);
+        ls.bank_on.push_back(b.on);
+        ls.bank_intensity.push_back(b.intensity);
+        ls.bank_color_temperature_k.push_back(b.color_temperature_k);
+      }
+      ls.ambient_intensity = light.lighting.ambient_intensity;
+      ls.condition = light.condition;
+      bag.write(slash(T::kLightingState), stamp, ls);
+    }
+    bag.close();
+    std::filesystem::rename(tmp, output);
+    const auto bytes = std::filesystem::file_size(output);
+    std::printf("simulate_field: output=%s script=%s seed=%llu environment_seed=%llu frames=%u duration_s=%.1f bytes=%llu\n",
+                output.c_str(), script.c_str(), static_cast<unsigned long long>(cfg.seed),
+                static_cast<unsigned long long>(cfg.environment_seed), frames, cfg.duration_s,
+                static_cast<unsigned long long>(bytes));
+  } catch (const std::exception& e) {
+    std::cerr << "simulate_field: error: " << e.what() << "\n";
+    std::error_code ec;
+    std::filesystem::remove(output + ".tmp", ec);
+    return 1;
+  }
+  return 0;
+}
