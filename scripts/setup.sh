@@ -15,6 +15,9 @@ PACKAGES=(
   libtf2-eigen-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
   libdiagnostic-updater-dev libdiagnostic-msgs-dev libdynamic-reconfigure-config-init-mutex-dev
   python3-dynamic-reconfigure rosbash
+  # Python message modules so that rostopic/rosbag can print the project's topics
+  python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-tf2-msgs python3-visualization-msgs
+  python3-diagnostic-msgs python3-std-msgs
   # core libraries
   libeigen3-dev libopencv-dev libyaml-cpp-dev
   # tests and benchmarks

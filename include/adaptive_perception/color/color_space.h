@@ -30,6 +30,8 @@ cv::Mat packUyvy(const cv::Mat& y, const cv::Mat& u, const cv::Mat& v);
 /// repeated for both pixels.
 cv::Mat unpackUyvy(const cv::Mat& uyvy);
 
+/// BGR8 (CV_8UC3) for display, from per-pixel YUV (CV_8UC3).
+cv::Mat yuvToBgr(const cv::Mat& yuv);
 /// BGR8 (CV_8UC3) for display, from UYVY.
 cv::Mat uyvyToBgr(const cv::Mat& uyvy);
 

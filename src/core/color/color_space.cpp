@@ -54,9 +54,8 @@ cv::Mat unpackUyvy(const cv::Mat& uyvy) {
   return out;
 }
 
-cv::Mat uyvyToBgr(const cv::Mat& uyvy) {
-  // Not cv::cvtColor(COLOR_YUV2BGR_UYVY): OpenCV assumes limited-range (16..235) luma there.
-  const cv::Mat yuv = unpackUyvy(uyvy);
+cv::Mat yuvToBgr(const cv::Mat& yuv) {
+  if (yuv.type() != CV_8UC3) throw std::invalid_argument("yuvToBgr: expects CV_8UC3 (Y, U, V)");
   cv::Mat bgr(yuv.rows, yuv.cols, CV_8UC3);
   for (int r = 0; r < yuv.rows; ++r) {
     const std::uint8_t* s = yuv.ptr<std::uint8_t>(r);
@@ -70,5 +69,8 @@ cv::Mat uyvyToBgr(const cv::Mat& uyvy) {
   }
   return bgr;
 }
+
+// Not cv::cvtColor(COLOR_YUV2BGR_UYVY): OpenCV assumes limited-range (16..235) luma there.
+cv::Mat uyvyToBgr(const cv::Mat& uyvy) { return yuvToBgr(unpackUyvy(uyvy)); }
 
 }  // namespace adaptive_perception::color
