@@ -40,7 +40,8 @@ void CameraPreviewNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
 void CameraPreviewNode::onLabels(const sensor_msgs::ImageConstPtr& msg) {
   if (labels_pub_.getNumSubscribers() == 0) return;
   try {
-    labels_pub_.publish(ros_conv::bgr8ToImage(colorizeLabels(ros_conv::imageToMono8(*msg)), msg->header));
+    labels_pub_.publish(
+        ros_conv::bgr8ToImage(colorizeLabels(ros_conv::imageToMono8(*msg)), msg->header));
   } catch (const ros_conv::ImageFormatError& e) {
     ROS_ERROR_THROTTLE(10.0, "camera_preview: labels dropped: %s", e.what());
   }

@@ -18,7 +18,8 @@ std_msgs::ColorRGBA displayColor(std::uint8_t cls, float alpha = 1.0f) {
 }
 }  // namespace
 
-visualization_msgs::MarkerArray fieldMapMarkers(const world::FieldMap& map, const std::string& frame_id,
+visualization_msgs::MarkerArray fieldMapMarkers(const world::FieldMap& map,
+                                                const std::string& frame_id,
                                                 const ros::Time& stamp) {
   visualization_msgs::MarkerArray out;
   int id = 0;
@@ -68,7 +69,8 @@ visualization_msgs::MarkerArray fieldMapMarkers(const world::FieldMap& map, cons
     out.markers.push_back(m);
   }
   for (const auto& q : map.quads()) {
-    auto m = base(q.kind == world::SurfaceKind::kGoal ? "goals" : "walls", visualization_msgs::Marker::CUBE);
+    auto m = base(q.kind == world::SurfaceKind::kGoal ? "goals" : "walls",
+                  visualization_msgs::Marker::CUBE);
     const Eigen::Vector2d mid = 0.5 * (q.p0_m + q.p1_m), d = q.p1_m - q.p0_m;
     m.pose.position.x = mid.x();
     m.pose.position.y = mid.y();

@@ -14,7 +14,8 @@ GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
 
   truth_sub_.subscribe(nh, ros_topics::kGroundTruthPose, 20);
   odom_sub_.subscribe(nh, ros_topics::kOdom, 20);
-  sync_ = std::make_unique<message_filters::Synchronizer<Policy>>(Policy(50), truth_sub_, odom_sub_);
+  sync_ =
+      std::make_unique<message_filters::Synchronizer<Policy>>(Policy(50), truth_sub_, odom_sub_);
   sync_->registerCallback(&GroundTruthTfNode::callback, this);
   path_pub_ = nh.advertise<nav_msgs::Path>(ros_topics::kGroundTruthPath, 1);
   path_.header.frame_id = map_frame_;
@@ -44,8 +45,8 @@ void GroundTruthTfNode::callback(const geometry_msgs::PoseStampedConstPtr& truth
     ROS_WARN_THROTTLE(5.0, "non-finite ground truth or odometry pose: skipped");
     return;
   }
-  broadcaster_.sendTransform(
-      ros_conv::toTransform(map_base * odom_base.inverse(), map_frame_, odom_frame_, truth->header.stamp));
+  broadcaster_.sendTransform(ros_conv::toTransform(map_base * odom_base.inverse(), map_frame_,
+                                                   odom_frame_, truth->header.stamp));
   freq_->tick();
   diagnostics_.update();
   if (path_length_ > 0) {

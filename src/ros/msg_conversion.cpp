@@ -1,10 +1,10 @@
 #include "adaptive_perception/ros/msg_conversion.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include <cv_bridge/cv_bridge.h>
 #include <sensor_msgs/image_encodings.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "adaptive_perception/color/color_space.h"
 
@@ -15,19 +15,24 @@ namespace enc = sensor_msgs::image_encodings;
 namespace {
 void checkBuffer(const sensor_msgs::Image& msg, int bytes_per_pixel) {
   if (msg.width == 0 || msg.height == 0)
-    throw ImageFormatError("image is empty (" + std::to_string(msg.width) + "x" + std::to_string(msg.height) + ")");
-  if (msg.step < msg.width * bytes_per_pixel || msg.data.size() < static_cast<size_t>(msg.step) * msg.height)
+    throw ImageFormatError("image is empty (" + std::to_string(msg.width) + "x" +
+                           std::to_string(msg.height) + ")");
+  if (msg.step < msg.width * bytes_per_pixel ||
+      msg.data.size() < static_cast<size_t>(msg.step) * msg.height)
     throw ImageFormatError("image buffer too small for " + std::to_string(msg.width) + "x" +
                            std::to_string(msg.height) + " " + msg.encoding + " (step " +
-                           std::to_string(msg.step) + ", " + std::to_string(msg.data.size()) + " bytes)");
+                           std::to_string(msg.step) + ", " + std::to_string(msg.data.size()) +
+                           " bytes)");
 }
 }  // namespace
 
 cv::Mat imageToYuv(const sensor_msgs::Image& msg) {
   if (msg.encoding == enc::YUV422) {
     checkBuffer(msg, 2);
-    if (msg.width % 2 != 0) throw ImageFormatError("yuv422 image of odd width " + std::to_string(msg.width));
-    const cv::Mat uyvy(msg.height, msg.width, CV_8UC2, const_cast<std::uint8_t*>(msg.data.data()), msg.step);
+    if (msg.width % 2 != 0)
+      throw ImageFormatError("yuv422 image of odd width " + std::to_string(msg.width));
+    const cv::Mat uyvy(msg.height, msg.width, CV_8UC2, const_cast<std::uint8_t*>(msg.data.data()),
+                       msg.step);
     return color::unpackUyvy(uyvy);
   }
   if (msg.encoding == enc::BGR8 || msg.encoding == enc::RGB8) {
@@ -38,7 +43,8 @@ cv::Mat imageToYuv(const sensor_msgs::Image& msg) {
       const std::uint8_t* s = msg.data.data() + static_cast<size_t>(r) * msg.step;
       std::uint8_t* o = out.ptr<std::uint8_t>(r);
       for (unsigned c = 0; c < msg.width; ++c) {
-        const double red = s[3 * c + (bgr ? 2 : 0)], green = s[3 * c + 1], blue = s[3 * c + (bgr ? 0 : 2)];
+        const double red = s[3 * c + (bgr ? 2 : 0)], green = s[3 * c + 1],
+                     blue = s[3 * c + (bgr ? 0 : 2)];
         const Eigen::Vector3d yuv = color::rgbToYuv({red, green, blue});
         for (int k = 0; k < 3; ++k)
           o[3 * c + k] = static_cast<std::uint8_t>(std::clamp(std::lround(yuv[k]), 0L, 255L));
@@ -66,10 +72,13 @@ cv::Mat imageToMono8(const sensor_msgs::Image& msg) {
   if (msg.encoding != enc::MONO8 && msg.encoding != enc::TYPE_8UC1)
     throw ImageFormatError("expected a mono8 image, got encoding '" + msg.encoding + "'");
   checkBuffer(msg, 1);
-  return cv::Mat(msg.height, msg.width, CV_8UC1, const_cast<std::uint8_t*>(msg.data.data()), msg.step).clone();
+  return cv::Mat(msg.height, msg.width, CV_8UC1, const_cast<std::uint8_t*>(msg.data.data()),
+                 msg.step)
+      .clone();
 }
 
-sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& c, const std_msgs::Header& header) {
+sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& c,
+                                     const std_msgs::Header& header) {
   sensor_msgs::CameraInfo info;
   info.header = header;
   info.width = c.width_px;
@@ -119,9 +128,10 @@ geometry_msgs::Pose toPose(const Eigen::Isometry3d& t) {
 Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& p) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
-  t.linear() = Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z)
-                   .normalized()
-                   .toRotationMatrix();
+  t.linear() =
+      Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z)
+          .normalized()
+          .toRotationMatrix();
   return t;
 }
 

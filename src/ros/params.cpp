@@ -1,8 +1,8 @@
 #include "adaptive_perception/ros/params.h"
 
-#include <fstream>
-
 #include <ros/package.h>
+
+#include <fstream>
 
 namespace adaptive_perception::ros_params {
 

@@ -1,11 +1,13 @@
-// bench_label_renderer: throughput of the label renderer on one core, on a fixed set of camera poses
-// drawn from the head chain over the whole field (seeded, so every run renders the same views).
+// bench_label_renderer: throughput of the label renderer on one core, on a fixed set of camera
+// poses drawn from the head chain over the whole field (seeded, so every run renders the same
+// views).
 //
-//   bench_label_renderer [--field config/field_4legged.yaml] [--poses 2000] [--seconds 2] [--seed 1]
+//   bench_label_renderer [--field config/field_4legged.yaml] [--poses 2000] [--seconds 2] [--seed
+//   1]
 //
 // Last line: `bench_label_renderer: labeled_pixels_per_s=... full_frame_pixels_per_s=...
-// subsample_pixels_per_s=... frames_per_s=...` (full frames of 208x160, and the particle filter's case:
-// a 1-in-16 pixel subsample per pose).
+// subsample_pixels_per_s=... frames_per_s=...` (full frames of 208x160, and the particle filter's
+// case: a 1-in-16 pixel subsample per pose).
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -72,12 +74,13 @@ int main(int argc, char** argv) {
   };
   const auto [full_px, full_fps] = run(true);
   const auto [sub_px, sub_fps] = run(false);
-  std::printf("camera %dx%d, %d poses, %zu subsampled pixels per pose (checksum %u)\n", cam.width_px,
-              cam.height_px, n_poses, subsample.size(), checksum);
+  std::printf("camera %dx%d, %d poses, %zu subsampled pixels per pose (checksum %u)\n",
+              cam.width_px, cam.height_px, n_poses, subsample.size(), checksum);
   std::printf("full frames:  %.3g pixels/s, %.0f frames/s\n", full_px, full_fps);
   std::printf("subsample:    %.3g pixels/s, %.0f poses/s\n", sub_px, sub_fps);
-  std::printf("bench_label_renderer: labeled_pixels_per_s=%.0f full_frame_pixels_per_s=%.0f "
-              "subsample_pixels_per_s=%.0f frames_per_s=%.0f\n",
-              std::min(full_px, sub_px), full_px, sub_px, full_fps);
+  std::printf(
+      "bench_label_renderer: labeled_pixels_per_s=%.0f full_frame_pixels_per_s=%.0f "
+      "subsample_pixels_per_s=%.0f frames_per_s=%.0f\n",
+      std::min(full_px, sub_px), full_px, sub_px, full_fps);
   return 0;
 }

@@ -1,16 +1,17 @@
-// demo_monitor: a ROS node for the demo and for people replaying a bag: counts what arrives and, when it
-// shuts down (the bag ended), prints one summary line
-//   demo_monitor: bag=NAME frames=N image_hz=F mean_luma=Y truth_path_m=D map_odom_tf=K field_markers=M
+// demo_monitor: a ROS node for the demo and for people replaying a bag: counts what arrives and,
+// when it shuts down (the bag ended), prints one summary line
+//   demo_monitor: bag=NAME frames=N image_hz=F mean_luma=Y truth_path_m=D map_odom_tf=K
+//   field_markers=M
 // Parameters: ~name (string, label of the run). Subscribed: camera/image_raw, ground_truth/pose,
 // field_map, tf.
-#include <cmath>
-#include <cstdio>
-
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 #include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <cstdio>
 
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
@@ -30,37 +31,43 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh, pnh("~");
   const std::string name = pnh.param<std::string>("name", "run");
   Counts c;
-  auto image_sub = nh.subscribe<sensor_msgs::Image>(T::kCameraImage, 5, [&](const sensor_msgs::ImageConstPtr& m) {
-    try {
-      const cv::Mat yuv = adaptive_perception::ros_conv::imageToYuv(*m);
-      c.luma_sum += cv::mean(yuv)[0];
-      if (c.frames == 0) c.first = m->header.stamp;
-      c.last = m->header.stamp;
-      ++c.frames;
-    } catch (const std::exception& e) {
-      ++c.bad_frames;
-      ROS_WARN_THROTTLE(5.0, "demo_monitor: %s", e.what());
-    }
-  });
+  auto image_sub = nh.subscribe<sensor_msgs::Image>(
+      T::kCameraImage, 5, [&](const sensor_msgs::ImageConstPtr& m) {
+        try {
+          const cv::Mat yuv = adaptive_perception::ros_conv::imageToYuv(*m);
+          c.luma_sum += cv::mean(yuv)[0];
+          if (c.frames == 0) c.first = m->header.stamp;
+          c.last = m->header.stamp;
+          ++c.frames;
+        } catch (const std::exception& e) {
+          ++c.bad_frames;
+          ROS_WARN_THROTTLE(5.0, "demo_monitor: %s", e.what());
+        }
+      });
   auto truth_sub = nh.subscribe<geometry_msgs::PoseStamped>(
       T::kGroundTruthPose, 50, [&](const geometry_msgs::PoseStampedConstPtr& m) {
-        if (c.have_pose) c.path_m += std::hypot(m->pose.position.x - c.px, m->pose.position.y - c.py);
+        if (c.have_pose)
+          c.path_m += std::hypot(m->pose.position.x - c.px, m->pose.position.y - c.py);
         c.px = m->pose.position.x;
         c.py = m->pose.position.y;
         c.have_pose = true;
       });
-  auto tf_sub = nh.subscribe<tf2_msgs::TFMessage>("/tf", 100, [&](const tf2_msgs::TFMessageConstPtr& m) {
-    for (const auto& t : m->transforms)
-      if (t.header.frame_id == T::kMapFrame && t.child_frame_id == T::kOdomFrame) ++c.map_odom;
-  });
+  auto tf_sub =
+      nh.subscribe<tf2_msgs::TFMessage>("/tf", 100, [&](const tf2_msgs::TFMessageConstPtr& m) {
+        for (const auto& t : m->transforms)
+          if (t.header.frame_id == T::kMapFrame && t.child_frame_id == T::kOdomFrame) ++c.map_odom;
+      });
   auto map_sub = nh.subscribe<visualization_msgs::MarkerArray>(
-      T::kFieldMap, 1, [&](const visualization_msgs::MarkerArrayConstPtr& m) { c.markers = m->markers.size(); });
+      T::kFieldMap, 1,
+      [&](const visualization_msgs::MarkerArrayConstPtr& m) { c.markers = m->markers.size(); });
   ros::spin();
   const double span = (c.last - c.first).toSec();
-  std::printf("demo_monitor: bag=%s frames=%ld bad_frames=%ld image_hz=%.2f mean_luma=%.1f truth_path_m=%.2f "
-              "map_odom_tf=%ld field_markers=%ld\n",
-              name.c_str(), c.frames, c.bad_frames, span > 0 ? (c.frames - 1) / span : 0.0,
-              c.frames ? c.luma_sum / c.frames : 0.0, c.path_m, c.map_odom, c.markers);
+  std::printf(
+      "demo_monitor: bag=%s frames=%ld bad_frames=%ld image_hz=%.2f mean_luma=%.1f "
+      "truth_path_m=%.2f "
+      "map_odom_tf=%ld field_markers=%ld\n",
+      name.c_str(), c.frames, c.bad_frames, span > 0 ? (c.frames - 1) / span : 0.0,
+      c.frames ? c.luma_sum / c.frames : 0.0, c.path_m, c.map_odom, c.markers);
   std::fflush(stdout);
   return 0;
 }

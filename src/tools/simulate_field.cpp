@@ -2,24 +2,26 @@
 //
 //   simulate_field --output FILE.bag [--script bright|dark|switching|drift|kidnap] [--seed N]
 //                  [--environment_seed N] [--duration_s S] [--rate_hz HZ] [--odom_rate_hz HZ]
-//                  [--switch_period_s S] [--field FILE.yaml] [--start_time_s T] [--overwrite] [--no_compression]
+//                  [--switch_period_s S] [--field FILE.yaml] [--start_time_s T] [--overwrite]
+//                  [--no_compression]
 //
 // Same arguments give a byte-identical bag. Topics (DESIGN.md): camera/image_raw (yuv422),
-// camera/camera_info, camera/labels (mono8 class ids, 255 = background), odom + tf odom -> base_link,
-// joint_states + tf of the head chain (tf_static for the fixed links, latched), ground_truth/pose
-// (PoseStamped of base_link in map), lighting/state (adaptive_perception/LightingState).
-// The bag is written to FILE.bag.tmp and renamed when complete; an existing FILE.bag is kept unless
+// camera/camera_info, camera/labels (mono8 class ids, 255 = background), odom + tf odom ->
+// base_link, joint_states + tf of the head chain (tf_static for the fixed links, latched),
+// ground_truth/pose (PoseStamped of base_link in map), lighting/state
+// (adaptive_perception/LightingState). The bag is written to FILE.bag.tmp and renamed when
+// complete; an existing FILE.bag is kept unless
 // --overwrite is given.
-#include <cstdio>
-#include <filesystem>
-#include <iostream>
-#include <set>
-
 #include <nav_msgs/Odometry.h>
 #include <ros/time.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2_msgs/TFMessage.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
 
 #include "adaptive_perception/LightingState.h"
 #include "adaptive_perception/ros/msg_conversion.h"
@@ -36,11 +38,12 @@ std::string slash(const char* topic) { return std::string("/") + topic; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "simulate_field --output FILE.bag [--script bright|dark|switching|drift|kidnap] "
-                   "[--seed N] [--environment_seed N] [--duration_s S] [--rate_hz HZ] [--odom_rate_hz HZ] "
-                   "[--switch_period_s S] "
-                   "[--field FILE.yaml] [--start_time_s T] [--overwrite] [--no_compression]");
+  tools::Args args(
+      argc, argv,
+      "simulate_field --output FILE.bag [--script bright|dark|switching|drift|kidnap] "
+      "[--seed N] [--environment_seed N] [--duration_s S] [--rate_hz HZ] [--odom_rate_hz HZ] "
+      "[--switch_period_s S] "
+      "[--field FILE.yaml] [--start_time_s T] [--overwrite] [--no_compression]");
   const std::string output = args.get("output", "");
   sim::FieldSimConfig cfg;
   const std::string script = args.get("script", "bright");
@@ -75,9 +78,10 @@ int main(int argc, char** argv) {
     // Fixed links of the head chain, latched.
     {
       tf2_msgs::TFMessage tf_static;
-      tf_static.transforms.push_back(ros_conv::toTransform(head.tiltCamera(), T::kHeadTiltFrame, T::kCameraFrame, t0));
       tf_static.transforms.push_back(
-          ros_conv::toTransform(world::HeadChain::cameraOptical(), T::kCameraFrame, T::kCameraOpticalFrame, t0));
+          ros_conv::toTransform(head.tiltCamera(), T::kHeadTiltFrame, T::kCameraFrame, t0));
+      tf_static.transforms.push_back(ros_conv::toTransform(
+          world::HeadChain::cameraOptical(), T::kCameraFrame, T::kCameraOpticalFrame, t0));
       auto header = boost::make_shared<ros::M_string>();
       // A custom connection header replaces rosbag's own, so it carries the type fields too.
       (*header)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
@@ -114,9 +118,12 @@ int main(int argc, char** argv) {
       const ros::Time stamp = t0 + ros::Duration(t);
 
       tf2_msgs::TFMessage tf;
-      tf.transforms.push_back(ros_conv::toTransform(world::planarToIsometry(s.odom_pose), T::kOdomFrame, T::kBaseFrame, stamp));
-      tf.transforms.push_back(ros_conv::toTransform(head.basePan(s.pan_rad), T::kBaseFrame, T::kHeadPanFrame, stamp));
-      tf.transforms.push_back(ros_conv::toTransform(head.panTilt(s.tilt_rad), T::kHeadPanFrame, T::kHeadTiltFrame, stamp));
+      tf.transforms.push_back(ros_conv::toTransform(world::planarToIsometry(s.odom_pose),
+                                                    T::kOdomFrame, T::kBaseFrame, stamp));
+      tf.transforms.push_back(
+          ros_conv::toTransform(head.basePan(s.pan_rad), T::kBaseFrame, T::kHeadPanFrame, stamp));
+      tf.transforms.push_back(ros_conv::toTransform(head.panTilt(s.tilt_rad), T::kHeadPanFrame,
+                                                    T::kHeadTiltFrame, stamp));
       bag.write("/tf", stamp, tf);
 
       nav_msgs::Odometry odom;
@@ -181,10 +188,12 @@ int main(int argc, char** argv) {
     bag.close();
     std::filesystem::rename(tmp, output);
     const auto bytes = std::filesystem::file_size(output);
-    std::printf("simulate_field: output=%s script=%s seed=%llu environment_seed=%llu frames=%u duration_s=%.1f bytes=%llu\n",
-                output.c_str(), script.c_str(), static_cast<unsigned long long>(cfg.seed),
-                static_cast<unsigned long long>(cfg.environment_seed), frames, cfg.duration_s,
-                static_cast<unsigned long long>(bytes));
+    std::printf(
+        "simulate_field: output=%s script=%s seed=%llu environment_seed=%llu frames=%u "
+        "duration_s=%.1f bytes=%llu\n",
+        output.c_str(), script.c_str(), static_cast<unsigned long long>(cfg.seed),
+        static_cast<unsigned long long>(cfg.environment_seed), frames, cfg.duration_s,
+        static_cast<unsigned long long>(bytes));
   } catch (const std::exception& e) {
     std::cerr << "simulate_field: error: " << e.what() << "\n";
     std::error_code ec;

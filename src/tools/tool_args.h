@@ -1,6 +1,6 @@
 #pragma once
-// Minimal `--key value` / `--flag` command-line parsing shared by the command-line tools. Unknown or
-// malformed options print the usage line and exit with status 2.
+// Minimal `--key value` / `--flag` command-line parsing shared by the command-line tools. Unknown
+// or malformed options print the usage line and exit with status 2.
 #include <cstdlib>
 #include <iostream>
 #include <map>

@@ -1,7 +1,4 @@
 // rostest: a bundled simulator bag replayed through the foundation nodes is self-consistent.
-#include <map>
-#include <mutex>
-
 #include <geometry_msgs/PoseStamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -11,6 +8,9 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <map>
+#include <mutex>
 
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/ros/msg_conversion.h"
@@ -35,37 +35,45 @@ class FieldBagReplay : public ::testing::Test {
  protected:
   void SetUp() override {
     expected_frames_ = ros::NodeHandle("~").param("expected_frames", 33);
-    subs_.push_back(nh_.subscribe<sensor_msgs::Image>(T::kCameraImage, 100, [this](const sensor_msgs::ImageConstPtr& m) {
-      std::lock_guard<std::mutex> l(c_.mutex);
-      c_.images.push_back(m);
-    }));
-    subs_.push_back(nh_.subscribe<sensor_msgs::Image>(T::kCameraLabels, 100, [this](const sensor_msgs::ImageConstPtr& m) {
-      std::lock_guard<std::mutex> l(c_.mutex);
-      c_.labels.push_back(m);
-    }));
-    subs_.push_back(nh_.subscribe<sensor_msgs::CameraInfo>(T::kCameraInfo, 100, [this](const sensor_msgs::CameraInfoConstPtr& m) {
-      std::lock_guard<std::mutex> l(c_.mutex);
-      c_.infos[m->header.stamp] = m;
-    }));
-    subs_.push_back(nh_.subscribe<geometry_msgs::PoseStamped>(T::kGroundTruthPose, 1000, [this](const geometry_msgs::PoseStampedConstPtr& m) {
-      std::lock_guard<std::mutex> l(c_.mutex);
-      c_.truth[m->header.stamp] = m;
-    }));
-    subs_.push_back(nh_.subscribe<sensor_msgs::JointState>(T::kJointStates, 1000, [this](const sensor_msgs::JointStateConstPtr& m) {
-      std::lock_guard<std::mutex> l(c_.mutex);
-      c_.joints[m->header.stamp] = m;
-    }));
-    subs_.push_back(nh_.subscribe<visualization_msgs::MarkerArray>(T::kFieldMap, 1, [this](const visualization_msgs::MarkerArrayConstPtr& m) {
-      std::lock_guard<std::mutex> l(c_.mutex);
-      c_.markers = m->markers.size();
-    }));
+    subs_.push_back(nh_.subscribe<sensor_msgs::Image>(T::kCameraImage, 100,
+                                                      [this](const sensor_msgs::ImageConstPtr& m) {
+                                                        std::lock_guard<std::mutex> l(c_.mutex);
+                                                        c_.images.push_back(m);
+                                                      }));
+    subs_.push_back(nh_.subscribe<sensor_msgs::Image>(T::kCameraLabels, 100,
+                                                      [this](const sensor_msgs::ImageConstPtr& m) {
+                                                        std::lock_guard<std::mutex> l(c_.mutex);
+                                                        c_.labels.push_back(m);
+                                                      }));
+    subs_.push_back(nh_.subscribe<sensor_msgs::CameraInfo>(
+        T::kCameraInfo, 100, [this](const sensor_msgs::CameraInfoConstPtr& m) {
+          std::lock_guard<std::mutex> l(c_.mutex);
+          c_.infos[m->header.stamp] = m;
+        }));
+    subs_.push_back(nh_.subscribe<geometry_msgs::PoseStamped>(
+        T::kGroundTruthPose, 1000, [this](const geometry_msgs::PoseStampedConstPtr& m) {
+          std::lock_guard<std::mutex> l(c_.mutex);
+          c_.truth[m->header.stamp] = m;
+        }));
+    subs_.push_back(nh_.subscribe<sensor_msgs::JointState>(
+        T::kJointStates, 1000, [this](const sensor_msgs::JointStateConstPtr& m) {
+          std::lock_guard<std::mutex> l(c_.mutex);
+          c_.joints[m->header.stamp] = m;
+        }));
+    subs_.push_back(nh_.subscribe<visualization_msgs::MarkerArray>(
+        T::kFieldMap, 1, [this](const visualization_msgs::MarkerArrayConstPtr& m) {
+          std::lock_guard<std::mutex> l(c_.mutex);
+          c_.markers = m->markers.size();
+        }));
     spinner_.start();
     // Wait (wall time) for the whole bag.
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(60.0);
     while (ros::WallTime::now() < deadline) {
       {
         std::lock_guard<std::mutex> l(c_.mutex);
-        if (static_cast<int>(c_.images.size()) >= expected_frames_ && static_cast<int>(c_.labels.size()) >= expected_frames_) break;
+        if (static_cast<int>(c_.images.size()) >= expected_frames_ &&
+            static_cast<int>(c_.labels.size()) >= expected_frames_)
+          break;
       }
       ros::WallDuration(0.1).sleep();
     }
@@ -119,30 +127,35 @@ TEST_F(FieldBagReplay, ImagesTfAndGroundTruthAreConsistent) {
     geometry_msgs::TransformStamped map_base, base_cam, map_cam;
     ASSERT_NO_THROW(map_base = tf_buffer_.lookupTransform(T::kMapFrame, T::kBaseFrame, stamp));
     const math::SE2 truth = ros_conv::toSE2(c_.truth[stamp]->pose);
-    const math::SE2 from_tf = ros_conv::toSE2(ros_conv::toPose(ros_conv::toIsometry(map_base.transform)));
+    const math::SE2 from_tf =
+        ros_conv::toSE2(ros_conv::toPose(ros_conv::toIsometry(map_base.transform)));
     EXPECT_NEAR(from_tf.x_m, truth.x_m, 1e-6);
     EXPECT_NEAR(from_tf.y_m, truth.y_m, 1e-6);
     EXPECT_NEAR(math::angleDiff(from_tf.yaw_rad, truth.yaw_rad), 0.0, 1e-6);
 
     // tf: base_link -> camera_optical_frame equals the head chain at the joint angles.
-    ASSERT_NO_THROW(base_cam = tf_buffer_.lookupTransform(T::kBaseFrame, T::kCameraOpticalFrame, stamp));
+    ASSERT_NO_THROW(base_cam =
+                        tf_buffer_.lookupTransform(T::kBaseFrame, T::kCameraOpticalFrame, stamp));
     const auto& js = *c_.joints[stamp];
     ASSERT_EQ(js.name.size(), 2u);
     const Eigen::Isometry3d expect = head.baseToOptical(js.position[0], js.position[1]);
     EXPECT_LT((ros_conv::toIsometry(base_cam.transform).matrix() - expect.matrix()).norm(), 1e-6);
 
-    // The true labels agree with the map rendered from the tf camera pose (the gait shake of the true
-    // camera, which tf does not carry, moves edges by a few pixels).
-    ASSERT_NO_THROW(map_cam = tf_buffer_.lookupTransform(T::kMapFrame, T::kCameraOpticalFrame, stamp));
+    // The true labels agree with the map rendered from the tf camera pose (the gait shake of the
+    // true camera, which tf does not carry, moves edges by a few pixels).
+    ASSERT_NO_THROW(map_cam =
+                        tf_buffer_.lookupTransform(T::kMapFrame, T::kCameraOpticalFrame, stamp));
     const world::LabelRenderer renderer(map, camera);
     std::vector<std::uint8_t> rendered(camera.width_px * camera.height_px);
     renderer.renderImage(ros_conv::toIsometry(map_cam.transform), rendered.data());
     const cv::Mat labels = ros_conv::imageToMono8(*c_.labels[i]);
     int same = 0;
-    for (int k = 0; k < static_cast<int>(rendered.size()); ++k) same += labels.data[k] == rendered[k];
+    for (int k = 0; k < static_cast<int>(rendered.size()); ++k)
+      same += labels.data[k] == rendered[k];
     label_agreement_sum += static_cast<double>(same) / rendered.size();
   }
-  EXPECT_GT(label_agreement_sum / c_.images.size(), 0.9) << "labels vs map rendered at the tf camera pose";
+  EXPECT_GT(label_agreement_sum / c_.images.size(), 0.9)
+      << "labels vs map rendered at the tf camera pose";
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
 #pragma once
-// Colour spaces. The colour models work in YUV as robot cameras deliver it: ITU-R BT.601 with full-range
-// 8-bit values (Y in 0..255, U and V centred on 128), the convention of the AIBO camera and of JPEG.
-// Packed images are UYVY ("yuv422" in ROS): per pair of pixels U Y0 V Y1, chroma shared by the pair.
-#include <cstdint>
-
+// Colour spaces. The colour models work in YUV as robot cameras deliver it: ITU-R BT.601 with
+// full-range 8-bit values (Y in 0..255, U and V centred on 128), the convention of the AIBO camera
+// and of JPEG. Packed images are UYVY ("yuv422" in ROS): per pair of pixels U Y0 V Y1, chroma
+// shared by the pair.
 #include <Eigen/Core>
+#include <cstdint>
 #include <opencv2/core.hpp>
 
 namespace adaptive_perception::color {

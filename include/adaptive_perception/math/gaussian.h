@@ -1,10 +1,9 @@
 #pragma once
-// Multivariate Gaussian N(mean, cov) with log-density through a Cholesky factor, block marginals and
-// conditionals, and sampling.
-#include <vector>
-
+// Multivariate Gaussian N(mean, cov) with log-density through a Cholesky factor, block marginals
+// and conditionals, and sampling.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <vector>
 
 #include "adaptive_perception/math/rng.h"
 
@@ -13,7 +12,8 @@ namespace adaptive_perception::math {
 class Gaussian {
  public:
   Gaussian() = default;
-  /// Throws std::invalid_argument when the sizes disagree or cov is not symmetric positive definite.
+  /// Throws std::invalid_argument when the sizes disagree or cov is not symmetric positive
+  /// definite.
   Gaussian(Eigen::VectorXd mean, Eigen::MatrixXd cov);
 
   int dim() const { return static_cast<int>(mean_.size()); }
@@ -28,8 +28,8 @@ class Gaussian {
   /// The marginal over the components `idx` (in that order).
   Gaussian marginal(const std::vector<int>& idx) const;
   /// The conditional over the components NOT in `given_idx`, given x[given_idx] = values:
-  /// mean_a + S_ab S_bb^-1 (values - mean_b), S_aa - S_ab S_bb^-1 S_ba. Returned components keep their
-  /// original order.
+  /// mean_a + S_ab S_bb^-1 (values - mean_b), S_aa - S_ab S_bb^-1 S_ba. Returned components keep
+  /// their original order.
   Gaussian conditional(const std::vector<int>& given_idx, const Eigen::VectorXd& values) const;
 
   /// One draw mean + L z, z ~ N(0, I).

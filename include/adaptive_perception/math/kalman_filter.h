@@ -4,12 +4,12 @@
 //   predict:  x_k = A x_{k-1} + w,   w ~ N(0, R)      (A = I for a pure drift / random walk)
 //   update:   z_k = H x_k + v,       v ~ N(0, Q)
 //
-// The covariance update uses the Joseph form (I-KH) P (I-KH)^T + K Q K^T, which stays symmetric positive
-// semi-definite under round-off. A partial observation observes only some state components directly
-// (H = rows of the identity); it equals conditioning the joint Gaussian of state and observation.
-#include <vector>
-
+// The covariance update uses the Joseph form (I-KH) P (I-KH)^T + K Q K^T, which stays symmetric
+// positive semi-definite under round-off. A partial observation observes only some state components
+// directly (H = rows of the identity); it equals conditioning the joint Gaussian of state and
+// observation.
 #include <Eigen/Core>
+#include <vector>
 
 namespace adaptive_perception::math {
 
@@ -42,7 +42,8 @@ class KalmanFilter {
   /// Same update with the textbook covariance (I - K H) P; kept for tests and comparison.
   KalmanUpdateResult updateStandardForm(const Eigen::MatrixXd& h, const Eigen::VectorXd& z,
                                         const Eigen::MatrixXd& obs_cov);
-  /// Direct observation of the components `observed_idx` only: z = x[observed_idx] + v, v ~ N(0, obs_cov).
+  /// Direct observation of the components `observed_idx` only: z = x[observed_idx] + v, v ~ N(0,
+  /// obs_cov).
   KalmanUpdateResult updatePartial(const std::vector<int>& observed_idx, const Eigen::VectorXd& z,
                                    const Eigen::MatrixXd& obs_cov);
 

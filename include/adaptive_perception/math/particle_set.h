@@ -5,9 +5,9 @@
 //   kMultinomial  N independent draws from the weights (highest variance; reference only).
 //   kStratified   one uniform draw inside each of N equal strata of [0, 1).
 //   kSystematic   one uniform offset u ~ U[0, 1/N), then u + i/N: the "low-variance sampler" of
-//                 Thrun, Burgard & Fox, Probabilistic Robotics, Table 4.4. All three keep the expected
-//                 number of copies of particle i equal to N w_i; systematic has the least variance
-//                 (the count of i is floor(N w_i) or ceil(N w_i)).
+//                 Thrun, Burgard & Fox, Probabilistic Robotics, Table 4.4. All three keep the
+//                 expected number of copies of particle i equal to N w_i; systematic has the least
+//                 variance (the count of i is floor(N w_i) or ceil(N w_i)).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -23,8 +23,8 @@ enum class ResamplingScheme { kMultinomial, kStratified, kSystematic };
 ResamplingScheme parseResamplingScheme(const std::string& name);
 
 /// Normalises log-weights in place to weights summing to one (log-sum-exp, safe for very negative
-/// log-likelihoods). Returns the log of the normaliser. If every log-weight is -inf or NaN, the weights
-/// become uniform and -inf is returned.
+/// log-likelihoods). Returns the log of the normaliser. If every log-weight is -inf or NaN, the
+/// weights become uniform and -inf is returned.
 double normalizeLogWeights(const std::vector<double>& log_weights, std::vector<double>* weights);
 
 /// 1 / sum w_i^2 of normalised weights.

@@ -1,5 +1,6 @@
 #pragma once
-// Seeded random numbers. Every random component takes an Rng& so that runs are reproducible from a seed.
+// Seeded random numbers. Every random component takes an Rng& so that runs are reproducible from a
+// seed.
 #include <cstdint>
 #include <random>
 

@@ -24,7 +24,8 @@ struct SE2 {
   Eigen::Matrix3d matrix() const;
 };
 
-/// The relative motion from `from` to `to`: from.inverse() * to (an odometry increment in from's frame).
+/// The relative motion from `from` to `to`: from.inverse() * to (an odometry increment in from's
+/// frame).
 SE2 between(const SE2& from, const SE2& to);
 
 }  // namespace adaptive_perception::math

@@ -2,11 +2,13 @@
 // field_map_publisher: publishes the 3-D field map for rviz.
 //
 // Parameters (private):
-//   ~field_file (string, default "config/field_4legged.yaml"): field dimensions YAML; a relative path is
+//   ~field_file (string, default "config/field_4legged.yaml"): field dimensions YAML; a relative
+//   path is
 //       looked up in the current directory, then in the package.
 //   ~frame_id (string, default "map"): frame of the markers.
 // Published:
-//   field_map (visualization_msgs/MarkerArray, latched): carpet, lines, centre circle, walls, goals,
+//   field_map (visualization_msgs/MarkerArray, latched): carpet, lines, centre circle, walls,
+//   goals,
 //       beacons (one cylinder per colour band), ball.
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -16,7 +18,8 @@
 namespace adaptive_perception {
 
 /// Markers showing `map` in `frame_id`; colours are the display colours of the classes.
-visualization_msgs::MarkerArray fieldMapMarkers(const world::FieldMap& map, const std::string& frame_id,
+visualization_msgs::MarkerArray fieldMapMarkers(const world::FieldMap& map,
+                                                const std::string& frame_id,
                                                 const ros::Time& stamp);
 
 class FieldMapPublisherNode {

@@ -1,8 +1,8 @@
 #pragma once
-// ground_truth_tf_publisher: turns the simulator's ground truth into the `map -> odom` transform, so that
-// nodes that need the camera pose in `map` (color_estimator with known poses) and rviz can run on a
-// simulator bag without a localizer. map -> odom = (map -> base_link)_truth * (odom -> base_link)^-1,
-// both at the same stamp (the simulator writes them together).
+// ground_truth_tf_publisher: turns the simulator's ground truth into the `map -> odom` transform,
+// so that nodes that need the camera pose in `map` (color_estimator with known poses) and rviz can
+// run on a simulator bag without a localizer. map -> odom = (map -> base_link)_truth * (odom ->
+// base_link)^-1, both at the same stamp (the simulator writes them together).
 //
 // Parameters (private):
 //   ~map_frame (string, "map"), ~odom_frame (string, "odom"), ~base_frame (string, "base_link").
@@ -14,9 +14,6 @@
 //   tf map -> odom, stamped with the pair's stamp.
 //   ground_truth/path (nav_msgs/Path): the true trajectory, for rviz.
 //   /diagnostics: rate of matched pairs.
-#include <deque>
-#include <memory>
-
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseStamped.h>
@@ -28,6 +25,9 @@
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <deque>
+#include <memory>
+
 namespace adaptive_perception {
 
 class GroundTruthTfNode {
@@ -35,9 +35,11 @@ class GroundTruthTfNode {
   GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh);
 
  private:
-  void callback(const geometry_msgs::PoseStampedConstPtr& truth, const nav_msgs::OdometryConstPtr& odom);
+  void callback(const geometry_msgs::PoseStampedConstPtr& truth,
+                const nav_msgs::OdometryConstPtr& odom);
 
-  using Policy = message_filters::sync_policies::ExactTime<geometry_msgs::PoseStamped, nav_msgs::Odometry>;
+  using Policy =
+      message_filters::sync_policies::ExactTime<geometry_msgs::PoseStamped, nav_msgs::Odometry>;
   std::string map_frame_, odom_frame_, base_frame_;
   int path_length_ = 2000;
   message_filters::Subscriber<geometry_msgs::PoseStamped> truth_sub_;

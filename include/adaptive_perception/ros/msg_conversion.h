@@ -1,17 +1,17 @@
 #pragma once
 // Message <-> core conversion. The ONLY place that touches cv_bridge and message layouts of images.
-#include <stdexcept>
-#include <string>
-
-#include <Eigen/Geometry>
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TransformStamped.h>
-#include <opencv2/core.hpp>
+#include <ros/time.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <std_msgs/Header.h>
-#include <ros/time.h>
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+#include <stdexcept>
+#include <string>
 
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/world/camera_model.h"
@@ -24,8 +24,9 @@ class ImageFormatError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The image as per-pixel YUV (CV_8UC3, channels Y U V, BT.601 full range). Accepts `yuv422` (UYVY),
-/// `bgr8` and `rgb8`; throws ImageFormatError naming any other encoding or a malformed buffer.
+/// The image as per-pixel YUV (CV_8UC3, channels Y U V, BT.601 full range). Accepts `yuv422`
+/// (UYVY), `bgr8` and `rgb8`; throws ImageFormatError naming any other encoding or a malformed
+/// buffer.
 cv::Mat imageToYuv(const sensor_msgs::Image& msg);
 /// UYVY (CV_8UC2) as a `yuv422` image message.
 sensor_msgs::Image uyvyToImage(const cv::Mat& uyvy, const std_msgs::Header& header);
@@ -36,7 +37,8 @@ sensor_msgs::Image bgr8ToImage(const cv::Mat& bgr, const std_msgs::Header& heade
 cv::Mat imageToMono8(const sensor_msgs::Image& msg);
 
 /// CameraInfo of a pinhole camera without distortion.
-sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& camera, const std_msgs::Header& header);
+sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& camera,
+                                     const std_msgs::Header& header);
 /// A pinhole camera from CameraInfo (K); throws std::invalid_argument on a zero focal length.
 world::PinholeCamera fromCameraInfo(const sensor_msgs::CameraInfo& info);
 

@@ -1,11 +1,11 @@
 #pragma once
 // Reading and validating private parameters. A node given a bad value refuses to start: the thrown
 // ParamError names the parameter, the value and the allowed range.
+#include <ros/node_handle.h>
+
 #include <sstream>
 #include <stdexcept>
 #include <string>
-
-#include <ros/node_handle.h>
 
 namespace adaptive_perception::ros_params {
 
@@ -25,11 +25,13 @@ T get(const ros::NodeHandle& nh, const std::string& name, const T& def) {
 
 /// A number in [lo, hi].
 template <typename T>
-T getInRange(const ros::NodeHandle& nh, const std::string& name, const T& def, const T& lo, const T& hi) {
+T getInRange(const ros::NodeHandle& nh, const std::string& name, const T& def, const T& lo,
+             const T& hi) {
   const T v = get<T>(nh, name, def);
   if (!(v >= lo && v <= hi)) {
     std::ostringstream ss;
-    ss << "parameter " << nh.resolveName(name) << " = " << v << " is out of range [" << lo << ", " << hi << "]";
+    ss << "parameter " << nh.resolveName(name) << " = " << v << " is out of range [" << lo << ", "
+       << hi << "]";
     throw ParamError(ss.str());
   }
   return v;
@@ -38,8 +40,8 @@ T getInRange(const ros::NodeHandle& nh, const std::string& name, const T& def, c
 /// A frame id or topic: must be non-empty.
 std::string getName(const ros::NodeHandle& nh, const std::string& name, const std::string& def);
 
-/// A file in the package's share directory (e.g. "config/field_4legged.yaml") when `value` is relative
-/// and not found from the current directory; `value` itself otherwise.
+/// A file in the package's share directory (e.g. "config/field_4legged.yaml") when `value` is
+/// relative and not found from the current directory; `value` itself otherwise.
 std::string resolvePackagePath(const std::string& value);
 
 }  // namespace adaptive_perception::ros_params

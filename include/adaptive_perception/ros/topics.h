@@ -1,5 +1,6 @@
 #pragma once
-// Default topic and frame names (DESIGN.md section 2). Nodes use these relative names; launch files remap.
+// Default topic and frame names (DESIGN.md section 2). Nodes use these relative names; launch files
+// remap.
 namespace adaptive_perception::ros_topics {
 
 constexpr const char* kCameraImage = "camera/image_raw";

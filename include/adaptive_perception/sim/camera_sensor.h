@@ -2,9 +2,8 @@
 // The camera's image formation, with effects the estimators do not model: fixed exposure and white
 // balance (so coloured light shifts colours), vignetting in luminance and chroma, gamma, saturation
 // clipping, signal-dependent luminance noise and chroma noise, 4:2:2 chroma subsampling.
-#include <vector>
-
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/sim/field_environment.h"
@@ -13,13 +12,14 @@
 namespace adaptive_perception::sim {
 
 struct CameraSensorConfig {
-  double white_point_k = 5000.0;      // white balance fixed for this colour temperature
-  double gamma = 2.2;                 // output = linear^(1/gamma)
-  double vignetting = 0.45;           // relative luminance loss at the image corners
-  double vignetting_chroma_u = 8.0;   // U shift (8-bit levels) at the corners (the ERS-7's blue corners)
-  double luma_read_noise = 1.5;       // 8-bit levels
-  double luma_shot_noise = 0.06;      // variance per level of signal
-  double chroma_noise = 2.0;          // 8-bit levels, U and V independently
+  double white_point_k = 5000.0;  // white balance fixed for this colour temperature
+  double gamma = 2.2;             // output = linear^(1/gamma)
+  double vignetting = 0.45;       // relative luminance loss at the image corners
+  double vignetting_chroma_u =
+      8.0;                       // U shift (8-bit levels) at the corners (the ERS-7's blue corners)
+  double luma_read_noise = 1.5;  // 8-bit levels
+  double luma_shot_noise = 0.06;  // variance per level of signal
+  double chroma_noise = 2.0;      // 8-bit levels, U and V independently
 
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
@@ -33,11 +33,12 @@ class CameraSensor {
  public:
   CameraSensor(const world::PinholeCamera& camera, CameraSensorConfig config);
 
-  /// Forms the image of the hits (one per pixel, row-major) under `lighting`, with noise from `rng`.
-  /// `map_to_optical` gives the direction of background pixels, for the room beyond the field.
-  CameraImage render(const std::vector<world::RayHit>& hits, const Eigen::Isometry3d& map_to_optical,
-                     const world::SceneLighting& lighting, const FieldEnvironment& env,
-                     math::Rng& rng) const;
+  /// Forms the image of the hits (one per pixel, row-major) under `lighting`, with noise from
+  /// `rng`. `map_to_optical` gives the direction of background pixels, for the room beyond the
+  /// field.
+  CameraImage render(const std::vector<world::RayHit>& hits,
+                     const Eigen::Isometry3d& map_to_optical, const world::SceneLighting& lighting,
+                     const FieldEnvironment& env, math::Rng& rng) const;
 
  private:
   world::PinholeCamera camera_;

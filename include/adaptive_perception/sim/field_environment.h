@@ -1,11 +1,11 @@
 #pragma once
-// A plausible RoboCup venue for the field simulator: surface materials (linear RGB albedo), the ceiling
-// light rig, ambient light and the camera's exposure. `draw(seed)` gives "another tournament": different
-// carpet and paint shades, lamp positions, colour temperatures and intensities.
+// A plausible RoboCup venue for the field simulator: surface materials (linear RGB albedo), the
+// ceiling light rig, ambient light and the camera's exposure. `draw(seed)` gives "another
+// tournament": different carpet and paint shades, lamp positions, colour temperatures and
+// intensities.
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "adaptive_perception/world/label_renderer.h"
 #include "adaptive_perception/world/lighting.h"
@@ -23,7 +23,8 @@ struct Materials {  // linear RGB albedo, 0..1
   Eigen::Vector3d yellow{0.80, 0.64, 0.07};
   Eigen::Vector3d cyan{0.09, 0.40, 0.72};
   Eigen::Vector3d orange{0.90, 0.30, 0.04};
-  Eigen::Vector3d room{0.16, 0.13, 0.11};  // what lies beyond the field (spectators, walls): textured
+  Eigen::Vector3d room{0.16, 0.13,
+                       0.11};  // what lies beyond the field (spectators, walls): textured
 };
 
 struct FieldEnvironment {
@@ -31,7 +32,8 @@ struct FieldEnvironment {
   std::vector<world::LightBank> banks;  // the rig with every bank at its nominal intensity
   double ambient_intensity = 0.03;
   double ambient_color_temperature_k = 6500.0;
-  double exposure = 1.0;  // camera gain from irradiance x albedo to linear sensor value (1 = saturation)
+  double exposure =
+      1.0;  // camera gain from irradiance x albedo to linear sensor value (1 = saturation)
   std::uint64_t seed = 0;
 
   /// The lab: four 4000 K fluorescent banks over the field; seed 0.

@@ -1,11 +1,11 @@
 #pragma once
-// A legged robot walking on the field (random waypoints, never through walls), scanning with its head,
-// with noisy odometry (systematic scale/drift errors plus random noise), a gait that shakes the camera
-// (not reflected in tf), and lighting that follows a script. Deterministic for (seed, environment_seed).
+// A legged robot walking on the field (random waypoints, never through walls), scanning with its
+// head, with noisy odometry (systematic scale/drift errors plus random noise), a gait that shakes
+// the camera (not reflected in tf), and lighting that follows a script. Deterministic for (seed,
+// environment_seed).
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
-
-#include <Eigen/Geometry>
 
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/math/se2.h"
@@ -28,10 +28,11 @@ struct FieldSimConfig {
   double camera_rate_hz = 10.0;
   double odom_rate_hz = 30.0;
 
-  double walk_speed_mps = 0.15;         // AIBO ERS-7 walking speed
+  double walk_speed_mps = 0.15;  // AIBO ERS-7 walking speed
   double max_turn_rate_radps = 0.8;
-  double waypoint_x_limit_m = 2.4;      // waypoints are drawn inside |x| <= this ...
-  double waypoint_y_limit_m = 1.55;     // ... and |y| <= this: always clear of goals, beacons and walls
+  double waypoint_x_limit_m = 2.4;  // waypoints are drawn inside |x| <= this ...
+  double waypoint_y_limit_m =
+      1.55;  // ... and |y| <= this: always clear of goals, beacons and walls
 
   // Odometry error (legged odometry is poor): systematic scale and drift, then random noise.
   double odom_translation_scale = 1.06;
@@ -52,8 +53,8 @@ struct FieldSimConfig {
   double gait_pitch_rad = 0.012;
   double gait_frequency_hz = 2.0;
 
-  double switch_period_s = 4.0;   // switching: the light pattern changes this often
-  double kidnap_time_s = -1.0;    // kidnap: teleport time; negative = half the duration
+  double switch_period_s = 4.0;  // switching: the light pattern changes this often
+  double kidnap_time_s = -1.0;   // kidnap: teleport time; negative = half the duration
 
   CameraSensorConfig sensor;
 
@@ -62,8 +63,8 @@ struct FieldSimConfig {
 
 struct SimState {
   double t_s = 0.0;
-  math::SE2 true_pose;   // base_link in map
-  math::SE2 odom_pose;   // base_link in odom (dead reckoning)
+  math::SE2 true_pose;  // base_link in map
+  math::SE2 odom_pose;  // base_link in odom (dead reckoning)
   double pan_rad = 0.0, tilt_rad = 0.0;
   double bob_z_m = 0.0, bob_pitch_rad = 0.0;
   bool kidnapped = false;  // the teleport has happened

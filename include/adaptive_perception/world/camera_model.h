@@ -1,9 +1,10 @@
 #pragma once
 // Pinhole camera (no distortion) and the AIBO head chain that places it on the robot.
 //
-// Frames (REP-103/105): base_link on the body, x forward, z up, at ground level under the body centre;
-// head_pan_link rotates about z (pan, positive = left); head_tilt_link rotates about y (tilt, positive =
-// nose down); camera_link is the lens, x forward; camera_optical_frame is z forward, x right, y down.
+// Frames (REP-103/105): base_link on the body, x forward, z up, at ground level under the body
+// centre; head_pan_link rotates about z (pan, positive = left); head_tilt_link rotates about y
+// (tilt, positive = nose down); camera_link is the lens, x forward; camera_optical_frame is z
+// forward, x right, y down.
 #include <Eigen/Geometry>
 
 #include "adaptive_perception/math/se2.h"
@@ -11,12 +12,14 @@
 namespace adaptive_perception::world {
 
 struct PinholeCamera {
-  int width_px = 208;   // AIBO ERS-7 camera, high-resolution layer
+  int width_px = 208;  // AIBO ERS-7 camera, high-resolution layer
   int height_px = 160;
   double fx_px = 0.0, fy_px = 0.0, cx_px = 0.0, cy_px = 0.0;
 
-  /// A camera of the given size whose image spans the given full fields of view (ERS-7: 56.9 x 45.2 deg).
-  static PinholeCamera fromFieldOfView(int width_px, int height_px, double hfov_rad, double vfov_rad);
+  /// A camera of the given size whose image spans the given full fields of view (ERS-7: 56.9 x 45.2
+  /// deg).
+  static PinholeCamera fromFieldOfView(int width_px, int height_px, double hfov_rad,
+                                       double vfov_rad);
   /// The ERS-7-like default: 208 x 160, 56.9 x 45.2 degrees.
   static PinholeCamera aiboErs7();
 
@@ -32,16 +35,16 @@ struct PinholeCamera {
 
 /// Geometry of the head chain; translations in metres in the parent frame.
 struct HeadChain {
-  Eigen::Vector3d base_to_pan_m{0.07, 0.0, 0.19};   // neck joint above the shoulders
+  Eigen::Vector3d base_to_pan_m{0.07, 0.0, 0.19};  // neck joint above the shoulders
   Eigen::Vector3d pan_to_tilt_m{0.0, 0.0, 0.04};
   Eigen::Vector3d tilt_to_camera_m{0.075, 0.0, 0.02};  // snout camera ahead of the tilt axis
-  double min_pan_rad = -1.62, max_pan_rad = 1.62;    // ERS-7: +-93 degrees
+  double min_pan_rad = -1.62, max_pan_rad = 1.62;      // ERS-7: +-93 degrees
   double min_tilt_rad = -0.78, max_tilt_rad = 1.3;
 
-  Eigen::Isometry3d basePan(double pan_rad) const;    // base_link -> head_pan_link
-  Eigen::Isometry3d panTilt(double tilt_rad) const;   // head_pan_link -> head_tilt_link
-  Eigen::Isometry3d tiltCamera() const;               // head_tilt_link -> camera_link (fixed)
-  static Eigen::Isometry3d cameraOptical();           // camera_link -> camera_optical_frame (fixed)
+  Eigen::Isometry3d basePan(double pan_rad) const;   // base_link -> head_pan_link
+  Eigen::Isometry3d panTilt(double tilt_rad) const;  // head_pan_link -> head_tilt_link
+  Eigen::Isometry3d tiltCamera() const;              // head_tilt_link -> camera_link (fixed)
+  static Eigen::Isometry3d cameraOptical();          // camera_link -> camera_optical_frame (fixed)
   /// base_link -> camera_optical_frame.
   Eigen::Isometry3d baseToOptical(double pan_rad, double tilt_rad) const;
 };

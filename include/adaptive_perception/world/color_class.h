@@ -1,6 +1,6 @@
 #pragma once
-// The colour classes of the RoboCup four-legged-league field. Class ids are what `camera/labels` and
-// the classified images carry (mono8).
+// The colour classes of the RoboCup four-legged-league field. Class ids are what `camera/labels`
+// and the classified images carry (mono8).
 #include <array>
 #include <cstdint>
 #include <optional>

@@ -2,17 +2,17 @@
 // 3-D map of a Sony four-legged-league soccer field, in the `map` frame: origin at the centre spot,
 // x towards the cyan (sky-blue) goal, y to the left when facing it, z up; metres.
 //
-// The map is built from league dimensions (FieldDimensions, loaded from config/field_4legged.yaml) into
-// a few kinds of primitive that the label renderer intersects:
+// The map is built from league dimensions (FieldDimensions, loaded from config/field_4legged.yaml)
+// into a few kinds of primitive that the label renderer intersects:
 //   - the carpet: the plane z = 0 inside |x| <= carpet_half_length_m, |y| <= carpet_half_width_m;
 //   - paint on the carpet: axis-aligned rectangles (lines) and rings (centre circle);
-//   - vertical quads: field walls and the goal panels (a segment in the plane times a height range);
+//   - vertical quads: field walls and the goal panels (a segment in the plane times a height
+//   range);
 //   - vertical cylinders in coloured bands: the beacons;
 //   - spheres: the ball.
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "adaptive_perception/world/color_class.h"
 
@@ -55,21 +55,22 @@ struct Sphere {
   ColorClass color;
 };
 
-/// League dimensions; defaults are the 2005 Sony four-legged-league field (see config/field_4legged.yaml).
+/// League dimensions; defaults are the 2005 Sony four-legged-league field (see
+/// config/field_4legged.yaml).
 struct FieldDimensions {
-  double field_length_m = 5.4;       // between the goal lines (outer edges)
-  double field_width_m = 3.6;        // between the side lines (outer edges)
-  double carpet_margin_m = 0.3;      // green carpet beyond the lines up to the field wall
-  double line_width_m = 0.025;       // every painted line
+  double field_length_m = 5.4;             // between the goal lines (outer edges)
+  double field_width_m = 3.6;              // between the side lines (outer edges)
+  double carpet_margin_m = 0.3;            // green carpet beyond the lines up to the field wall
+  double line_width_m = 0.025;             // every painted line
   double centre_circle_diameter_m = 0.36;  // to the middle of the line
   double penalty_area_depth_m = 0.65;      // from the goal line into the field
   double penalty_area_width_m = 1.3;
-  double wall_height_m = 0.1;        // white field wall around the carpet
-  double goal_width_m = 0.8;         // inner width of the goal mouth
+  double wall_height_m = 0.1;  // white field wall around the carpet
+  double goal_width_m = 0.8;   // inner width of the goal mouth
   double goal_depth_m = 0.3;
   double goal_height_m = 0.3;
-  double beacon_x_m = 1.35;          // |x| of the beacons (from the halfway line)
-  double beacon_y_m = 1.95;          // |y| of the beacon axes
+  double beacon_x_m = 1.35;  // |x| of the beacons (from the halfway line)
+  double beacon_y_m = 1.95;  // |y| of the beacon axes
   double beacon_radius_m = 0.05;
   double beacon_white_height_m = 0.2;  // white base (part C)
   double beacon_band_height_m = 0.1;   // each coloured band (parts B and A)
@@ -77,7 +78,8 @@ struct FieldDimensions {
   Eigen::Vector2d ball_xy_m{0.0, 0.0};
   double ball_radius_m = 0.043;
 
-  /// Throws std::invalid_argument naming the first bad field (non-positive size, goal wider than the field...).
+  /// Throws std::invalid_argument naming the first bad field (non-positive size, goal wider than
+  /// the field...).
   void validate() const;
 };
 
@@ -103,7 +105,8 @@ class FieldMap {
 
   /// The colour of the carpet at (x, y) (green or the paint on it); kBackground outside the carpet.
   ColorClass groundColorAt(double x_m, double y_m) const;
-  /// True when (x, y) is a place a robot can stand: on the carpet, outside goals and beacons, with a margin.
+  /// True when (x, y) is a place a robot can stand: on the carpet, outside goals and beacons, with
+  /// a margin.
   bool isFree(double x_m, double y_m, double margin_m) const;
 
  private:

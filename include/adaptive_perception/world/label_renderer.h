@@ -1,15 +1,14 @@
 #pragma once
-// Label renderer: for a camera pose in the map, the expected colour class of each pixel (or of a given
-// list of pixels), by casting the pixel's ray against the field map's primitives.
+// Label renderer: for a camera pose in the map, the expected colour class of each pixel (or of a
+// given list of pixels), by casting the pixel's ray against the field map's primitives.
 //
-// It is the inner loop of the particle filter (one call per particle per frame on a pixel subsample), so
-// per camera pose it precomputes what does not depend on the pixel (the ray origin terms of every
-// primitive, culls primitives behind the camera) and per pixel does only a few multiply-adds per
-// primitive, with no allocation.
+// It is the inner loop of the particle filter (one call per particle per frame on a pixel
+// subsample), so per camera pose it precomputes what does not depend on the pixel (the ray origin
+// terms of every primitive, culls primitives behind the camera) and per pixel does only a few
+// multiply-adds per primitive, with no allocation.
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "adaptive_perception/world/camera_model.h"
 #include "adaptive_perception/world/field_map.h"
@@ -62,8 +61,15 @@ class LabelRenderer {
   std::vector<Eigen::Vector3f> rays_optical_;  // per pixel, z = 1
 
   // Flattened primitives for the hot loop.
-  struct QuadP { double p0x, p0y, ex, ey, len, nx, ny, z0, z1; std::uint8_t color, kind; };
-  struct CylP { double cx, cy, r2; std::vector<CylinderBand> bands; double zmin, zmax; };
+  struct QuadP {
+    double p0x, p0y, ex, ey, len, nx, ny, z0, z1;
+    std::uint8_t color, kind;
+  };
+  struct CylP {
+    double cx, cy, r2;
+    std::vector<CylinderBand> bands;
+    double zmin, zmax;
+  };
   std::vector<QuadP> quads_;
   std::vector<CylP> cylinders_;
 };

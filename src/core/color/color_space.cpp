@@ -3,7 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-
 namespace adaptive_perception::color {
 
 namespace {
@@ -61,7 +60,8 @@ cv::Mat yuvToBgr(const cv::Mat& yuv) {
     const std::uint8_t* s = yuv.ptr<std::uint8_t>(r);
     std::uint8_t* o = bgr.ptr<std::uint8_t>(r);
     for (int c = 0; c < yuv.cols; ++c) {
-      const Eigen::Vector3d rgb = yuvToRgb({double(s[3 * c]), double(s[3 * c + 1]), double(s[3 * c + 2])});
+      const Eigen::Vector3d rgb =
+          yuvToRgb({double(s[3 * c]), double(s[3 * c + 1]), double(s[3 * c + 2])});
       o[3 * c + 0] = clip8(static_cast<float>(rgb[2]));
       o[3 * c + 1] = clip8(static_cast<float>(rgb[1]));
       o[3 * c + 2] = clip8(static_cast<float>(rgb[0]));

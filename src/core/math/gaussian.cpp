@@ -67,8 +67,9 @@ Eigen::VectorXd Gaussian::sample(Rng& rng) const {
 std::vector<int> complementIndices(int n, const std::vector<int>& idx) {
   std::vector<bool> taken(n, false);
   for (int i : idx) {
-    if (i < 0 || i >= n) throw std::out_of_range("index " + std::to_string(i) + " outside 0.." +
-                                                 std::to_string(n - 1));
+    if (i < 0 || i >= n)
+      throw std::out_of_range("index " + std::to_string(i) + " outside 0.." +
+                              std::to_string(n - 1));
     taken[i] = true;
   }
   std::vector<int> rest;

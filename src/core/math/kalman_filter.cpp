@@ -1,10 +1,9 @@
 #include "adaptive_perception/math/kalman_filter.h"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-
-#include <Eigen/Cholesky>
 
 namespace adaptive_perception::math {
 

@@ -20,7 +20,8 @@ double normalizeLogWeights(const std::vector<double>& log_weights, std::vector<d
   weights->resize(n);
   double max_lw = -std::numeric_limits<double>::infinity();
   for (double lw : log_weights)
-    if (std::isfinite(lw) || lw == std::numeric_limits<double>::infinity()) max_lw = std::max(max_lw, lw);
+    if (std::isfinite(lw) || lw == std::numeric_limits<double>::infinity())
+      max_lw = std::max(max_lw, lw);
   if (n == 0) return max_lw;
   if (!std::isfinite(max_lw)) {
     std::fill(weights->begin(), weights->end(), 1.0 / static_cast<double>(n));

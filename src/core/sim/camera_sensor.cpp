@@ -10,9 +10,12 @@ namespace adaptive_perception::sim {
 
 void CameraSensorConfig::validate() const {
   auto check = [](bool ok, const char* name, double v, const char* range) {
-    if (!ok) throw std::invalid_argument(std::string(name) + " = " + std::to_string(v) + " (allowed: " + range + ")");
+    if (!ok)
+      throw std::invalid_argument(std::string(name) + " = " + std::to_string(v) +
+                                  " (allowed: " + range + ")");
   };
-  check(white_point_k >= 1000.0 && white_point_k <= 20000.0, "white_point_k", white_point_k, "1000..20000");
+  check(white_point_k >= 1000.0 && white_point_k <= 20000.0, "white_point_k", white_point_k,
+        "1000..20000");
   check(gamma >= 0.5 && gamma <= 4.0, "gamma", gamma, "0.5..4");
   check(vignetting >= 0.0 && vignetting < 1.0, "vignetting", vignetting, "0..<1");
   check(luma_read_noise >= 0.0, "luma_read_noise", luma_read_noise, ">= 0");
@@ -23,12 +26,14 @@ void CameraSensorConfig::validate() const {
 CameraSensor::CameraSensor(const world::PinholeCamera& camera, CameraSensorConfig config)
     : camera_(camera), config_(config) {
   config_.validate();
-  const double half_diag2 = 0.25 * (camera.width_px * camera.width_px + camera.height_px * camera.height_px);
+  const double half_diag2 =
+      0.25 * (camera.width_px * camera.width_px + camera.height_px * camera.height_px);
   radial2_.resize(static_cast<size_t>(camera.width_px) * camera.height_px);
   for (int v = 0; v < camera.height_px; ++v)
     for (int u = 0; u < camera.width_px; ++u) {
       const double du = u + 0.5 - 0.5 * camera.width_px, dv = v + 0.5 - 0.5 * camera.height_px;
-      radial2_[static_cast<size_t>(v) * camera.width_px + u] = static_cast<float>((du * du + dv * dv) / half_diag2);
+      radial2_[static_cast<size_t>(v) * camera.width_px + u] =
+          static_cast<float>((du * du + dv * dv) / half_diag2);
     }
 }
 
@@ -56,7 +61,8 @@ CameraImage CameraSensor::render(const std::vector<world::RayHit>& hits,
   CameraImage out;
   out.labels.create(h, w, CV_8UC1);
   const double inv_gamma = 1.0 / config_.gamma;
-  const Eigen::Vector3d wb = world::colorTemperatureRgb(config_.white_point_k, config_.white_point_k);
+  const Eigen::Vector3d wb =
+      world::colorTemperatureRgb(config_.white_point_k, config_.white_point_k);
   for (int r = 0; r < h; ++r) {
     for (int c = 0; c < w; ++c) {
       const size_t i = static_cast<size_t>(r) * w + c;
@@ -70,8 +76,10 @@ CameraImage CameraSensor::render(const std::vector<world::RayHit>& hits,
         radiance = env.albedo(hit).cwiseProduct(lighting.irradiance(hit.point_m, hit.normal));
       }
       const double r2 = radial2_[i];
-      Eigen::Vector3d rgb = env.exposure * (1.0 - config_.vignetting * r2) * radiance.cwiseProduct(wb);
-      for (int k = 0; k < 3; ++k) rgb[k] = 255.0 * std::pow(std::clamp(rgb[k], 0.0, 1.0), inv_gamma);
+      Eigen::Vector3d rgb =
+          env.exposure * (1.0 - config_.vignetting * r2) * radiance.cwiseProduct(wb);
+      for (int k = 0; k < 3; ++k)
+        rgb[k] = 255.0 * std::pow(std::clamp(rgb[k], 0.0, 1.0), inv_gamma);
       const Eigen::Vector3d yuv = color::rgbToYuv(rgb);
       const double luma_sd = std::sqrt(config_.luma_read_noise * config_.luma_read_noise +
                                        config_.luma_shot_noise * std::max(0.0, yuv[0]));

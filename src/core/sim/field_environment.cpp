@@ -8,8 +8,8 @@
 namespace adaptive_perception::sim {
 
 namespace {
-// Exposure that puts a white surface (albedo 0.8) at the field centre, under the full rig, at 85% of
-// saturation: what a team calibrating its camera at the venue would set.
+// Exposure that puts a white surface (albedo 0.8) at the field centre, under the full rig, at 85%
+// of saturation: what a team calibrating its camera at the venue would set.
 double calibratedExposure(const FieldEnvironment& env) {
   world::SceneLighting all_on{env.ambient_intensity, env.ambient_color_temperature_k, env.banks};
   const Eigen::Vector3d e = all_on.irradiance(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
@@ -70,7 +70,8 @@ FieldEnvironment FieldEnvironment::draw(std::uint64_t seed) {
     world::LightBank b;
     b.name = "bank_" + std::to_string(i);
     const double along = n_banks == 1 ? 0.0 : -2.0 + 4.0 * i / (n_banks - 1);
-    b.position_m = {along + rng.uniform(-0.3, 0.3), rng.uniform(-1.2, 1.2), height + rng.uniform(-0.2, 0.2)};
+    b.position_m = {along + rng.uniform(-0.3, 0.3), rng.uniform(-1.2, 1.2),
+                    height + rng.uniform(-0.2, 0.2)};
     b.intensity = rng.uniform(0.4, 0.8) * (height * height) / (2.6 * 2.6) * 4.0 / n_banks;
     b.color_temperature_k = type_k * rng.uniform(0.95, 1.05);
     env.banks.push_back(b);
@@ -85,19 +86,29 @@ FieldEnvironment FieldEnvironment::draw(std::uint64_t seed) {
 const Eigen::Vector3d& FieldEnvironment::albedo(const world::RayHit& hit) const {
   using world::SurfaceKind;
   switch (hit.kind) {
-    case SurfaceKind::kCarpet: return materials.carpet;
-    case SurfaceKind::kLine: return materials.line;
-    case SurfaceKind::kWall: return materials.wall;
-    case SurfaceKind::kGoal: return hit.color == world::kYellow ? materials.goal_yellow : materials.goal_cyan;
-    case SurfaceKind::kBall: return materials.orange;
+    case SurfaceKind::kCarpet:
+      return materials.carpet;
+    case SurfaceKind::kLine:
+      return materials.line;
+    case SurfaceKind::kWall:
+      return materials.wall;
+    case SurfaceKind::kGoal:
+      return hit.color == world::kYellow ? materials.goal_yellow : materials.goal_cyan;
+    case SurfaceKind::kBall:
+      return materials.orange;
     case SurfaceKind::kBeacon:
       switch (hit.color) {
-        case world::kPink: return materials.pink;
-        case world::kYellow: return materials.yellow;
-        case world::kCyan: return materials.cyan;
-        default: return materials.beacon_white;
+        case world::kPink:
+          return materials.pink;
+        case world::kYellow:
+          return materials.yellow;
+        case world::kCyan:
+          return materials.cyan;
+        default:
+          return materials.beacon_white;
       }
-    default: return materials.room;
+    default:
+      return materials.room;
   }
 }
 

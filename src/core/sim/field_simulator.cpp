@@ -23,21 +23,24 @@ LightingScript parseLightingScript(const std::string& name) {
 void FieldSimConfig::validate() const {
   auto check = [](bool ok, const char* name, double v, const char* range) {
     if (!ok)
-      throw std::invalid_argument(std::string(name) + " = " + std::to_string(v) + " (allowed: " + range + ")");
+      throw std::invalid_argument(std::string(name) + " = " + std::to_string(v) +
+                                  " (allowed: " + range + ")");
   };
   check(duration_s > 0.0 && duration_s <= 36000.0, "duration_s", duration_s, "0 < x <= 36000");
   check(camera_rate_hz > 0.0 && camera_rate_hz <= 120.0, "rate_hz", camera_rate_hz, "0 < x <= 120");
   check(odom_rate_hz >= 1.0 && odom_rate_hz <= 1000.0, "odom_rate_hz", odom_rate_hz, "1..1000");
   check(walk_speed_mps >= 0.0 && walk_speed_mps <= 2.0, "walk_speed_mps", walk_speed_mps, "0..2");
   check(max_turn_rate_radps > 0.0, "max_turn_rate_radps", max_turn_rate_radps, "> 0");
-  check(waypoint_x_limit_m > 0.0 && waypoint_y_limit_m > 0.0, "waypoint limits", waypoint_x_limit_m, "> 0");
+  check(waypoint_x_limit_m > 0.0 && waypoint_y_limit_m > 0.0, "waypoint limits", waypoint_x_limit_m,
+        "> 0");
   check(odom_translation_scale > 0.0, "odom_translation_scale", odom_translation_scale, "> 0");
   check(odom_rotation_scale > 0.0, "odom_rotation_scale", odom_rotation_scale, "> 0");
   check(odom_translation_noise_m_per_sqrt_m >= 0.0, "odom_translation_noise_m_per_sqrt_m",
         odom_translation_noise_m_per_sqrt_m, ">= 0");
   check(odom_rotation_noise_rad_per_sqrt_rad >= 0.0, "odom_rotation_noise_rad_per_sqrt_rad",
         odom_rotation_noise_rad_per_sqrt_rad, ">= 0");
-  check(pan_period_s > 0.0 && tilt_period_s > 0.0, "head scan periods", std::min(pan_period_s, tilt_period_s), "> 0");
+  check(pan_period_s > 0.0 && tilt_period_s > 0.0, "head scan periods",
+        std::min(pan_period_s, tilt_period_s), "> 0");
   check(switch_period_s > 0.0, "switch_period_s", switch_period_s, "> 0");
   check(gait_frequency_hz >= 0.0, "gait_frequency_hz", gait_frequency_hz, ">= 0");
   sensor.validate();
@@ -58,17 +61,19 @@ FieldSimulator::FieldSimulator(const world::FieldMap& map, const world::PinholeC
   config_.validate();
   if (config_.kidnap_time_s < 0.0) config_.kidnap_time_s = 0.5 * config_.duration_s;
   // Start at a random free place, facing anywhere.
-  state_.true_pose = math::SE2(motion_rng_.uniform(-config_.waypoint_x_limit_m, config_.waypoint_x_limit_m),
-                               motion_rng_.uniform(-config_.waypoint_y_limit_m, config_.waypoint_y_limit_m),
-                               motion_rng_.uniform(-kPi, kPi));
+  state_.true_pose =
+      math::SE2(motion_rng_.uniform(-config_.waypoint_x_limit_m, config_.waypoint_x_limit_m),
+                motion_rng_.uniform(-config_.waypoint_y_limit_m, config_.waypoint_y_limit_m),
+                motion_rng_.uniform(-kPi, kPi));
   pickWaypoint();
   advanceTo(0.0);
 }
 
 void FieldSimulator::pickWaypoint() {
   for (int tries = 0; tries < 1000; ++tries) {
-    const Eigen::Vector2d w(motion_rng_.uniform(-config_.waypoint_x_limit_m, config_.waypoint_x_limit_m),
-                            motion_rng_.uniform(-config_.waypoint_y_limit_m, config_.waypoint_y_limit_m));
+    const Eigen::Vector2d w(
+        motion_rng_.uniform(-config_.waypoint_x_limit_m, config_.waypoint_x_limit_m),
+        motion_rng_.uniform(-config_.waypoint_y_limit_m, config_.waypoint_y_limit_m));
     const Eigen::Vector2d here(state_.true_pose.x_m, state_.true_pose.y_m);
     if ((w - here).norm() > 0.8 && map_.isFree(w.x(), w.y(), 0.2)) {
       waypoint_ = w;
@@ -85,7 +90,8 @@ void FieldSimulator::step(double dt) {
     pickWaypoint();
   }
   const double heading_err = math::angleDiff(std::atan2(to.y(), to.x()), p.yaw_rad);
-  const double omega = std::clamp(2.0 * heading_err, -config_.max_turn_rate_radps, config_.max_turn_rate_radps);
+  const double omega =
+      std::clamp(2.0 * heading_err, -config_.max_turn_rate_radps, config_.max_turn_rate_radps);
   const double c = std::cos(heading_err);
   const double v = config_.walk_speed_mps * (c > 0.0 ? c * c : 0.0);
 
@@ -101,13 +107,15 @@ void FieldSimulator::step(double dt) {
   const double t_sd = config_.odom_translation_noise_m_per_sqrt_m * std::sqrt(trans);
   const double r_sd = config_.odom_rotation_noise_rad_per_sqrt_rad * std::sqrt(rot) +
                       0.5 * config_.odom_rotation_noise_rad_per_sqrt_rad * std::sqrt(trans);
-  const math::SE2 measured(delta.x_m * config_.odom_translation_scale + odom_rng_.gaussian(0.0, t_sd),
-                           delta.y_m + odom_rng_.gaussian(0.0, 0.5 * t_sd),
-                           delta.yaw_rad * config_.odom_rotation_scale +
-                               config_.odom_yaw_drift_rad_per_m * trans + odom_rng_.gaussian(0.0, r_sd));
+  const math::SE2 measured(
+      delta.x_m * config_.odom_translation_scale + odom_rng_.gaussian(0.0, t_sd),
+      delta.y_m + odom_rng_.gaussian(0.0, 0.5 * t_sd),
+      delta.yaw_rad * config_.odom_rotation_scale + config_.odom_yaw_drift_rad_per_m * trans +
+          odom_rng_.gaussian(0.0, r_sd));
   state_.true_pose = next;
   state_.odom_pose = state_.odom_pose * measured;
-  if (v > 1e-3) gait_phase_ += 2.0 * kPi * config_.gait_frequency_hz * dt * (v / config_.walk_speed_mps);
+  if (v > 1e-3)
+    gait_phase_ += 2.0 * kPi * config_.gait_frequency_hz * dt * (v / config_.walk_speed_mps);
 }
 
 void FieldSimulator::advanceTo(double t_s) {
@@ -116,12 +124,14 @@ void FieldSimulator::advanceTo(double t_s) {
     const double dt = std::min(dt_max, t_s - state_.t_s);
     step(dt);
     state_.t_s += dt;
-    if (config_.script == LightingScript::kKidnap && !state_.kidnapped && state_.t_s >= config_.kidnap_time_s) {
+    if (config_.script == LightingScript::kKidnap && !state_.kidnapped &&
+        state_.t_s >= config_.kidnap_time_s) {
       // Teleport: the true pose jumps, odometry knows nothing of it.
       for (int tries = 0; tries < 1000; ++tries) {
-        const math::SE2 q(motion_rng_.uniform(-config_.waypoint_x_limit_m, config_.waypoint_x_limit_m),
-                          motion_rng_.uniform(-config_.waypoint_y_limit_m, config_.waypoint_y_limit_m),
-                          motion_rng_.uniform(-kPi, kPi));
+        const math::SE2 q(
+            motion_rng_.uniform(-config_.waypoint_x_limit_m, config_.waypoint_x_limit_m),
+            motion_rng_.uniform(-config_.waypoint_y_limit_m, config_.waypoint_y_limit_m),
+            motion_rng_.uniform(-kPi, kPi));
         const double jump = std::hypot(q.x_m - state_.true_pose.x_m, q.y_m - state_.true_pose.y_m);
         if (jump > 1.5 && map_.isFree(q.x_m, q.y_m, 0.2)) {
           state_.true_pose = q;
@@ -134,7 +144,8 @@ void FieldSimulator::advanceTo(double t_s) {
   }
   const double t = state_.t_s;
   state_.pan_rad = config_.pan_amplitude_rad * std::sin(2.0 * kPi * t / config_.pan_period_s);
-  state_.tilt_rad = config_.tilt_mean_rad + config_.tilt_amplitude_rad * std::sin(2.0 * kPi * t / config_.tilt_period_s);
+  state_.tilt_rad = config_.tilt_mean_rad +
+                    config_.tilt_amplitude_rad * std::sin(2.0 * kPi * t / config_.tilt_period_s);
   state_.pan_rad = std::clamp(state_.pan_rad, head_.min_pan_rad, head_.max_pan_rad);
   state_.tilt_rad = std::clamp(state_.tilt_rad, head_.min_tilt_rad, head_.max_tilt_rad);
   state_.bob_z_m = config_.gait_bob_m * std::sin(2.0 * gait_phase_);
@@ -160,12 +171,13 @@ LightingSnapshot FieldSimulator::lightingAt(double t_s) const {
       snap.condition = "dark";
       break;
     case LightingScript::kSwitching: {
-      // Even periods: the full rig. Odd periods: one or two banks, drawn per period (random access by
-      // hashing the period index, so the pattern does not depend on how often this is called).
+      // Even periods: the full rig. Odd periods: one or two banks, drawn per period (random access
+      // by hashing the period index, so the pattern does not depend on how often this is called).
       const auto period = static_cast<std::uint64_t>(std::floor(t_s / config_.switch_period_s));
       if (period % 2 == 1) {
         math::Rng r((config_.seed + 1) * 0x2545F4914F6CDD1Dull + period);
-        const size_t keep = static_cast<size_t>(r.uniformInt(0, static_cast<int>(l.banks.size()) - 1));
+        const size_t keep =
+            static_cast<size_t>(r.uniformInt(0, static_cast<int>(l.banks.size()) - 1));
         only(keep);
         if (r.bernoulli(0.4)) l.banks[(keep + 1) % l.banks.size()].on = true;
         snap.condition = "dark";
@@ -173,8 +185,8 @@ LightingSnapshot FieldSimulator::lightingAt(double t_s) const {
       break;
     }
     case LightingScript::kDrift: {
-      // Over the run the banks dim to 40% and warm by 1000 K while daylight rises, then back: s goes
-      // 0 -> 1 -> 0 smoothly.
+      // Over the run the banks dim to 40% and warm by 1000 K while daylight rises, then back: s
+      // goes 0 -> 1 -> 0 smoothly.
       const double s = 0.5 - 0.5 * std::cos(2.0 * kPi * t_s / config_.duration_s);
       for (auto& b : l.banks) {
         b.intensity *= 1.0 - 0.6 * s;

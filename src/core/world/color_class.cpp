@@ -12,13 +12,20 @@ std::optional<ColorClass> parseColorClass(const std::string& name) {
 
 std::array<std::uint8_t, 3> colorClassDisplayBgr(std::uint8_t id) {
   switch (id) {
-    case kGreen: return {40, 160, 40};
-    case kWhite: return {255, 255, 255};
-    case kPink: return {180, 105, 255};
-    case kYellow: return {0, 230, 255};
-    case kCyan: return {230, 200, 40};
-    case kOrange: return {0, 128, 255};
-    default: return {40, 40, 40};
+    case kGreen:
+      return {40, 160, 40};
+    case kWhite:
+      return {255, 255, 255};
+    case kPink:
+      return {180, 105, 255};
+    case kYellow:
+      return {0, 230, 255};
+    case kCyan:
+      return {230, 200, 40};
+    case kOrange:
+      return {0, 128, 255};
+    default:
+      return {40, 40, 40};
   }
 }
 

@@ -1,13 +1,13 @@
 #include "adaptive_perception/world/field_map.h"
 
+#include <yaml-cpp/yaml.h>
+
 #include <cmath>
 #include <fstream>
 #include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
-
-#include <yaml-cpp/yaml.h>
 
 namespace adaptive_perception::world {
 
@@ -40,11 +40,13 @@ void FieldDimensions::validate() const {
         "goal_depth_m must fit in carpet_margin_m (the goal stands behind the goal line)");
   check(penalty_area_width_m < field_width_m && penalty_area_depth_m < 0.5 * field_length_m,
         "the penalty area must fit in its half of the field");
-  check(centre_circle_diameter_m < field_width_m, "centre_circle_diameter_m must be less than field_width_m");
+  check(centre_circle_diameter_m < field_width_m,
+        "centre_circle_diameter_m must be less than field_width_m");
   check(std::fabs(beacon_x_m) < 0.5 * field_length_m + carpet_margin_m &&
             std::fabs(beacon_y_m) + beacon_radius_m < 0.5 * field_width_m + carpet_margin_m,
         "the beacons (beacon_x_m, beacon_y_m) must stand on the carpet inside the field wall");
-  check(3.0 * line_width_m < centre_circle_diameter_m, "line_width_m is too wide for the centre circle");
+  check(3.0 * line_width_m < centre_circle_diameter_m,
+        "line_width_m is too wide for the centre circle");
 }
 
 FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
@@ -55,12 +57,12 @@ FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
   const double cl = carpet_half_length_m_, cw = carpet_half_width_m_;
 
   // Lines: outer edges of the border lines lie on the field boundary.
-  rects_.push_back({-hl, hw - lw, hl, hw, kWhite});     // left side line
-  rects_.push_back({-hl, -hw, hl, -hw + lw, kWhite});   // right side line
-  rects_.push_back({-hl, -hw, -hl + lw, hw, kWhite});   // yellow goal line
-  rects_.push_back({hl - lw, -hw, hl, hw, kWhite});     // cyan goal line
+  rects_.push_back({-hl, hw - lw, hl, hw, kWhite});          // left side line
+  rects_.push_back({-hl, -hw, hl, -hw + lw, kWhite});        // right side line
+  rects_.push_back({-hl, -hw, -hl + lw, hw, kWhite});        // yellow goal line
+  rects_.push_back({hl - lw, -hw, hl, hw, kWhite});          // cyan goal line
   rects_.push_back({-0.5 * lw, -hw, 0.5 * lw, hw, kWhite});  // halfway line
-  for (double sign : {-1.0, 1.0}) {  // penalty areas
+  for (double sign : {-1.0, 1.0}) {                          // penalty areas
     const double front = sign * (hl - d.penalty_area_depth_m);
     const double ph = 0.5 * d.penalty_area_width_m;
     const double xa = std::min(front, sign * hl), xb = std::max(front, sign * hl);
@@ -88,8 +90,9 @@ FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
     quads_.push_back({{x_line, -gh}, {x_back, -gh}, 0.0, d.goal_height_m, c, SurfaceKind::kGoal});
   }
 
-  // Beacons. Looking from the yellow goal (-x) to the cyan goal (+x): on the right (-y) the top band is
-  // pink and the lower band has the colour of the nearer goal; on the left (+y) it is the other way round.
+  // Beacons. Looking from the yellow goal (-x) to the cyan goal (+x): on the right (-y) the top
+  // band is pink and the lower band has the colour of the nearer goal; on the left (+y) it is the
+  // other way round.
   const double zw = d.beacon_white_height_m, zb = zw + d.beacon_band_height_m,
                za = zb + d.beacon_band_height_m;
   for (double sx : {-1.0, 1.0}) {
@@ -97,7 +100,9 @@ FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
       const ColorClass goal = sx < 0 ? kYellow : kCyan;
       const ColorClass lower = sy < 0 ? goal : kPink;
       const ColorClass upper = sy < 0 ? kPink : goal;
-      Cylinder cyl{sx * d.beacon_x_m, sy * d.beacon_y_m, d.beacon_radius_m,
+      Cylinder cyl{sx * d.beacon_x_m,
+                   sy * d.beacon_y_m,
+                   d.beacon_radius_m,
                    {{0.0, zw, kWhite}, {zw, zb, lower}, {zb, za, upper}},
                    colorClassName(upper) + "_over_" + colorClassName(lower)};
       cylinders_.push_back(cyl);
@@ -110,7 +115,8 @@ FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
 }
 
 ColorClass FieldMap::groundColorAt(double x, double y) const {
-  if (std::fabs(x) > carpet_half_length_m_ || std::fabs(y) > carpet_half_width_m_) return kBackground;
+  if (std::fabs(x) > carpet_half_length_m_ || std::fabs(y) > carpet_half_width_m_)
+    return kBackground;
   for (const auto& g : rects_)
     if (x >= g.x0_m && x <= g.x1_m && y >= g.y0_m && y <= g.y1_m) return g.color;
   for (const auto& g : rings_) {
@@ -137,8 +143,8 @@ FieldDimensions FieldMap::parseYaml(const std::string& text, const std::string& 
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw std::runtime_error(source + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " +
-                             e.msg);
+    throw std::runtime_error(source + ":" + std::to_string(e.mark.line + 1) +
+                             ": YAML syntax error: " + e.msg);
   }
   FieldDimensions d;
   if (!root || root.IsNull()) return d;

@@ -32,12 +32,14 @@ LabelRenderer::LabelRenderer(const FieldMap& map, const PinholeCamera& camera)
   camera_.validate();
   if (map.quads().size() > kMaxQuads || map.cylinders().size() > kMaxCylinders ||
       map.spheres().size() > kMaxSpheres) {
-    throw std::invalid_argument("LabelRenderer: the map has more primitives than the renderer supports");
+    throw std::invalid_argument(
+        "LabelRenderer: the map has more primitives than the renderer supports");
   }
   rays_optical_.resize(static_cast<size_t>(camera_.width_px) * camera_.height_px);
   for (int v = 0; v < camera_.height_px; ++v)
     for (int u = 0; u < camera_.width_px; ++u)
-      rays_optical_[static_cast<size_t>(v) * camera_.width_px + u] = camera_.rayThrough(u, v).cast<float>();
+      rays_optical_[static_cast<size_t>(v) * camera_.width_px + u] =
+          camera_.rayThrough(u, v).cast<float>();
   for (const auto& q : map.quads()) {
     const Eigen::Vector2d e = q.p1_m - q.p0_m;
     const double len = e.norm();
@@ -51,7 +53,8 @@ LabelRenderer::LabelRenderer(const FieldMap& map, const PinholeCamera& camera)
   }
 }
 
-void LabelRenderer::setup(const Eigen::Vector3d& o, const Eigen::Matrix3d* rot, PoseSetup* s) const {
+void LabelRenderer::setup(const Eigen::Vector3d& o, const Eigen::Matrix3d* rot,
+                          PoseSetup* s) const {
   s->ox = o.x();
   s->oy = o.y();
   s->oz = o.z();
@@ -69,8 +72,8 @@ void LabelRenderer::setup(const Eigen::Vector3d& o, const Eigen::Matrix3d* rot, 
       bool any_front = false;
       for (double sgn : {0.0, 1.0})
         for (double z : {q.z0, q.z1}) {
-          const Eigen::Vector3d c(q.p0x + sgn * q.len * q.ex - o.x(), q.p0y + sgn * q.len * q.ey - o.y(),
-                                  z - o.z());
+          const Eigen::Vector3d c(q.p0x + sgn * q.len * q.ex - o.x(),
+                                  q.p0y + sgn * q.len * q.ey - o.y(), z - o.z());
           any_front |= c.dot(fwd) > 0.0;
         }
       if (!any_front) continue;
@@ -200,8 +203,8 @@ inline void LabelRenderer::trace(const PoseSetup& s, double dx, double dy, doubl
     } else if (what == 1) {
       n = Eigen::Vector3d(quads_[which].nx, quads_[which].ny, 0.0);
     } else if (what == 2) {
-      n = Eigen::Vector3d(hit->point_m.x() - cylinders_[which].cx, hit->point_m.y() - cylinders_[which].cy,
-                          0.0)
+      n = Eigen::Vector3d(hit->point_m.x() - cylinders_[which].cx,
+                          hit->point_m.y() - cylinders_[which].cy, 0.0)
               .normalized();
     } else {
       n = (hit->point_m - map_.spheres()[which].centre_m).normalized();
@@ -211,7 +214,8 @@ inline void LabelRenderer::trace(const PoseSetup& s, double dx, double dy, doubl
   }
 }
 
-void LabelRenderer::renderImage(const Eigen::Isometry3d& map_to_optical, std::uint8_t* labels) const {
+void LabelRenderer::renderImage(const Eigen::Isometry3d& map_to_optical,
+                                std::uint8_t* labels) const {
   PoseSetup s;
   const Eigen::Matrix3d rot = map_to_optical.linear();
   setup(map_to_optical.translation(), &rot, &s);

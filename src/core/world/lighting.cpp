@@ -21,7 +21,8 @@ Eigen::Vector3d colorTemperatureRgb(double temperature_k, double white_point_k) 
   return c / c[1];  // the green channel carries the intensity
 }
 
-Eigen::Vector3d SceneLighting::irradiance(const Eigen::Vector3d& p, const Eigen::Vector3d& n) const {
+Eigen::Vector3d SceneLighting::irradiance(const Eigen::Vector3d& p,
+                                          const Eigen::Vector3d& n) const {
   Eigen::Vector3d e = ambient_intensity * colorTemperatureRgb(ambient_color_temperature_k);
   for (const LightBank& b : banks) {
     if (!b.on || b.intensity <= 0.0) continue;

@@ -25,9 +25,18 @@ TEST(ColorSpace, RoundTrip) {
 
 TEST(ColorSpace, UyvyPacksPairsAndUnpacks) {
   cv::Mat y(1, 4, CV_32F), u(1, 4, CV_32F), v(1, 4, CV_32F);
-  y.at<float>(0) = 10; y.at<float>(1) = 20; y.at<float>(2) = 300; y.at<float>(3) = -5;
-  u.at<float>(0) = 100; u.at<float>(1) = 110; u.at<float>(2) = 50; u.at<float>(3) = 50;
-  v.at<float>(0) = 130; v.at<float>(1) = 140; v.at<float>(2) = 0; v.at<float>(3) = 2;
+  y.at<float>(0) = 10;
+  y.at<float>(1) = 20;
+  y.at<float>(2) = 300;
+  y.at<float>(3) = -5;
+  u.at<float>(0) = 100;
+  u.at<float>(1) = 110;
+  u.at<float>(2) = 50;
+  u.at<float>(3) = 50;
+  v.at<float>(0) = 130;
+  v.at<float>(1) = 140;
+  v.at<float>(2) = 0;
+  v.at<float>(3) = 2;
   const cv::Mat p = packUyvy(y, u, v);
   ASSERT_EQ(p.type(), CV_8UC2);
   const std::uint8_t* b = p.ptr<std::uint8_t>(0);

@@ -1,9 +1,9 @@
 #include "adaptive_perception/math/gaussian.h"
 
-#include <cmath>
+#include <gtest/gtest.h>
 
 #include <Eigen/LU>
-#include <gtest/gtest.h>
+#include <cmath>
 
 using adaptive_perception::math::Gaussian;
 using adaptive_perception::math::Rng;
@@ -59,8 +59,8 @@ TEST(Gaussian, MarginalPicksTheBlock) {
   EXPECT_DOUBLE_EQ(m.cov()(1, 1), s(1, 1));
 }
 
-// Monte Carlo check of the conditional: among joint samples whose given component falls in a thin slab
-// around the conditioning value, the others have the formula's mean and covariance.
+// Monte Carlo check of the conditional: among joint samples whose given component falls in a thin
+// slab around the conditioning value, the others have the formula's mean and covariance.
 TEST(Gaussian, ConditionalMatchesMonteCarlo) {
   Eigen::Vector3d mu(1.0, -1.0, 0.5);
   Eigen::Matrix3d s;

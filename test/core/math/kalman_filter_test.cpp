@@ -1,9 +1,9 @@
 #include "adaptive_perception/math/kalman_filter.h"
 
-#include <cmath>
+#include <gtest/gtest.h>
 
 #include <Eigen/LU>
-#include <gtest/gtest.h>
+#include <cmath>
 
 #include "adaptive_perception/math/gaussian.h"
 

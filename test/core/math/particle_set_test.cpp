@@ -1,9 +1,9 @@
 #include "adaptive_perception/math/particle_set.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
-
-#include <gtest/gtest.h>
 
 using namespace adaptive_perception::math;
 
@@ -43,9 +43,11 @@ TEST(ParticleSet, ResamplingPreservesExpectedCounts) {
     for (int t = 0; t < trials; ++t)
       for (std::size_t i : resampleIndices(w, n, scheme, rng)) counts[i] += 1.0;
     for (std::size_t i = 0; i < w.size(); ++i) {
-      // Multinomial count variance N w (1 - w) per trial: the mean over trials has sd sqrt(that / trials).
+      // Multinomial count variance N w (1 - w) per trial: the mean over trials has sd sqrt(that /
+      // trials).
       const double sd = std::sqrt(n * w[i] * (1 - w[i]) / trials) + 1e-9;
-      EXPECT_NEAR(counts[i] / trials, n * w[i], 5 * sd) << "scheme " << static_cast<int>(scheme) << " i " << i;
+      EXPECT_NEAR(counts[i] / trials, n * w[i], 5 * sd)
+          << "scheme " << static_cast<int>(scheme) << " i " << i;
     }
     EXPECT_EQ(counts[2], 0.0);  // a zero-weight particle never survives
   }
@@ -66,7 +68,8 @@ TEST(ParticleSet, SystematicCountsAreFloorOrCeil) {
 
 TEST(ParticleSet, ResampleReplacesStatesAndResetsWeights) {
   ParticleSet<int> set({10, 20, 30});
-  set.setLogWeights({-std::numeric_limits<double>::infinity(), 0.0, -std::numeric_limits<double>::infinity()});
+  set.setLogWeights(
+      {-std::numeric_limits<double>::infinity(), 0.0, -std::numeric_limits<double>::infinity()});
   Rng rng(1);
   set.resample(ResamplingScheme::kSystematic, rng, 5);
   ASSERT_EQ(set.size(), 5u);

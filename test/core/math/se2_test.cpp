@@ -39,7 +39,8 @@ TEST(SE2, ComposeMatchesHomogeneousMatrices) {
 }
 
 TEST(SE2, HandComputedComposition) {
-  // Robot at (1, 2) facing +y moves 1 m forward and turns left 90 degrees: ends at (1, 3) facing -x.
+  // Robot at (1, 2) facing +y moves 1 m forward and turns left 90 degrees: ends at (1, 3) facing
+  // -x.
   const SE2 c = SE2(1, 2, kPi / 2) * SE2(1, 0, kPi / 2);
   EXPECT_NEAR(c.x_m, 1.0, 1e-12);
   EXPECT_NEAR(c.y_m, 3.0, 1e-12);

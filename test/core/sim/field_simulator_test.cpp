@@ -49,7 +49,9 @@ TEST(SceneLighting, InverseSquareAndCosineHandComputed) {
   // At (2, 0, 0): d^2 = 8, falloff 4/8, cosine 2/sqrt(8).
   const double cos_in = 2.0 / std::sqrt(8.0);
   EXPECT_NEAR(l.irradiance({2, 0, 0}, {0, 0, 1})[1],
-              0.5 * (world::SceneLighting::kDiffuseFloor + (1 - world::SceneLighting::kDiffuseFloor) * cos_in), 1e-12);
+              0.5 * (world::SceneLighting::kDiffuseFloor +
+                     (1 - world::SceneLighting::kDiffuseFloor) * cos_in),
+              1e-12);
   l.banks[0].on = false;
   EXPECT_NEAR(l.irradiance({0, 0, 0}, {0, 0, 1}).norm(), 0.0, 1e-12);
 }
@@ -71,7 +73,8 @@ TEST(FieldSimulator, DeterministicForSeeds) {
   EXPECT_NE(c.state().true_pose.x_m, a.state().true_pose.x_m);
 }
 
-// The labels the simulator writes are exactly what the label renderer gives for the true camera pose.
+// The labels the simulator writes are exactly what the label renderer gives for the true camera
+// pose.
 TEST(FieldSimulator, LabelsMatchRendererAtTrueCameraPose) {
   const world::FieldMap map;
   const auto cam = world::PinholeCamera::aiboErs7();
@@ -105,11 +108,13 @@ TEST(FieldSimulator, RobotStaysOnTheFieldAndOdometryDrifts) {
   EXPECT_GT(path, 0.5 * cfg.walk_speed_mps * 120.0);  // it walks most of the time
   // Odometry integrates from identity; compare its trajectory in start's frame with the truth.
   const math::SE2 truth_rel = math::between(start, s.state().true_pose);
-  const double err = std::hypot(truth_rel.x_m - s.state().odom_pose.x_m, truth_rel.y_m - s.state().odom_pose.y_m);
+  const double err =
+      std::hypot(truth_rel.x_m - s.state().odom_pose.x_m, truth_rel.y_m - s.state().odom_pose.y_m);
   EXPECT_GT(err, 0.05);  // legged odometry is not the truth
 }
 
-// The odometry's systematic translation scale shows up as the ratio of measured to true path length.
+// The odometry's systematic translation scale shows up as the ratio of measured to true path
+// length.
 TEST(FieldSimulator, OdometryTranslationScale) {
   const world::FieldMap map;
   FieldSimConfig cfg = shortConfig(LightingScript::kBright, 6);
@@ -164,8 +169,12 @@ TEST(FieldSimulator, KidnapTeleportsOnceAndOdometryDoesNotNotice) {
   const auto before_odom = s.state().odom_pose;
   s.advanceTo(10.1);
   EXPECT_TRUE(s.state().kidnapped);
-  EXPECT_GT(std::hypot(s.state().true_pose.x_m - before_true.x_m, s.state().true_pose.y_m - before_true.y_m), 1.0);
-  EXPECT_LT(std::hypot(s.state().odom_pose.x_m - before_odom.x_m, s.state().odom_pose.y_m - before_odom.y_m), 0.1);
+  EXPECT_GT(std::hypot(s.state().true_pose.x_m - before_true.x_m,
+                       s.state().true_pose.y_m - before_true.y_m),
+            1.0);
+  EXPECT_LT(std::hypot(s.state().odom_pose.x_m - before_odom.x_m,
+                       s.state().odom_pose.y_m - before_odom.y_m),
+            0.1);
 }
 
 TEST(FieldSimulator, EnvironmentsDiffer) {

@@ -5,7 +5,8 @@
 using namespace adaptive_perception::world;
 
 TEST(FieldMap, ShippedYamlLoadsAndMatchesDefaults) {
-  const FieldMap map = FieldMap::loadYaml(std::string(AP_SOURCE_DIR) + "/config/field_4legged.yaml");
+  const FieldMap map =
+      FieldMap::loadYaml(std::string(AP_SOURCE_DIR) + "/config/field_4legged.yaml");
   EXPECT_DOUBLE_EQ(map.dimensions().field_length_m, 5.4);
   EXPECT_EQ(map.cylinders().size(), 4u);
   EXPECT_EQ(map.quads().size(), 4u + 6u);
@@ -32,7 +33,7 @@ TEST(FieldMap, BeaconColoursFollowTheRules) {
 
 TEST(FieldMap, GroundColours) {
   const FieldMap map;
-  EXPECT_EQ(map.groundColorAt(0.0, 1.0), kWhite);   // halfway line
+  EXPECT_EQ(map.groundColorAt(0.0, 1.0), kWhite);  // halfway line
   EXPECT_EQ(map.groundColorAt(0.5, 0.5), kGreen);
   EXPECT_EQ(map.groundColorAt(2.69, 0.0), kWhite);  // cyan goal line
   EXPECT_EQ(map.groundColorAt(2.8, 1.0), kGreen);   // carpet margin
@@ -42,7 +43,7 @@ TEST(FieldMap, GroundColours) {
 TEST(FieldMap, FreeSpace) {
   const FieldMap map;
   EXPECT_TRUE(map.isFree(0.0, 0.0, 0.2));
-  EXPECT_FALSE(map.isFree(2.9, 0.0, 0.2));   // inside the goal
+  EXPECT_FALSE(map.isFree(2.9, 0.0, 0.2));     // inside the goal
   EXPECT_FALSE(map.isFree(1.35, -1.95, 0.1));  // a beacon
   EXPECT_FALSE(map.isFree(3.5, 0.0, 0.0));
 }

@@ -11,8 +11,8 @@ using adaptive_perception::math::SE2;
 
 namespace {
 
-// Pose of camera_optical_frame in map for a camera at `pos` whose optical axis points along `forward`
-// (x right, y down with `down` roughly the image's down direction).
+// Pose of camera_optical_frame in map for a camera at `pos` whose optical axis points along
+// `forward` (x right, y down with `down` roughly the image's down direction).
 Eigen::Isometry3d lookAlong(const Eigen::Vector3d& pos, const Eigen::Vector3d& forward,
                             const Eigen::Vector3d& up_hint = Eigen::Vector3d::UnitZ()) {
   const Eigen::Vector3d z = forward.normalized();
@@ -30,8 +30,8 @@ Eigen::Isometry3d lookAlong(const Eigen::Vector3d& pos, const Eigen::Vector3d& f
 
 std::uint8_t centrePixel(const LabelRenderer& r, const Eigen::Isometry3d& pose) {
   const PinholeCamera& c = r.camera();
-  std::vector<PixelCoord> px = {{static_cast<std::uint16_t>(c.width_px / 2),
-                                 static_cast<std::uint16_t>(c.height_px / 2)}};
+  std::vector<PixelCoord> px = {
+      {static_cast<std::uint16_t>(c.width_px / 2), static_cast<std::uint16_t>(c.height_px / 2)}};
   std::vector<std::uint8_t> out;
   r.renderPixels(pose, px, &out);
   return out[0];
@@ -48,19 +48,25 @@ class LabelRendererTest : public ::testing::Test {
 
 TEST_F(LabelRendererTest, LookingDownSeesCarpetAndLines) {
   const Eigen::Vector3d down(0, 0, -1);
-  EXPECT_EQ(centrePixel(renderer_, lookAlong({0.5, 0.5, 0.3}, down, Eigen::Vector3d::UnitX())), kGreen);
+  EXPECT_EQ(centrePixel(renderer_, lookAlong({0.5, 0.5, 0.3}, down, Eigen::Vector3d::UnitX())),
+            kGreen);
   // Halfway line at x = 0, centre circle of radius 0.18 m, side line at y = -1.8 .. -1.775.
-  EXPECT_EQ(centrePixel(renderer_, lookAlong({0.0, 1.0, 0.3}, down, Eigen::Vector3d::UnitX())), kWhite);
-  EXPECT_EQ(centrePixel(renderer_, lookAlong({0.18, 0.0, 0.3}, down, Eigen::Vector3d::UnitX())), kWhite);
-  EXPECT_EQ(centrePixel(renderer_, lookAlong({1.0, -1.79, 0.3}, down, Eigen::Vector3d::UnitX())), kWhite);
-  EXPECT_EQ(centrePixel(renderer_, lookAlong({1.0, -1.76, 0.3}, down, Eigen::Vector3d::UnitX())), kGreen);
+  EXPECT_EQ(centrePixel(renderer_, lookAlong({0.0, 1.0, 0.3}, down, Eigen::Vector3d::UnitX())),
+            kWhite);
+  EXPECT_EQ(centrePixel(renderer_, lookAlong({0.18, 0.0, 0.3}, down, Eigen::Vector3d::UnitX())),
+            kWhite);
+  EXPECT_EQ(centrePixel(renderer_, lookAlong({1.0, -1.79, 0.3}, down, Eigen::Vector3d::UnitX())),
+            kWhite);
+  EXPECT_EQ(centrePixel(renderer_, lookAlong({1.0, -1.76, 0.3}, down, Eigen::Vector3d::UnitX())),
+            kGreen);
   // Penalty area front line of the cyan goal at x = 2.7 - 0.65.
-  EXPECT_EQ(centrePixel(renderer_, lookAlong({2.05, 0.3, 0.3}, down, Eigen::Vector3d::UnitX())), kWhite);
+  EXPECT_EQ(centrePixel(renderer_, lookAlong({2.05, 0.3, 0.3}, down, Eigen::Vector3d::UnitX())),
+            kWhite);
 }
 
 TEST_F(LabelRendererTest, BeaconBandsByHeight) {
-  // Beacon at (1.35, -1.95): on the right side (-y) near the cyan goal: white base 0-0.2, cyan 0.2-0.3,
-  // pink 0.3-0.4.
+  // Beacon at (1.35, -1.95): on the right side (-y) near the cyan goal: white base 0-0.2, cyan
+  // 0.2-0.3, pink 0.3-0.4.
   const Eigen::Vector3d towards(0, -1, 0);
   EXPECT_EQ(centrePixel(renderer_, lookAlong({1.35, 0.0, 0.1}, towards)), kWhite);
   EXPECT_EQ(centrePixel(renderer_, lookAlong({1.35, 0.0, 0.25}, towards)), kCyan);
@@ -94,7 +100,8 @@ TEST_F(LabelRendererTest, CastRayReportsRangeAndNormal) {
   EXPECT_NEAR(g.normal.z(), 1.0, 1e-12);
 }
 
-// renderImage, renderPixels and castRay agree on every pixel, for random poses of the real head chain.
+// renderImage, renderPixels and castRay agree on every pixel, for random poses of the real head
+// chain.
 TEST_F(LabelRendererTest, AllEntryPointsAgree) {
   adaptive_perception::math::Rng rng(4);
   const HeadChain head;
@@ -139,7 +146,8 @@ TEST_F(LabelRendererTest, ProjectedBeaconPointsLandOnTheirColour) {
     std::vector<std::uint8_t> image(cam.width_px * cam.height_px);
     renderer_.renderImage(pose, image.data());
     for (const auto& band : c.bands) {
-      const Eigen::Vector3d p(c.cx_m + (pos.x() - c.cx_m) * 0.0, c.cy_m + (c.cy_m > 0 ? -1 : 1) * c.radius_m,
+      const Eigen::Vector3d p(c.cx_m + (pos.x() - c.cx_m) * 0.0,
+                              c.cy_m + (c.cy_m > 0 ? -1 : 1) * c.radius_m,
                               0.5 * (band.z0_m + band.z1_m));
       Eigen::Vector2d uv;
       ASSERT_TRUE(cam.project(pose.inverse() * p, &uv));
