@@ -1,0 +1,148 @@
+// evaluate_color_estimation: runs the colour estimator with known (ground-truth) camera poses over a bag
+// and scores every pixel's classification against the bag's true labels (Schulz & Fox, Table 1, Fig. 6).
+//
+//   evaluate_color_estimation --bag FILE [--filter switching|single] [--prior joint|independent]
+//       [--unobserved COLOUR] [--priors_dir config/color_priors] [--modes dark,bright] [--single all]
+//       [--mixing best_mode|imm] [--output results/evaluate_color_estimation] [--name LABEL]
+//
+// switching: one mode per prior in --modes; single: one Kalman filter from the prior --single.
+// independent: the same priors with every cross-colour covariance zeroed. --unobserved withholds that
+// colour's observations from the filter (it is still scored).
+// Writes OUTPUT/results.yaml, OUTPUT/frames.csv and OUTPUT/rates.png. Last line:
+//   evaluate_color_estimation: overall=.. green=.. white=.. pink=.. yellow=.. cyan=.. frames=N
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "adaptive_perception/color/color_estimator.h"
+#include "adaptive_perception/ros/bag_frames.h"
+#include "adaptive_perception/ros/params.h"
+#include "tool_args.h"
+
+using namespace adaptive_perception;
+namespace fs = std::filesystem;
+
+int main(int argc, char** argv) {
+  tools::Args args(argc, argv,
+                   "evaluate_color_estimation --bag FILE [--filter switching|single] [--prior joint|independent] "
+                   "[--unobserved COLOUR] [--priors_dir DIR] [--modes dark,bright] [--single all] "
+                   "[--mixing best_mode|imm] [--output DIR] [--name LABEL] [--no_plot]");
+  const std::string bag = args.get("bag", "");
+  const std::string filter = args.get("filter", "switching");
+  const std::string prior_kind = args.get("prior", "joint");
+  const std::string unobserved = args.get("unobserved", "");
+  const std::string priors_dir = args.get("priors_dir", "config/color_priors");
+  const std::string modes_arg = args.get("modes", "dark,bright");
+  const std::string single = args.get("single", "all");
+  const std::string mixing = args.get("mixing", "best_mode");
+  const std::string output = args.get("output", "results/evaluate_color_estimation");
+  const std::string name = args.get("name", fs::path(bag).stem().string());
+  const bool plot = !args.has("no_plot");
+  args.finish();
+  if (bag.empty()) args.fail("--bag FILE is required");
+  if (filter != "switching" && filter != "single") args.fail("--filter must be switching or single");
+  if (prior_kind != "joint" && prior_kind != "independent") args.fail("--prior must be joint or independent");
+
+  try {
+    color::ColorEstimatorConfig cfg;
+    cfg.switching.mixing = color::parseModeMixing(mixing);
+    if (!unobserved.empty()) {
+      const auto c = world::parseColorClass(unobserved);
+      if (!c || *c == world::kBackground) args.fail("--unobserved: unknown colour '" + unobserved + "'");
+      cfg.withheld_class = *c;
+    }
+    std::vector<std::string> mode_names;
+    if (filter == "single") {
+      mode_names = {single};
+    } else {
+      std::string s;
+      for (std::stringstream ss(modes_arg); std::getline(ss, s, ',');) mode_names.push_back(s);
+    }
+    const std::string dir = ros_params::resolvePackagePath(priors_dir);
+    std::vector<color::LightingPrior> priors;
+    for (const auto& m : mode_names) {
+      color::LightingPrior p = color::LightingPrior::loadYaml((fs::path(dir) / (m + ".yaml")).string());
+      priors.push_back(prior_kind == "independent" ? p.independent() : p);
+    }
+
+    ros_bag::BagFrameReader reader(bag);
+    const auto frames = reader.readAll();
+    if (frames.empty()) throw std::runtime_error(bag + ": no readable camera frames");
+    color::ColorEstimator est(world::FieldMap(), frames.front().camera, priors, cfg);
+    const auto& classes = cfg.model.classes;
+    const int m = static_cast<int>(classes.size());
+    std::vector<long> correct(m, 0), total(m, 0);
+    fs::create_directories(output);
+    std::ofstream csv(fs::path(output) / "frames.csv");
+    csv << "t_s,overall";
+    for (auto c : classes) csv << "," << world::colorClassName(c);
+    csv << ",active_mode,condition\n";
+    int used = 0, no_pose = 0, no_labels = 0;
+    const double t0 = frames.front().stamp.toSec();
+    for (const auto& f : frames) {
+      if (!f.has_pose) {
+        ++no_pose;
+        continue;
+      }
+      if (f.true_labels.empty()) {
+        ++no_labels;
+        continue;
+      }
+      const auto r = est.process(f.stamp.toSec() - t0, f.yuv, f.map_to_optical);
+      std::vector<long> fc(m, 0), ft(m, 0);
+      for (int y = 0; y < f.true_labels.rows; ++y) {
+        const std::uint8_t* t = f.true_labels.ptr<std::uint8_t>(y);
+        const std::uint8_t* p = r.classified.ptr<std::uint8_t>(y);
+        for (int x = 0; x < f.true_labels.cols; ++x) {
+          const int k = cfg.model.colorIndex(t[x]);
+          if (k < 0) continue;
+          ++ft[k];
+          fc[k] += p[x] == t[x];
+        }
+      }
+      long fca = 0, fta = 0;
+      for (int k = 0; k < m; ++k) {
+        correct[k] += fc[k];
+        total[k] += ft[k];
+        fca += fc[k];
+        fta += ft[k];
+      }
+      csv << f.stamp.toSec() - t0 << "," << (fta ? double(fca) / fta : -1.0);
+      for (int k = 0; k < m; ++k) csv << "," << (ft[k] ? double(fc[k]) / ft[k] : -1.0);
+      csv << "," << est.filter().modeName(r.active_mode) << "," << (f.lighting_condition.empty() ? "-" : f.lighting_condition) << "\n";
+      ++used;
+    }
+    csv.close();
+    long ca = 0, ta = 0;
+    for (int k = 0; k < m; ++k) {
+      ca += correct[k];
+      ta += total[k];
+    }
+    auto rate = [](long c, long t) { return t ? double(c) / t : -1.0; };
+    std::ofstream yaml(fs::path(output) / "results.yaml");
+    yaml << "bag: " << bag << "\nname: " << name << "\nfilter: " << filter << "\nprior: " << prior_kind
+         << "\nmixing: " << mixing << "\nunobserved: " << (unobserved.empty() ? "none" : unobserved) << "\nframes: " << used
+         << "\nframes_without_pose: " << no_pose << "\nframes_without_labels: " << no_labels
+         << "\nlut_rebuilds: " << est.lutRebuilds() << "\nrates:\n  overall: " << rate(ca, ta) << "\n";
+    for (int k = 0; k < m; ++k) yaml << "  " << world::colorClassName(classes[k]) << ": " << rate(correct[k], total[k]) << "\n";
+    yaml << "pixels:\n";
+    for (int k = 0; k < m; ++k) yaml << "  " << world::colorClassName(classes[k]) << ": " << total[k] << "\n";
+    yaml.close();
+    if (plot) {
+      const std::string script = ros_params::resolvePackagePath("scripts/plot_color_rates.py");
+      const std::string cmd = "PATH=/usr/bin:$PATH python3 '" + script + "' '" + (fs::path(output) / "frames.csv").string() +
+                              "' '" + (fs::path(output) / "rates.png").string() + "' '" + name + " (" + filter + ", " + prior_kind + ")' > /dev/null 2>&1";
+      if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "evaluate_color_estimation: warning: plot failed (%s)\n", cmd.c_str());
+    }
+    std::printf("evaluate_color_estimation: overall=%.3f", rate(ca, ta));
+    for (int k = 0; k < m; ++k) std::printf(" %s=%.3f", world::colorClassName(classes[k]).c_str(), rate(correct[k], total[k]));
+    std::printf(" frames=%d\n", used);
+  } catch (const std::exception& e) {
+    std::cerr << "evaluate_color_estimation: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
