@@ -7,9 +7,13 @@
 //
 // switching: one mode per prior in --modes; single: one Kalman filter from the prior --single.
 // independent: the same priors with every cross-colour covariance zeroed. --unobserved withholds that
-// colour's observations from the filter (it is still scored).
+// colour's observations from the filter (it is still scored). Pixels are classified as the node does:
+// maximum likelihood over the map colours behind the "unknown" gate (--unknown_mahalanobis, default the
+// node's; 1e9 gives the paper's plain maximum likelihood). background_rejected is the share of true
+// background pixels the gate calls unknown.
 // Writes OUTPUT/results.yaml, OUTPUT/frames.csv and OUTPUT/rates.png. Last line:
 //   evaluate_color_estimation: overall=.. green=.. white=.. pink=.. yellow=.. cyan=.. frames=N
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -29,7 +33,7 @@ int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "evaluate_color_estimation --bag FILE [--filter switching|single] [--prior joint|independent] "
                    "[--unobserved COLOUR] [--priors_dir DIR] [--modes dark,bright] [--single all] "
-                   "[--mixing best_mode|imm] [--output DIR] [--name LABEL] [--no_plot]");
+                   "[--mixing best_mode|imm] [--edge_margin_px N] [--unknown_mahalanobis D] [--output DIR] [--name LABEL] [--no_plot]");
   const std::string bag = args.get("bag", "");
   const std::string filter = args.get("filter", "switching");
   const std::string prior_kind = args.get("prior", "joint");
@@ -41,6 +45,10 @@ int main(int argc, char** argv) {
   const std::string output = args.get("output", "results/evaluate_color_estimation");
   const std::string name = args.get("name", fs::path(bag).stem().string());
   const bool plot = !args.has("no_plot");
+  // Scored as the node classifies: maximum likelihood behind the "unknown" gate. A large value (1e9)
+  // gives the paper's plain maximum likelihood over the map colours.
+  const double unknown_mahalanobis = args.getDouble("unknown_mahalanobis", color::ColorModelConfig().unknown_mahalanobis);
+  const int edge_margin_px = static_cast<int>(args.getInt("edge_margin_px", color::ColorEstimatorConfig().edge_margin_px));
   args.finish();
   if (bag.empty()) args.fail("--bag FILE is required");
   if (filter != "switching" && filter != "single") args.fail("--filter must be switching or single");
@@ -49,6 +57,8 @@ int main(int argc, char** argv) {
   try {
     color::ColorEstimatorConfig cfg;
     cfg.switching.mixing = color::parseModeMixing(mixing);
+    cfg.edge_margin_px = edge_margin_px;
+    cfg.model.unknown_mahalanobis = unknown_mahalanobis;
     if (!unobserved.empty()) {
       const auto c = world::parseColorClass(unobserved);
       if (!c || *c == world::kBackground) args.fail("--unobserved: unknown colour '" + unobserved + "'");
@@ -75,12 +85,15 @@ int main(int argc, char** argv) {
     const auto& classes = cfg.model.classes;
     const int m = static_cast<int>(classes.size());
     std::vector<long> correct(m, 0), total(m, 0);
+    std::vector<std::array<long, 256>> confusion(m);  // [true colour][predicted class id]
+    for (auto& row : confusion) row.fill(0);
     fs::create_directories(output);
     std::ofstream csv(fs::path(output) / "frames.csv");
     csv << "t_s,overall";
     for (auto c : classes) csv << "," << world::colorClassName(c);
     csv << ",active_mode,condition\n";
     int used = 0, no_pose = 0, no_labels = 0;
+    long background_total = 0, background_rejected = 0;  // true background pixels, and those called unknown
     const double t0 = frames.front().stamp.toSec();
     for (const auto& f : frames) {
       if (!f.has_pose) {
@@ -98,9 +111,14 @@ int main(int argc, char** argv) {
         const std::uint8_t* p = r.classified.ptr<std::uint8_t>(y);
         for (int x = 0; x < f.true_labels.cols; ++x) {
           const int k = cfg.model.colorIndex(t[x]);
+          if (t[x] == world::kBackground) {
+            ++background_total;
+            background_rejected += p[x] == world::kBackground;
+          }
           if (k < 0) continue;
           ++ft[k];
           fc[k] += p[x] == t[x];
+          ++confusion[k][p[x]];
         }
       }
       long fca = 0, fta = 0;
@@ -128,6 +146,20 @@ int main(int argc, char** argv) {
          << "\nframes_without_pose: " << no_pose << "\nframes_without_labels: " << no_labels
          << "\nlut_rebuilds: " << est.lutRebuilds() << "\nrates:\n  overall: " << rate(ca, ta) << "\n";
     for (int k = 0; k < m; ++k) yaml << "  " << world::colorClassName(classes[k]) << ": " << rate(correct[k], total[k]) << "\n";
+    yaml << "background_rejected: " << rate(background_rejected, background_total)
+         << "  # share of true background pixels classified unknown\n";
+    yaml << "confusion:  # share of each true colour's pixels given each class\n";
+    for (int k = 0; k < m; ++k) {
+      yaml << "  " << world::colorClassName(classes[k]) << ": {";
+      bool first = true;
+      for (int c = 0; c < 256; ++c) {
+        if (!confusion[k][c]) continue;
+        yaml << (first ? "" : ", ") << world::colorClassName(static_cast<std::uint8_t>(c)) << ": "
+             << rate(confusion[k][c], total[k]);
+        first = false;
+      }
+      yaml << "}\n";
+    }
     yaml << "pixels:\n";
     for (int k = 0; k < m; ++k) yaml << "  " << world::colorClassName(classes[k]) << ": " << total[k] << "\n";
     yaml.close();
@@ -139,7 +171,7 @@ int main(int argc, char** argv) {
     }
     std::printf("evaluate_color_estimation: overall=%.3f", rate(ca, ta));
     for (int k = 0; k < m; ++k) std::printf(" %s=%.3f", world::colorClassName(classes[k]).c_str(), rate(correct[k], total[k]));
-    std::printf(" frames=%d\n", used);
+    std::printf(" background_rejected=%.3f frames=%d\n", rate(background_rejected, background_total), used);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_color_estimation: error: " << e.what() << "\n";
     return 1;

@@ -45,7 +45,7 @@ struct ColorModelConfig {
   int min_pixels_per_color = 20;
   /// A pixel whose Mahalanobis distance (eq. 9 covariance) to every colour exceeds this is
   /// "unknown" (255).
-  double unknown_mahalanobis = 4.0;
+  double unknown_mahalanobis = 5.0;
 
   int numColors() const { return static_cast<int>(classes.size()); }
   int dim() const { return 3 * numColors(); }
