@@ -14,7 +14,7 @@ PACKAGES=(
   librosbag-dev libcv-bridge-dev libimage-transport-dev libtf2-ros-dev libtf2-geometry-msgs-dev
   libtf2-eigen-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
   libdiagnostic-updater-dev libdiagnostic-msgs-dev libdynamic-reconfigure-config-init-mutex-dev
-  python3-dynamic-reconfigure rosbash
+  python3-dynamic-reconfigure rosbash libstd-srvs-dev python3-std-srvs
   # Python message modules so that rostopic/rosbag can print the project's topics
   python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-tf2-msgs python3-visualization-msgs
   python3-diagnostic-msgs python3-std-msgs

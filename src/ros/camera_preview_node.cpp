@@ -3,22 +3,8 @@
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
-#include "adaptive_perception/world/color_class.h"
 
 namespace adaptive_perception {
-
-cv::Mat colorizeLabels(const cv::Mat& labels) {
-  cv::Mat out(labels.size(), CV_8UC3);
-  for (int r = 0; r < labels.rows; ++r) {
-    const std::uint8_t* s = labels.ptr<std::uint8_t>(r);
-    cv::Vec3b* o = out.ptr<cv::Vec3b>(r);
-    for (int c = 0; c < labels.cols; ++c) {
-      const auto bgr = world::colorClassDisplayBgr(s[c]);
-      o[c] = cv::Vec3b(bgr[0], bgr[1], bgr[2]);
-    }
-  }
-  return out;
-}
 
 CameraPreviewNode::CameraPreviewNode(ros::NodeHandle nh, ros::NodeHandle /*pnh*/) {
   image_pub_ = nh.advertise<sensor_msgs::Image>("camera/image_preview", 2);
@@ -41,7 +27,7 @@ void CameraPreviewNode::onLabels(const sensor_msgs::ImageConstPtr& msg) {
   if (labels_pub_.getNumSubscribers() == 0) return;
   try {
     labels_pub_.publish(
-        ros_conv::bgr8ToImage(colorizeLabels(ros_conv::imageToMono8(*msg)), msg->header));
+        ros_conv::bgr8ToImage(color::colorizeLabels(ros_conv::imageToMono8(*msg)), msg->header));
   } catch (const ros_conv::ImageFormatError& e) {
     ROS_ERROR_THROTTLE(10.0, "camera_preview: labels dropped: %s", e.what());
   }

@@ -12,11 +12,27 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
 
 namespace T = adaptive_perception::ros_topics;
+
+// Classification rate of color_estimator against the bag's true labels, over the map colours 0..4.
+struct Rate {
+  std::map<ros::Time, sensor_msgs::ImageConstPtr> truth;
+  long correct = 0, total = 0, frames = 0;
+  void score(const sensor_msgs::Image& truth_img, const sensor_msgs::Image& classified) {
+    if (truth_img.data.size() != classified.data.size()) return;
+    for (size_t i = 0; i < truth_img.data.size(); ++i) {
+      if (truth_img.data[i] > 4) continue;
+      ++total;
+      correct += truth_img.data[i] == classified.data[i];
+    }
+    ++frames;
+  }
+};
 
 struct Counts {
   long frames = 0, bad_frames = 0, map_odom = 0, markers = 0;
@@ -60,14 +76,37 @@ int main(int argc, char** argv) {
   auto map_sub = nh.subscribe<visualization_msgs::MarkerArray>(
       T::kFieldMap, 1,
       [&](const visualization_msgs::MarkerArrayConstPtr& m) { c.markers = m->markers.size(); });
+  Rate rate;
+  std::map<ros::Time, sensor_msgs::ImageConstPtr> classified;
+  auto labels_sub = nh.subscribe<sensor_msgs::Image>(T::kCameraLabels, 20,
+                                                     [&](const sensor_msgs::ImageConstPtr& m) {
+                                                       auto it = classified.find(m->header.stamp);
+                                                       if (it != classified.end()) {
+                                                         rate.score(*m, *it->second);
+                                                         classified.erase(it);
+                                                       } else {
+                                                         rate.truth[m->header.stamp] = m;
+                                                       }
+                                                     });
+  auto classified_sub = nh.subscribe<sensor_msgs::Image>(
+      "color_estimator/classified", 20, [&](const sensor_msgs::ImageConstPtr& m) {
+        auto it = rate.truth.find(m->header.stamp);
+        if (it != rate.truth.end()) {
+          rate.score(*it->second, *m);
+          rate.truth.erase(it);
+        } else {
+          classified[m->header.stamp] = m;
+        }
+      });
   ros::spin();
   const double span = (c.last - c.first).toSec();
   std::printf(
       "demo_monitor: bag=%s frames=%ld bad_frames=%ld image_hz=%.2f mean_luma=%.1f "
       "truth_path_m=%.2f "
-      "map_odom_tf=%ld field_markers=%ld\n",
+      "map_odom_tf=%ld field_markers=%ld classified_frames=%ld color_rate=%.3f\n",
       name.c_str(), c.frames, c.bad_frames, span > 0 ? (c.frames - 1) / span : 0.0,
-      c.frames ? c.luma_sum / c.frames : 0.0, c.path_m, c.map_odom, c.markers);
+      c.frames ? c.luma_sum / c.frames : 0.0, c.path_m, c.map_odom, c.markers, rate.frames,
+      rate.total ? double(rate.correct) / rate.total : 0.0);
   std::fflush(stdout);
   return 0;
 }

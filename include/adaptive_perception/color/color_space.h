@@ -30,6 +30,10 @@ cv::Mat packUyvy(const cv::Mat& y, const cv::Mat& u, const cv::Mat& v);
 /// repeated for both pixels.
 cv::Mat unpackUyvy(const cv::Mat& uyvy);
 
+/// BGR8 (CV_8UC3) of class ids (CV_8UC1) in the classes' display colours
+/// (world::colorClassDisplayBgr).
+cv::Mat colorizeLabels(const cv::Mat& labels);
+
 /// BGR8 (CV_8UC3) for display, from per-pixel YUV (CV_8UC3).
 cv::Mat yuvToBgr(const cv::Mat& yuv);
 /// BGR8 (CV_8UC3) for display, from UYVY.

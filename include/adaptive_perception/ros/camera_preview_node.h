@@ -19,9 +19,6 @@
 
 namespace adaptive_perception {
 
-/// A bgr8 image of class ids (CV_8UC1) in the classes' display colours.
-cv::Mat colorizeLabels(const cv::Mat& labels);
-
 class CameraPreviewNode {
  public:
   CameraPreviewNode(ros::NodeHandle nh, ros::NodeHandle pnh);

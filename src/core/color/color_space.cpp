@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "adaptive_perception/world/color_class.h"
+
 namespace adaptive_perception::color {
 
 namespace {
@@ -68,6 +70,21 @@ cv::Mat yuvToBgr(const cv::Mat& yuv) {
     }
   }
   return bgr;
+}
+
+cv::Mat colorizeLabels(const cv::Mat& labels) {
+  if (labels.type() != CV_8UC1)
+    throw std::invalid_argument("colorizeLabels: expects CV_8UC1 class ids");
+  cv::Mat out(labels.size(), CV_8UC3);
+  for (int r = 0; r < labels.rows; ++r) {
+    const std::uint8_t* s = labels.ptr<std::uint8_t>(r);
+    cv::Vec3b* o = out.ptr<cv::Vec3b>(r);
+    for (int c = 0; c < labels.cols; ++c) {
+      const auto bgr = world::colorClassDisplayBgr(s[c]);
+      o[c] = cv::Vec3b(bgr[0], bgr[1], bgr[2]);
+    }
+  }
+  return out;
 }
 
 // Not cv::cvtColor(COLOR_YUV2BGR_UYVY): OpenCV assumes limited-range (16..235) luma there.

@@ -1,0 +1,84 @@
+#pragma once
+// color_estimator: adaptive colour classification with the hierarchical Bayesian colour model and a
+// switching Kalman filter over lighting (Schulz & Fox 2004, section III), given the camera pose.
+//
+// Parameters (private; see config/color_estimator.yaml for defaults and ranges):
+//   ~priors_dir (string): folder of lighting prior YAMLs (relative: current directory, then
+//   package). ~filter (string, switching | single), ~priors (string list, switching modes),
+//   ~single_prior (string). ~mixing (string, best_mode | imm), ~mode_stay_probability (double,
+//   0..1], ~imm_prior_pull_per_s. ~drift_std_per_sqrt_s, ~observation_noise (pixel |
+//   pixel_over_count), ~observation_noise_floor_var, ~min_pixels_per_color, ~unknown_mahalanobis,
+//   ~edge_margin_px, ~lut_rebuild_sigma. ~field_file (string), ~map_frame (string, map),
+//   ~tf_timeout_s (double, 0..5).
+// Subscribed:
+//   camera/image_raw (sensor_msgs/Image: yuv422 | bgr8 | rgb8), camera/camera_info (optional; until
+//   one arrives a 208x160 image is taken to be the AIBO ERS-7 camera), tf map -> image frame at the
+//   stamp.
+// Published (stamped with the image's stamp):
+//   color_model (adaptive_perception/ColorModel), color_estimator/classified (mono8 class ids, 255
+//   unknown), color_estimator/classified_color (bgr8), /diagnostics.
+// Services:
+//   ~reset (std_srvs/Trigger): back to the priors. ~save_prior (adaptive_perception/SavePrior):
+//   writes the active mode's posterior as a prior YAML.
+// dynamic_reconfigure: drift_std_per_sqrt_s, unknown_mahalanobis, mode_stay_probability,
+// lut_rebuild_sigma.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
+#include <dynamic_reconfigure/server.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "adaptive_perception/ColorEstimatorConfig.h"
+#include "adaptive_perception/SavePrior.h"
+#include "adaptive_perception/color/color_estimator.h"
+
+namespace adaptive_perception {
+
+class ColorEstimatorNode {
+ public:
+  /// Throws ros_params::ParamError / std::runtime_error (bad prior file) with a clear message.
+  ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+ private:
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg);
+  bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool onSavePrior(SavePrior::Request& req, SavePrior::Response& res);
+  void onReconfigure(adaptive_perception::ColorEstimatorConfig& config, uint32_t level);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  bool ensureEstimator(int width, int height);
+
+  ros::NodeHandle nh_, pnh_;
+  std::mutex mutex_;
+  color::ColorEstimatorConfig config_;
+  std::vector<color::LightingPrior> priors_;
+  world::FieldMap map_;
+  std::optional<world::PinholeCamera> camera_;
+  std::unique_ptr<color::ColorEstimator> estimator_;
+  std::string map_frame_;
+  double tf_timeout_s_ = 0.1;
+
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  ros::Subscriber image_sub_, info_sub_;
+  ros::Publisher model_pub_, classified_pub_, classified_color_pub_;
+  ros::ServiceServer reset_srv_, save_srv_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>
+      reconfigure_;
+  diagnostic_updater::Updater diagnostics_;
+  double min_freq_ = 0.5, max_freq_ = 100.0;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+  long frames_ = 0, skipped_no_tf_ = 0, skipped_bad_image_ = 0;
+  double last_log_likelihood_ = 0.0;
+};
+
+}  // namespace adaptive_perception

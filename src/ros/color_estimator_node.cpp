@@ -1,0 +1,265 @@
+#include "adaptive_perception/ros/color_estimator_node.h"
+
+#include <tf2/exceptions.h>
+
+#include <filesystem>
+
+#include "adaptive_perception/ColorModel.h"
+#include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+
+namespace adaptive_perception {
+
+namespace fs = std::filesystem;
+using ros_params::ParamError;
+
+ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
+  namespace P = ros_params;
+  color::ColorModelConfig& m = config_.model;
+  m.drift_std_per_sqrt_s =
+      P::getInRange(pnh, "drift_std_per_sqrt_s", m.drift_std_per_sqrt_s, 0.0, 100.0);
+  m.observation_noise_floor_var =
+      P::getInRange(pnh, "observation_noise_floor_var", m.observation_noise_floor_var, 0.0, 1e4);
+  m.min_pixels_per_color =
+      P::getInRange(pnh, "min_pixels_per_color", m.min_pixels_per_color, 1, 1000000);
+  m.unknown_mahalanobis =
+      P::getInRange(pnh, "unknown_mahalanobis", m.unknown_mahalanobis, 0.5, 1e9);
+  const std::string noise = P::get<std::string>(pnh, "observation_noise", "pixel_over_count");
+  try {
+    m.observation_noise = color::parseObservationNoise(noise);
+    config_.switching.mixing =
+        color::parseModeMixing(P::get<std::string>(pnh, "mixing", "best_mode"));
+  } catch (const std::invalid_argument& e) {
+    throw ParamError(std::string("parameter ") + pnh.resolveName("observation_noise/mixing") +
+                     ": " + e.what());
+  }
+  config_.switching.mode_stay_probability = P::getInRange(
+      pnh, "mode_stay_probability", config_.switching.mode_stay_probability, 1e-3, 1.0);
+  config_.switching.imm_prior_pull_per_s = P::getInRange(
+      pnh, "imm_prior_pull_per_s", config_.switching.imm_prior_pull_per_s, 0.0, 100.0);
+  config_.edge_margin_px = P::getInRange(pnh, "edge_margin_px", config_.edge_margin_px, 0, 20);
+  config_.lut_rebuild_sigma =
+      P::getInRange(pnh, "lut_rebuild_sigma", config_.lut_rebuild_sigma, 0.0, 5.0);
+  map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
+  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", 0.1, 0.0, 5.0);
+
+  const std::string filter = P::get<std::string>(pnh, "filter", "switching");
+  std::vector<std::string> names;
+  if (filter == "switching") {
+    names = P::get<std::vector<std::string>>(pnh, "priors", {"dark", "bright"});
+  } else if (filter == "single") {
+    names = {P::get<std::string>(pnh, "single_prior", "all")};
+  } else {
+    throw ParamError("parameter " + pnh.resolveName("filter") + " = '" + filter +
+                     "' (allowed: switching, single)");
+  }
+  if (names.empty())
+    throw ParamError("parameter " + pnh.resolveName("priors") + " must name at least one prior");
+  const std::string dir =
+      P::resolvePackagePath(P::getName(pnh, "priors_dir", "config/color_priors"));
+  for (const auto& n : names)
+    priors_.push_back(color::LightingPrior::loadYaml((fs::path(dir) / (n + ".yaml")).string()));
+  map_ = world::FieldMap::loadYaml(
+      P::resolvePackagePath(P::getName(pnh, "field_file", "config/field_4legged.yaml")));
+  config_.validate();
+
+  model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_model", 5);
+  classified_pub_ = nh.advertise<sensor_msgs::Image>("color_estimator/classified", 2);
+  classified_color_pub_ = nh.advertise<sensor_msgs::Image>("color_estimator/classified_color", 2);
+  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 1, &ColorEstimatorNode::onImage, this);
+  info_sub_ = nh.subscribe(ros_topics::kCameraInfo, 1, &ColorEstimatorNode::onCameraInfo, this);
+  reset_srv_ = pnh.advertiseService("reset", &ColorEstimatorNode::onReset, this);
+  save_srv_ = pnh.advertiseService("save_prior", &ColorEstimatorNode::onSavePrior, this);
+
+  diagnostics_.setHardwareID("color_estimator");
+  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
+  diagnostics_.add(*freq_);
+  diagnostics_.add("estimator", this, &ColorEstimatorNode::diagnose);
+
+  reconfigure_ =
+      std::make_unique<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>(
+          reconfigure_mutex_, pnh);
+  adaptive_perception::ColorEstimatorConfig initial;
+  initial.drift_std_per_sqrt_s = m.drift_std_per_sqrt_s;
+  initial.unknown_mahalanobis = m.unknown_mahalanobis;
+  initial.mode_stay_probability = config_.switching.mode_stay_probability;
+  initial.lut_rebuild_sigma = config_.lut_rebuild_sigma;
+  reconfigure_->updateConfig(initial);
+  reconfigure_->setCallback([this](adaptive_perception::ColorEstimatorConfig& c, uint32_t level) {
+    onReconfigure(c, level);
+  });
+  ROS_INFO("color_estimator: %s filter with %zu prior(s) from %s", filter.c_str(), priors_.size(),
+           dir.c_str());
+}
+
+void ColorEstimatorNode::onReconfigure(adaptive_perception::ColorEstimatorConfig& c, uint32_t) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const bool gate_changed = c.unknown_mahalanobis != config_.model.unknown_mahalanobis;
+  config_.model.drift_std_per_sqrt_s = c.drift_std_per_sqrt_s;
+  config_.model.unknown_mahalanobis = c.unknown_mahalanobis;
+  config_.switching.mode_stay_probability = c.mode_stay_probability;
+  config_.lut_rebuild_sigma = c.lut_rebuild_sigma;
+  if (!estimator_) return;
+  if (gate_changed) {
+    estimator_
+        .reset();  // the gate is compiled into the table: rebuild from the priors on the next image
+    ROS_INFO(
+        "color_estimator: unknown_mahalanobis changed: the estimator restarts from its priors");
+    return;
+  }
+  estimator_->filter().setDrift(c.drift_std_per_sqrt_s);
+  estimator_->filter().setConfig(config_.switching);
+  estimator_->setLutRebuildSigma(c.lut_rebuild_sigma);
+}
+
+void ColorEstimatorNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  try {
+    const world::PinholeCamera cam = ros_conv::fromCameraInfo(*msg);
+    if (!camera_ || cam.width_px != camera_->width_px || cam.height_px != camera_->height_px ||
+        cam.fx_px != camera_->fx_px || cam.fy_px != camera_->fy_px || cam.cx_px != camera_->cx_px ||
+        cam.cy_px != camera_->cy_px) {
+      camera_ = cam;
+      estimator_.reset();
+    }
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(10.0, "color_estimator: camera_info ignored: %s", e.what());
+  }
+}
+
+bool ColorEstimatorNode::ensureEstimator(int width, int height) {
+  if (!camera_) {
+    if (width != 208 || height != 160) {
+      ROS_WARN_THROTTLE(5.0, "color_estimator: waiting for camera/camera_info (image is %dx%d)",
+                        width, height);
+      return false;
+    }
+    camera_ = world::PinholeCamera::aiboErs7();
+  }
+  if (camera_->width_px != width || camera_->height_px != height) {
+    ROS_ERROR_THROTTLE(5.0,
+                       "color_estimator: image is %dx%d but camera_info says %dx%d: frame dropped",
+                       width, height, camera_->width_px, camera_->height_px);
+    ++skipped_bad_image_;
+    return false;
+  }
+  if (!estimator_)
+    estimator_ = std::make_unique<color::ColorEstimator>(map_, *camera_, priors_, config_);
+  return true;
+}
+
+void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+  cv::Mat yuv;
+  try {
+    yuv = ros_conv::imageToYuv(*msg);
+  } catch (const ros_conv::ImageFormatError& e) {
+    ROS_ERROR_THROTTLE(10.0, "color_estimator: frame dropped: %s", e.what());
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++skipped_bad_image_;
+    return;
+  }
+  geometry_msgs::TransformStamped pose;
+  try {
+    pose = tf_buffer_.lookupTransform(map_frame_, msg->header.frame_id, msg->header.stamp,
+                                      ros::Duration(tf_timeout_s_));
+  } catch (const tf2::TransformException& e) {
+    ROS_WARN_THROTTLE(5.0, "color_estimator: no pose for the image (%s): frame skipped", e.what());
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++skipped_no_tf_;
+    return;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!ensureEstimator(yuv.cols, yuv.rows)) return;
+  const color::ColorEstimator::Result r =
+      estimator_->process(msg->header.stamp.toSec(), yuv, ros_conv::toIsometry(pose.transform));
+  if (r.time_reset)
+    ROS_WARN("color_estimator: time went backwards (bag looped?): filter reset to its priors");
+  last_log_likelihood_ = r.log_likelihood;
+  ++frames_;
+  freq_->tick();
+
+  const color::SwitchingColorFilter& f = estimator_->filter();
+  adaptive_perception::ColorModel model;
+  model.header = msg->header;
+  model.header.frame_id = map_frame_;
+  for (auto c : config_.model.classes) model.color_names.push_back(world::colorClassName(c));
+  const color::ColorFilter& a = f.active();
+  model.mean.assign(a.mean().data(), a.mean().data() + a.mean().size());
+  model.covariance.resize(a.cov().size());
+  for (int i = 0; i < a.cov().rows(); ++i)
+    for (int j = 0; j < a.cov().cols(); ++j)
+      model.covariance[i * a.cov().cols() + j] = a.cov()(i, j);
+  for (int ch = 0; ch < 3; ++ch) model.pixel_noise_var[ch] = a.pixelNoiseVar()[ch];
+  for (int j = 0; j < f.numModes(); ++j) model.mode_names.push_back(f.modeName(j));
+  model.mode_probabilities = f.modeProbabilities();
+  model.active_mode = static_cast<std::uint8_t>(f.activeMode());
+  model_pub_.publish(model);
+  classified_pub_.publish(ros_conv::mono8ToImage(r.classified, msg->header));
+  if (classified_color_pub_.getNumSubscribers() > 0)
+    classified_color_pub_.publish(
+        ros_conv::bgr8ToImage(color::colorizeLabels(r.classified), msg->header));
+  diagnostics_.update();
+}
+
+bool ColorEstimatorNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (estimator_) estimator_->reset();
+  res.success = true;
+  res.message = "colour model reset to its priors";
+  ROS_INFO("color_estimator: %s", res.message.c_str());
+  return true;
+}
+
+bool ColorEstimatorNode::onSavePrior(SavePrior::Request& req, SavePrior::Response& res) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  res.success = false;
+  if (!estimator_) {
+    res.message = "no image processed yet: nothing to save";
+    return true;
+  }
+  if (req.path.empty()) {
+    res.message = "path is empty";
+    return true;
+  }
+  if (fs::exists(req.path) && !req.overwrite) {
+    res.message = req.path + " exists; call again with overwrite: true to replace it";
+    return true;
+  }
+  const color::ColorFilter& a = estimator_->filter().active();
+  color::LightingPrior p;
+  p.name = req.name.empty() ? fs::path(req.path).stem().string() : req.name;
+  for (auto c : config_.model.classes) p.color_names.push_back(world::colorClassName(c));
+  p.mean = a.mean();
+  p.cov = a.cov();
+  p.pixel_noise_var = a.pixelNoiseVar();
+  try {
+    p.saveYaml(req.path);
+    res.success = true;
+    res.message = "saved the posterior of mode '" +
+                  estimator_->filter().modeName(estimator_->filter().activeMode()) + "' to " +
+                  req.path;
+  } catch (const std::exception& e) {
+    res.message = e.what();
+  }
+  return true;
+}
+
+void ColorEstimatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  if (!estimator_) {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no image processed yet");
+  } else {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "estimating");
+    stat.add("active mode", estimator_->filter().modeName(estimator_->filter().activeMode()));
+    stat.add("lookup table rebuilds", estimator_->lutRebuilds());
+  }
+  stat.add("frames", frames_);
+  stat.add("frames skipped (no tf)", skipped_no_tf_);
+  stat.add("frames skipped (bad image)", skipped_bad_image_);
+  stat.add("last log likelihood", last_log_likelihood_);
+}
+
+}  // namespace adaptive_perception
