@@ -93,7 +93,13 @@ int main(int argc, char** argv) {
     for (auto c : classes) csv << "," << world::colorClassName(c);
     csv << ",active_mode,condition\n";
     int used = 0, no_pose = 0, no_labels = 0;
-    long background_total = 0, background_rejected = 0;  // true background pixels, and those called unknown
+    long background_total = 0, background_rejected = 0;
+    // Withheld colour: distance (YUV levels) between the filter's estimate of its mean and its actual mean
+    // in the image (true labels), over frames that show it: how well the model predicts a colour it never
+    // observed (the point of the joint prior).
+    const int withheld_k = cfg.withheld_class >= 0 ? cfg.model.colorIndex(static_cast<std::uint8_t>(cfg.withheld_class)) : -1;
+    double unobserved_error_sum = 0.0;
+    int unobserved_error_frames = 0;  // true background pixels, and those called unknown
     const double t0 = frames.front().stamp.toSec();
     for (const auto& f : frames) {
       if (!f.has_pose) {
@@ -121,6 +127,13 @@ int main(int argc, char** argv) {
           ++confusion[k][p[x]];
         }
       }
+      if (withheld_k >= 0) {
+        const color::ColorObservation truth_obs = color::computeColorObservation(f.yuv, f.true_labels, cfg.model);
+        if (truth_obs.counts[withheld_k] >= cfg.model.min_pixels_per_color) {
+          unobserved_error_sum += (est.filter().active().colorMean(withheld_k) - truth_obs.means[withheld_k]).norm();
+          ++unobserved_error_frames;
+        }
+      }
       long fca = 0, fta = 0;
       for (int k = 0; k < m; ++k) {
         correct[k] += fc[k];
@@ -146,6 +159,10 @@ int main(int argc, char** argv) {
          << "\nframes_without_pose: " << no_pose << "\nframes_without_labels: " << no_labels
          << "\nlut_rebuilds: " << est.lutRebuilds() << "\nrates:\n  overall: " << rate(ca, ta) << "\n";
     for (int k = 0; k < m; ++k) yaml << "  " << world::colorClassName(classes[k]) << ": " << rate(correct[k], total[k]) << "\n";
+    const double unobserved_error = unobserved_error_frames ? unobserved_error_sum / unobserved_error_frames : -1.0;
+    if (withheld_k >= 0)
+      yaml << "unobserved_mean_error: " << unobserved_error << "  # YUV levels, over " << unobserved_error_frames
+           << " frames showing the withheld colour\n";
     yaml << "background_rejected: " << rate(background_rejected, background_total)
          << "  # share of true background pixels classified unknown\n";
     yaml << "confusion:  # share of each true colour's pixels given each class\n";
@@ -171,6 +188,7 @@ int main(int argc, char** argv) {
     }
     std::printf("evaluate_color_estimation: overall=%.3f", rate(ca, ta));
     for (int k = 0; k < m; ++k) std::printf(" %s=%.3f", world::colorClassName(classes[k]).c_str(), rate(correct[k], total[k]));
+    if (withheld_k >= 0) std::printf(" unobserved_error=%.1f", unobserved_error);
     std::printf(" background_rejected=%.3f frames=%d\n", rate(background_rejected, background_total), used);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_color_estimation: error: " << e.what() << "\n";
