@@ -1,0 +1,120 @@
+#include "adaptive_perception/laser/line_extraction.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace adaptive_perception::laser {
+
+void LineExtractionConfig::validate() const {
+  auto check = [](bool ok, const char* name, double v, const char* range) {
+    if (!ok)
+      throw std::invalid_argument(std::string(name) + " = " + std::to_string(v) +
+                                  " (allowed: " + range + ")");
+  };
+  check(min_range_m >= 0.0, "min_range_m", min_range_m, ">= 0");
+  check(range_noise_std_m >= 0.0 && range_noise_std_m < 1.0, "range_noise_std_m", range_noise_std_m,
+        "0..1");
+  check(bearing_noise_std_rad >= 0.0 && bearing_noise_std_rad < 0.1, "bearing_noise_std_rad",
+        bearing_noise_std_rad, "0..0.1");
+  check(breakpoint_lambda_rad > 0.0 && breakpoint_lambda_rad < 1.5, "breakpoint_lambda_rad",
+        breakpoint_lambda_rad, "0 < x < 1.5");
+  check(max_gap_m > 0.0, "max_gap_m", max_gap_m, "> 0");
+  check(split_threshold_m > 0.0, "split_threshold_m", split_threshold_m, "> 0");
+  check(min_points >= 2, "min_points", min_points, ">= 2");
+  check(min_length_m >= 0.0, "min_length_m", min_length_m, ">= 0");
+}
+
+LineExtractor::LineExtractor(const LineExtractionConfig& config) { setConfig(config); }
+
+void LineExtractor::setConfig(const LineExtractionConfig& config) {
+  config.validate();
+  config_ = config;
+}
+
+std::vector<LineSegment> LineExtractor::extract(const LaserScan2D& scan, ExtractionStats* stats) {
+  ExtractionStats local;
+  ExtractionStats* st = stats ? stats : &local;
+  *st = ExtractionStats();
+  st->beams = static_cast<int>(scan.ranges_m.size());
+  validPoints(scan, config_.min_range_m, &points_);
+  st->valid_points = static_cast<int>(points_.size());
+  xy_.resize(points_.size());
+  covs_.resize(points_.size());
+  for (size_t i = 0; i < points_.size(); ++i) {
+    xy_[i] = points_[i].p_m;
+    covs_[i] = polarPointCovariance(points_[i].range_m, points_[i].bearing_rad,
+                                    config_.range_noise_std_m, config_.bearing_noise_std_rad);
+  }
+  std::vector<LineSegment> out;
+  // Adaptive breakpoint detector: consecutive returns farther apart than
+  // r_prev sin(dphi) / sin(lambda - dphi) + 3 sigma_r (a surface seen at incidence lambda) start a
+  // new cluster.
+  int begin = 0;
+  for (int k = 1; k <= static_cast<int>(points_.size()); ++k) {
+    bool brk = k == static_cast<int>(points_.size());
+    if (!brk) {
+      const double dphi = std::fabs(points_[k].bearing_rad - points_[k - 1].bearing_rad);
+      const double gap = (xy_[k] - xy_[k - 1]).norm();
+      double d_max = config_.max_gap_m;
+      if (dphi < config_.breakpoint_lambda_rad)
+        d_max = std::min(d_max, points_[k - 1].range_m * std::sin(dphi) /
+                                        std::sin(config_.breakpoint_lambda_rad - dphi) +
+                                    3.0 * config_.range_noise_std_m);
+      brk = gap > d_max;
+    }
+    if (brk) {
+      ++st->clusters;
+      processCluster(begin, k - 1, &out, st);
+      begin = k;
+    }
+  }
+  return out;
+}
+
+void LineExtractor::processCluster(int begin, int end, std::vector<LineSegment>* out,
+                                   ExtractionStats* st) {
+  const int m = end - begin + 1;
+  if (m < config_.min_points) return;
+  const std::vector<Eigen::Vector2d> pts(xy_.begin() + begin, xy_.begin() + end + 1);
+  std::vector<int> v = simplifyPolyline(pts, config_.split_threshold_m, config_.split_method);
+  // Merge: drop a shared vertex when the union of its two pieces still lies within the threshold of
+  // the union's fitted line (collinear neighbours split by noise or by a gap-free breakpoint).
+  if (config_.merge_collinear) {
+    bool merged = true;
+    while (merged && v.size() > 2) {
+      merged = false;
+      for (size_t k = 1; k + 1 < v.size(); ++k) {
+        const PolarLine l = fitLine(pts, v[k - 1], v[k + 1], {});
+        double worst = 0.0;
+        for (int i = v[k - 1]; i <= v[k + 1]; ++i)
+          worst = std::max(worst, std::fabs(lineDistance(l, pts[i])));
+        if (worst <= config_.split_threshold_m) {
+          v.erase(v.begin() + static_cast<long>(k));
+          merged = true;
+          break;
+        }
+      }
+    }
+  }
+  const std::vector<Eigen::Matrix2d> covs(covs_.begin() + begin, covs_.begin() + end + 1);
+  for (size_t k = 0; k + 1 < v.size(); ++k) {
+    // A corner vertex is shared by both pieces in the split; each piece is fitted without the
+    // vertex it shares with its successor, so no point is counted twice.
+    const int first = v[k];
+    const int last = (k + 2 < v.size()) ? v[k + 1] - 1 : v[k + 1];
+    ++st->segments_before_filter;
+    const int count = last - first + 1;
+    if (count < config_.min_points) continue;
+    LineSegment seg;
+    seg.line = fitLine(pts, first, last, covs);
+    seg.start_m = projectOnLine(seg.line, pts[first]);
+    seg.end_m = projectOnLine(seg.line, pts[last]);
+    seg.num_points = count;
+    seg.first_beam = points_[begin + first].beam;
+    seg.last_beam = points_[begin + last].beam;
+    if (seg.length() < config_.min_length_m) continue;
+    out->push_back(seg);
+  }
+}
+
+}  // namespace adaptive_perception::laser
