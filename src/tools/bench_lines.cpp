@@ -1,7 +1,7 @@
-// bench_lines: line extraction throughput on one core for 181, 361 and 1081-beam scans of a simulated
-// office (seeded), and the split step alone, recursive Douglas-Peucker against the hull tree, on a
-// worst-case input (an alternating exponential zigzag: every split peels off one point, O(n^2) for the
-// linear scan).
+// bench_lines: line extraction throughput on one core for 181, 361 and 1081-beam scans of a
+// simulated office (seeded), and the split step alone, recursive Douglas-Peucker against the hull
+// tree, on a worst-case input (an alternating exponential zigzag: every split peels off one point,
+// O(n^2) for the linear scan).
 //
 //   bench_lines [--seconds S] [--seed N]
 //
@@ -29,8 +29,9 @@ laser::LaserScan2D officeScan(int beams, math::Rng& rng) {
   s.range_min_m = 0.05;
   s.range_max_m = 30.0;
   const double ox = rng.uniform(-3, 3), oy = rng.uniform(-2, 2), yaw = rng.uniform(-M_PI, M_PI);
-  const double walls[][4] = {{-5, -3, 5, -3}, {5, -3, 5, 3}, {5, 3, 1, 3}, {0, 3, -5, 3}, {-5, 3, -5, -3},
-                             {1, -0.5, 2, -0.5}, {2, -0.5, 2, 0.5}, {2, 0.5, 1, 0.5}, {1, 0.5, 1, -0.5}};
+  const double walls[][4] = {{-5, -3, 5, -3},   {5, -3, 5, 3},    {5, 3, 1, 3},
+                             {0, 3, -5, 3},     {-5, 3, -5, -3},  {1, -0.5, 2, -0.5},
+                             {2, -0.5, 2, 0.5}, {2, 0.5, 1, 0.5}, {1, 0.5, 1, -0.5}};
   for (int i = 0; i < beams; ++i) {
     const double b = yaw + s.bearing(i);
     const Eigen::Vector2d d(std::cos(b), std::sin(b)), o(ox, oy);
@@ -40,10 +41,12 @@ laser::LaserScan2D officeScan(int beams, math::Rng& rng) {
       const double den = d.x() * e.y() - d.y() * e.x();
       if (std::fabs(den) < 1e-12) continue;
       const Eigen::Vector2d q = p - o;
-      const double t = (q.x() * e.y() - q.y() * e.x()) / den, u = (q.x() * d.y() - q.y() * d.x()) / den;
+      const double t = (q.x() * e.y() - q.y() * e.x()) / den,
+                   u = (q.x() * d.y() - q.y() * d.x()) / den;
       if (t > 0 && u >= 0 && u <= 1) best = std::min(best, t);
     }
-    s.ranges_m.push_back(static_cast<float>(best < s.range_max_m ? best + rng.gaussian(0, 0.01) : s.range_max_m));
+    s.ranges_m.push_back(
+        static_cast<float>(best < s.range_max_m ? best + rng.gaussian(0, 0.01) : s.range_max_m));
   }
   return s;
 }
@@ -64,15 +67,18 @@ int main(int argc, char** argv) {
     const auto t0 = Clock::now();
     double el = 0;
     while (el < seconds) {
-      for (int k = 0; k < 100; ++k, ++n) segs += static_cast<long>(ex.extract(scans[n % scans.size()]).size());
+      for (int k = 0; k < 100; ++k, ++n)
+        segs += static_cast<long>(ex.extract(scans[n % scans.size()]).size());
       el = std::chrono::duration<double>(Clock::now() - t0).count();
     }
-    std::printf("%5d beams: %.0f scans/s (%.1f segments per scan)\n", beams, n / el, double(segs) / n);
-    summary += " scans_per_s_" + std::to_string(beams) + "=" + std::to_string(static_cast<long>(n / el));
+    std::printf("%5d beams: %.0f scans/s (%.1f segments per scan)\n", beams, n / el,
+                double(segs) / n);
+    summary +=
+        " scans_per_s_" + std::to_string(beams) + "=" + std::to_string(static_cast<long>(n / el));
   }
   // Worst case for the linear scan: p_k = (k, (-1)^k 1.02^k). The farthest point from the chord of
-  // [0, j] is j - 1 (the largest swing to the other side), so every split peels off one point: n levels of
-  // O(n) scans, O(n^2) in all, while the hull tree stays O(n log^2 n).
+  // [0, j] is j - 1 (the largest swing to the other side), so every split peels off one point: n
+  // levels of O(n) scans, O(n^2) in all, while the hull tree stays O(n log^2 n).
   for (int n : {1000, 4000, 16000}) {
     std::vector<Eigen::Vector2d> pts;
     for (int k = 0; k < n; ++k) pts.emplace_back(k, (k % 2 ? -1.0 : 1.0) * std::pow(1.02, k));
