@@ -1,0 +1,60 @@
+#pragma once
+// line_extractor: wall segments from laser scans (split-and-merge, perception paper section 2.1).
+//
+// Parameters (private; config/line_extractor.yaml documents defaults and ranges): ~min_range_m,
+//   ~range_noise_std_m, ~bearing_noise_std_rad, ~breakpoint_lambda_rad, ~max_gap_m,
+//   ~split_threshold_m, ~merge_collinear, ~min_points, ~min_length_m, ~split_method (recursive |
+//   hull_tree).
+// Subscribed: scan (sensor_msgs/LaserScan).
+// Published: lines (adaptive_perception/LineSegmentArray, the scan's stamp and frame),
+//   lines/markers (visualization_msgs/MarkerArray, only computed when subscribed), /diagnostics.
+// dynamic_reconfigure: split_threshold_m, min_points, min_length_m, max_gap_m,
+// breakpoint_lambda_rad,
+//   merge_collinear, split_method.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
+#include <dynamic_reconfigure/server.h>
+#include <ros/ros.h>
+#include <sensor_msgs/LaserScan.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <memory>
+#include <mutex>
+
+#include "adaptive_perception/LineExtractorConfig.h"
+#include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/laser/line_extraction.h"
+
+namespace adaptive_perception {
+
+/// The core scan of a LaserScan message.
+laser::LaserScan2D fromLaserScan(const sensor_msgs::LaserScan& msg);
+/// Message of a scan's segments.
+LineSegmentArray toLineSegmentArray(const std::vector<laser::LineSegment>& segments,
+                                    const std_msgs::Header& header);
+/// rviz markers: one LINE_LIST of all segments plus their normals' feet (`ns` names the namespace).
+visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const std::string& ns,
+                                            float r, float g, float b);
+
+class LineExtractorNode {
+ public:
+  LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+ private:
+  void onScan(const sensor_msgs::LaserScanConstPtr& msg);
+  void onReconfigure(adaptive_perception::LineExtractorConfig& c, uint32_t level);
+  std::mutex mutex_;
+  laser::LineExtractor extractor_;
+  ros::Subscriber scan_sub_;
+  ros::Publisher lines_pub_, markers_pub_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<adaptive_perception::LineExtractorConfig>>
+      reconfigure_;
+  diagnostic_updater::Updater diagnostics_;
+  double min_freq_ = 1.0, max_freq_ = 1000.0;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+  ros::Time last_stamp_;
+  long scans_ = 0, bad_scans_ = 0;
+};
+
+}  // namespace adaptive_perception

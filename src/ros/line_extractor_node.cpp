@@ -1,0 +1,149 @@
+#include "adaptive_perception/ros/line_extractor_node.h"
+
+#include <cmath>
+
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+
+namespace adaptive_perception {
+
+laser::LaserScan2D fromLaserScan(const sensor_msgs::LaserScan& msg) {
+  laser::LaserScan2D s;
+  s.angle_min_rad = msg.angle_min;
+  s.angle_increment_rad = msg.angle_increment;
+  s.range_min_m = msg.range_min;
+  s.range_max_m = msg.range_max;
+  s.ranges_m = msg.ranges;
+  return s;
+}
+
+LineSegmentArray toLineSegmentArray(const std::vector<laser::LineSegment>& segments,
+                                    const std_msgs::Header& header) {
+  LineSegmentArray out;
+  out.header = header;
+  for (const auto& s : segments) {
+    LineSegment m;
+    m.rho = s.line.rho_m;
+    m.alpha = s.line.alpha_rad;
+    m.covariance = {s.line.cov(0, 0), s.line.cov(0, 1), s.line.cov(1, 0), s.line.cov(1, 1)};
+    m.start.x = s.start_m.x();
+    m.start.y = s.start_m.y();
+    m.end.x = s.end_m.x();
+    m.end.y = s.end_m.y();
+    m.num_points = static_cast<std::uint32_t>(s.num_points);
+    out.segments.push_back(m);
+  }
+  return out;
+}
+
+visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const std::string& ns,
+                                            float r, float g, float b) {
+  visualization_msgs::Marker m;
+  m.header = lines.header;
+  m.ns = ns;
+  m.id = 0;
+  m.type = visualization_msgs::Marker::LINE_LIST;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = 0.04;
+  m.color.r = r;
+  m.color.g = g;
+  m.color.b = b;
+  m.color.a = 1.0;
+  for (const auto& s : lines.segments) {
+    m.points.push_back(s.start);
+    m.points.push_back(s.end);
+  }
+  visualization_msgs::MarkerArray out;
+  out.markers.push_back(m);
+  return out;
+}
+
+LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+  namespace P = ros_params;
+  laser::LineExtractionConfig c;
+  c.min_range_m = P::getInRange(pnh, "min_range_m", c.min_range_m, 0.0, 100.0);
+  c.range_noise_std_m = P::getInRange(pnh, "range_noise_std_m", c.range_noise_std_m, 0.0, 0.99);
+  c.bearing_noise_std_rad =
+      P::getInRange(pnh, "bearing_noise_std_rad", c.bearing_noise_std_rad, 0.0, 0.099);
+  c.breakpoint_lambda_rad =
+      P::getInRange(pnh, "breakpoint_lambda_rad", c.breakpoint_lambda_rad, 0.01, 1.4);
+  c.max_gap_m = P::getInRange(pnh, "max_gap_m", c.max_gap_m, 0.01, 10.0);
+  c.split_threshold_m = P::getInRange(pnh, "split_threshold_m", c.split_threshold_m, 0.001, 1.0);
+  c.merge_collinear = P::get<bool>(pnh, "merge_collinear", c.merge_collinear);
+  c.min_points = P::getInRange(pnh, "min_points", c.min_points, 2, 1000);
+  c.min_length_m = P::getInRange(pnh, "min_length_m", c.min_length_m, 0.0, 10.0);
+  const std::string method = P::get<std::string>(pnh, "split_method", "recursive");
+  try {
+    c.split_method = laser::parseSplitMethod(method);
+  } catch (const std::invalid_argument& e) {
+    throw P::ParamError("parameter " + pnh.resolveName("split_method") + ": " + e.what());
+  }
+  extractor_.setConfig(c);
+  lines_pub_ = nh.advertise<LineSegmentArray>("lines", 10);
+  markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("lines/markers", 2);
+  scan_sub_ = nh.subscribe(ros_topics::kScan, 5, &LineExtractorNode::onScan, this);
+  diagnostics_.setHardwareID("line_extractor");
+  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
+  diagnostics_.add(*freq_);
+  reconfigure_ =
+      std::make_unique<dynamic_reconfigure::Server<adaptive_perception::LineExtractorConfig>>(
+          reconfigure_mutex_, pnh);
+  adaptive_perception::LineExtractorConfig initial;
+  initial.split_threshold_m = c.split_threshold_m;
+  initial.min_points = c.min_points;
+  initial.min_length_m = c.min_length_m;
+  initial.max_gap_m = c.max_gap_m;
+  initial.breakpoint_lambda_rad = c.breakpoint_lambda_rad;
+  initial.merge_collinear = c.merge_collinear;
+  initial.split_method = method;
+  reconfigure_->updateConfig(initial);
+  reconfigure_->setCallback([this](adaptive_perception::LineExtractorConfig& cfg, uint32_t level) {
+    onReconfigure(cfg, level);
+  });
+}
+
+void LineExtractorNode::onReconfigure(adaptive_perception::LineExtractorConfig& cfg, uint32_t) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  laser::LineExtractionConfig c = extractor_.config();
+  c.split_threshold_m = cfg.split_threshold_m;
+  c.min_points = cfg.min_points;
+  c.min_length_m = cfg.min_length_m;
+  c.max_gap_m = cfg.max_gap_m;
+  c.breakpoint_lambda_rad = cfg.breakpoint_lambda_rad;
+  c.merge_collinear = cfg.merge_collinear;
+  try {
+    c.split_method = laser::parseSplitMethod(cfg.split_method);
+    extractor_.setConfig(c);
+  } catch (const std::invalid_argument& e) {
+    ROS_ERROR("line_extractor: reconfigure rejected: %s", e.what());
+  }
+}
+
+void LineExtractorNode::onScan(const sensor_msgs::LaserScanConstPtr& msg) {
+  if (!(msg->angle_increment != 0.0f) || !std::isfinite(msg->angle_increment) ||
+      !(msg->range_max > 0.0f)) {
+    ROS_ERROR_THROTTLE(10.0, "line_extractor: scan with angle_increment %g, range_max %g dropped",
+                       msg->angle_increment, msg->range_max);
+    ++bad_scans_;
+    return;
+  }
+  if (!last_stamp_.isZero() && msg->header.stamp < last_stamp_)
+    ROS_WARN("line_extractor: scan time went backwards (bag looped?)");
+  last_stamp_ = msg->header.stamp;
+  std::vector<laser::LineSegment> segs;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    segs = extractor_.extract(fromLaserScan(*msg));
+  }
+  const LineSegmentArray lines = toLineSegmentArray(segs, msg->header);
+  lines_pub_.publish(lines);
+  if (markers_pub_.getNumSubscribers() > 0)
+    markers_pub_.publish(lineMarkers(lines, "lines", 1.0f, 0.3f, 0.0f));
+  ++scans_;
+  freq_->tick();
+  diagnostics_.update();
+}
+
+}  // namespace adaptive_perception

@@ -1,0 +1,149 @@
+// carmen_to_bag: converts a CARMEN log (.clf or .clf.bz2) into a bag.
+//
+//   carmen_to_bag --input LOG --output FILE.bag [--laser_frame laser] [--overwrite] [--max_issues
+//   20]
+//
+// Topics: scan (sensor_msgs/LaserScan: angle_min, angle_increment and range_max from the log;
+// FLASER and ROBOTLASER1 in `laser`, RLASER in `rear_laser`), odom (nav_msgs/Odometry from ODOM
+// lines, or from the lasers' robot poses when the log has none) + tf odom -> base_link, base_link
+// -> laser (tf_static when the mounting never changes, else tf at each scan), ground_truth/pose
+// (PoseStamped in map) from TRUEPOS. Every stamp is the line's ipc_timestamp, so published relation
+// files for these logs line up with the bag. Malformed / truncated / unknown / out-of-order lines
+// are reported with their line numbers; out-of-order messages are written in time order. Last line:
+//   carmen_to_bag: output=FILE scans=N odom=M truepos=K issues=I out_of_order=O
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/LaserScan.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "adaptive_perception/io/carmen_log.h"
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/world/camera_model.h"
+#include "tool_args.h"
+
+using namespace adaptive_perception;
+namespace T = adaptive_perception::ros_topics;
+
+int main(int argc, char** argv) {
+  tools::Args args(argc, argv,
+                   "carmen_to_bag --input LOG --output FILE.bag [--laser_frame laser] "
+                   "[--overwrite] [--max_issues 20]");
+  const std::string input = args.get("input", "");
+  const std::string output = args.get("output", "");
+  const std::string laser_frame = args.get("laser_frame", T::kLaserFrame);
+  const bool overwrite = args.has("overwrite");
+  const long max_issues = args.getInt("max_issues", 20);
+  args.finish();
+  if (input.empty() || output.empty()) args.fail("--input and --output are required");
+  if (std::filesystem::exists(output) && !overwrite)
+    args.fail("'" + output + "' exists; pass --overwrite to replace it");
+  try {
+    io::CarmenLog log = io::readCarmenLog(input);
+    log.sortByTime();
+    for (long i = 0; i < static_cast<long>(log.issues.size()) && i < max_issues; ++i)
+      std::fprintf(stderr, "%s:%ld: %s\n", input.c_str(), log.issues[i].line,
+                   log.issues[i].what.c_str());
+    if (static_cast<long>(log.issues.size()) > max_issues)
+      std::fprintf(stderr, "%s: ... %zu more issues\n", input.c_str(),
+                   log.issues.size() - max_issues);
+    if (log.lasers.empty()) throw std::runtime_error(input + ": no laser messages");
+
+    const std::string tmp = output + ".tmp";
+    rosbag::Bag bag(tmp, rosbag::bagmode::Write);
+    bag.setCompression(rosbag::compression::LZ4);
+    auto stamp = [](double t) { return ros::Time(std::max(t, 1e-6)); };
+
+    // Laser mounting: constant across the log -> tf_static.
+    const math::SE2 mount0 =
+        math::between(log.lasers.front().robot_pose, log.lasers.front().laser_pose);
+    bool constant_mount = true;
+    for (const auto& l : log.lasers) {
+      const math::SE2 m = math::between(l.robot_pose, l.laser_pose);
+      if (std::hypot(m.x_m - mount0.x_m, m.y_m - mount0.y_m) > 1e-3 ||
+          std::fabs(m.yaw_rad - mount0.yaw_rad) > 1e-3) {
+        constant_mount = false;
+        break;
+      }
+    }
+    if (constant_mount) {
+      tf2_msgs::TFMessage st;
+      const ros::Time t0 = stamp(log.lasers.front().timestamp_s);
+      st.transforms.push_back(
+          ros_conv::toTransform(world::planarToIsometry(mount0), T::kBaseFrame, laser_frame, t0));
+      auto header = boost::make_shared<ros::M_string>();
+      (*header)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
+      (*header)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
+      (*header)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
+      (*header)["latching"] = "1";
+      (*header)["callerid"] = "/carmen_to_bag";
+      bag.write("/tf_static", t0, st, header);
+    }
+    std::uint32_t seq = 0;
+    for (const auto& l : log.lasers) {
+      sensor_msgs::LaserScan s;
+      s.header.stamp = stamp(l.timestamp_s);
+      s.header.seq = seq++;
+      s.header.frame_id = l.type == "RLASER" ? "rear_laser" : laser_frame;
+      s.angle_min = static_cast<float>(l.angle_min_rad);
+      s.angle_increment = static_cast<float>(l.angle_increment_rad);
+      s.angle_max =
+          static_cast<float>(l.angle_min_rad + (l.ranges_m.size() - 1) * l.angle_increment_rad);
+      s.range_min = 0.01f;
+      s.range_max = static_cast<float>(l.max_range_m);
+      s.ranges = l.ranges_m;
+      bag.write("/" + std::string(T::kScan), s.header.stamp, s);
+      if (!constant_mount) {
+        tf2_msgs::TFMessage tf;
+        tf.transforms.push_back(ros_conv::toTransform(
+            world::planarToIsometry(math::between(l.robot_pose, l.laser_pose)), T::kBaseFrame,
+            s.header.frame_id, s.header.stamp));
+        bag.write("/tf", s.header.stamp, tf);
+      }
+    }
+    auto writeOdom = [&](double t, const math::SE2& pose, double tv, double rv) {
+      nav_msgs::Odometry o;
+      o.header.stamp = stamp(t);
+      o.header.frame_id = T::kOdomFrame;
+      o.child_frame_id = T::kBaseFrame;
+      o.pose.pose = ros_conv::toPose(pose);
+      o.twist.twist.linear.x = tv;
+      o.twist.twist.angular.z = rv;
+      bag.write("/" + std::string(T::kOdom), o.header.stamp, o);
+      tf2_msgs::TFMessage tf;
+      tf.transforms.push_back(ros_conv::toTransform(world::planarToIsometry(pose), T::kOdomFrame,
+                                                    T::kBaseFrame, o.header.stamp));
+      bag.write("/tf", o.header.stamp, tf);
+    };
+    if (!log.odometry.empty()) {
+      for (const auto& o : log.odometry) writeOdom(o.timestamp_s, o.pose, o.tv_mps, o.rv_radps);
+    } else {
+      for (const auto& l : log.lasers) writeOdom(l.timestamp_s, l.robot_pose, 0.0, 0.0);
+    }
+    for (const auto& t : log.true_poses) {
+      geometry_msgs::PoseStamped p;
+      p.header.stamp = stamp(t.timestamp_s);
+      p.header.frame_id = T::kMapFrame;
+      p.pose = ros_conv::toPose(t.true_pose);
+      bag.write("/" + std::string(T::kGroundTruthPose), p.header.stamp, p);
+    }
+    bag.close();
+    std::filesystem::rename(tmp, output);
+    std::printf(
+        "carmen_to_bag: output=%s scans=%zu odom=%zu truepos=%zu issues=%zu out_of_order=%ld\n",
+        output.c_str(), log.lasers.size(),
+        log.odometry.empty() ? log.lasers.size() : log.odometry.size(), log.true_poses.size(),
+        log.issues.size(), log.out_of_order);
+  } catch (const std::exception& e) {
+    std::cerr << "carmen_to_bag: error: " << e.what() << "\n";
+    std::error_code ec;
+    std::filesystem::remove(output + ".tmp", ec);
+    return 1;
+  }
+  return 0;
+}
