@@ -16,6 +16,11 @@ std::string resolvePackagePath(const std::string& value) {
   if (value.empty() || value[0] == '/' || std::ifstream(value).good()) return value;
   const std::string share = ros::package::getPath("adaptive_perception");
   if (!share.empty() && std::ifstream(share + "/" + value).good()) return share + "/" + value;
+#ifdef AP_SOURCE_DIR
+  // Tools run without a sourced workspace still find the package's files.
+  const std::string source = std::string(AP_SOURCE_DIR) + "/" + value;
+  if (std::ifstream(source).good()) return source;
+#endif
   return value;
 }
 

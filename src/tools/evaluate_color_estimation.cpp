@@ -1,17 +1,19 @@
-// evaluate_color_estimation: runs the colour estimator with known (ground-truth) camera poses over a bag
-// and scores every pixel's classification against the bag's true labels (Schulz & Fox, Table 1, Fig. 6).
+// evaluate_color_estimation: runs the colour estimator with known (ground-truth) camera poses over
+// a bag and scores every pixel's classification against the bag's true labels (Schulz & Fox, Table
+// 1, Fig. 6).
 //
 //   evaluate_color_estimation --bag FILE [--filter switching|single] [--prior joint|independent]
-//       [--unobserved COLOUR] [--priors_dir config/color_priors] [--modes dark,bright] [--single all]
+//       [--unobserved COLOUR] [--priors_dir config/color_priors] [--modes dark,bright] [--single
+//       all]
 //       [--mixing best_mode|imm] [--output results/evaluate_color_estimation] [--name LABEL]
 //
 // switching: one mode per prior in --modes; single: one Kalman filter from the prior --single.
-// independent: the same priors with every cross-colour covariance zeroed. --unobserved withholds that
-// colour's observations from the filter (it is still scored). Pixels are classified as the node does:
-// maximum likelihood over the map colours behind the "unknown" gate (--unknown_mahalanobis, default the
-// node's; 1e9 gives the paper's plain maximum likelihood). background_rejected is the share of true
-// background pixels the gate calls unknown.
-// Writes OUTPUT/results.yaml, OUTPUT/frames.csv and OUTPUT/rates.png. Last line:
+// independent: the same priors with every cross-colour covariance zeroed. --unobserved withholds
+// that colour's observations from the filter (it is still scored). Pixels are classified as the
+// node does: maximum likelihood over the map colours behind the "unknown" gate
+// (--unknown_mahalanobis, default the node's; 1e9 gives the paper's plain maximum likelihood).
+// background_rejected is the share of true background pixels the gate calls unknown. Writes
+// OUTPUT/results.yaml, OUTPUT/frames.csv and OUTPUT/rates.png. Last line:
 //   evaluate_color_estimation: overall=.. green=.. white=.. pink=.. yellow=.. cyan=.. frames=N
 #include <array>
 #include <cstdio>
@@ -31,9 +33,11 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
-                   "evaluate_color_estimation --bag FILE [--filter switching|single] [--prior joint|independent] "
+                   "evaluate_color_estimation --bag FILE [--filter switching|single] [--prior "
+                   "joint|independent] "
                    "[--unobserved COLOUR] [--priors_dir DIR] [--modes dark,bright] [--single all] "
-                   "[--mixing best_mode|imm] [--edge_margin_px N] [--unknown_mahalanobis D] [--output DIR] [--name LABEL] [--no_plot]");
+                   "[--mixing best_mode|imm] [--edge_margin_px N] [--unknown_mahalanobis D] "
+                   "[--output DIR] [--name LABEL] [--no_plot]");
   const std::string bag = args.get("bag", "");
   const std::string filter = args.get("filter", "switching");
   const std::string prior_kind = args.get("prior", "joint");
@@ -45,14 +49,18 @@ int main(int argc, char** argv) {
   const std::string output = args.get("output", "results/evaluate_color_estimation");
   const std::string name = args.get("name", fs::path(bag).stem().string());
   const bool plot = !args.has("no_plot");
-  // Scored as the node classifies: maximum likelihood behind the "unknown" gate. A large value (1e9)
-  // gives the paper's plain maximum likelihood over the map colours.
-  const double unknown_mahalanobis = args.getDouble("unknown_mahalanobis", color::ColorModelConfig().unknown_mahalanobis);
-  const int edge_margin_px = static_cast<int>(args.getInt("edge_margin_px", color::ColorEstimatorConfig().edge_margin_px));
+  // Scored as the node classifies: maximum likelihood behind the "unknown" gate. A large value
+  // (1e9) gives the paper's plain maximum likelihood over the map colours.
+  const double unknown_mahalanobis =
+      args.getDouble("unknown_mahalanobis", color::ColorModelConfig().unknown_mahalanobis);
+  const int edge_margin_px =
+      static_cast<int>(args.getInt("edge_margin_px", color::ColorEstimatorConfig().edge_margin_px));
   args.finish();
   if (bag.empty()) args.fail("--bag FILE is required");
-  if (filter != "switching" && filter != "single") args.fail("--filter must be switching or single");
-  if (prior_kind != "joint" && prior_kind != "independent") args.fail("--prior must be joint or independent");
+  if (filter != "switching" && filter != "single")
+    args.fail("--filter must be switching or single");
+  if (prior_kind != "joint" && prior_kind != "independent")
+    args.fail("--prior must be joint or independent");
 
   try {
     color::ColorEstimatorConfig cfg;
@@ -61,7 +69,8 @@ int main(int argc, char** argv) {
     cfg.model.unknown_mahalanobis = unknown_mahalanobis;
     if (!unobserved.empty()) {
       const auto c = world::parseColorClass(unobserved);
-      if (!c || *c == world::kBackground) args.fail("--unobserved: unknown colour '" + unobserved + "'");
+      if (!c || *c == world::kBackground)
+        args.fail("--unobserved: unknown colour '" + unobserved + "'");
       cfg.withheld_class = *c;
     }
     std::vector<std::string> mode_names;
@@ -74,7 +83,8 @@ int main(int argc, char** argv) {
     const std::string dir = ros_params::resolvePackagePath(priors_dir);
     std::vector<color::LightingPrior> priors;
     for (const auto& m : mode_names) {
-      color::LightingPrior p = color::LightingPrior::loadYaml((fs::path(dir) / (m + ".yaml")).string());
+      color::LightingPrior p =
+          color::LightingPrior::loadYaml((fs::path(dir) / (m + ".yaml")).string());
       priors.push_back(prior_kind == "independent" ? p.independent() : p);
     }
 
@@ -94,10 +104,12 @@ int main(int argc, char** argv) {
     csv << ",active_mode,condition\n";
     int used = 0, no_pose = 0, no_labels = 0;
     long background_total = 0, background_rejected = 0;
-    // Withheld colour: distance (YUV levels) between the filter's estimate of its mean and its actual mean
-    // in the image (true labels), over frames that show it: how well the model predicts a colour it never
-    // observed (the point of the joint prior).
-    const int withheld_k = cfg.withheld_class >= 0 ? cfg.model.colorIndex(static_cast<std::uint8_t>(cfg.withheld_class)) : -1;
+    // Withheld colour: distance (YUV levels) between the filter's estimate of its mean and its
+    // actual mean in the image (true labels), over frames that show it: how well the model predicts
+    // a colour it never observed (the point of the joint prior).
+    const int withheld_k = cfg.withheld_class >= 0
+                               ? cfg.model.colorIndex(static_cast<std::uint8_t>(cfg.withheld_class))
+                               : -1;
     double unobserved_error_sum = 0.0;
     int unobserved_error_frames = 0;  // true background pixels, and those called unknown
     const double t0 = frames.front().stamp.toSec();
@@ -128,9 +140,11 @@ int main(int argc, char** argv) {
         }
       }
       if (withheld_k >= 0) {
-        const color::ColorObservation truth_obs = color::computeColorObservation(f.yuv, f.true_labels, cfg.model);
+        const color::ColorObservation truth_obs =
+            color::computeColorObservation(f.yuv, f.true_labels, cfg.model);
         if (truth_obs.counts[withheld_k] >= cfg.model.min_pixels_per_color) {
-          unobserved_error_sum += (est.filter().active().colorMean(withheld_k) - truth_obs.means[withheld_k]).norm();
+          unobserved_error_sum +=
+              (est.filter().active().colorMean(withheld_k) - truth_obs.means[withheld_k]).norm();
           ++unobserved_error_frames;
         }
       }
@@ -143,7 +157,8 @@ int main(int argc, char** argv) {
       }
       csv << f.stamp.toSec() - t0 << "," << (fta ? double(fca) / fta : -1.0);
       for (int k = 0; k < m; ++k) csv << "," << (ft[k] ? double(fc[k]) / ft[k] : -1.0);
-      csv << "," << est.filter().modeName(r.active_mode) << "," << (f.lighting_condition.empty() ? "-" : f.lighting_condition) << "\n";
+      csv << "," << est.filter().modeName(r.active_mode) << ","
+          << (f.lighting_condition.empty() ? "-" : f.lighting_condition) << "\n";
       ++used;
     }
     csv.close();
@@ -154,15 +169,20 @@ int main(int argc, char** argv) {
     }
     auto rate = [](long c, long t) { return t ? double(c) / t : -1.0; };
     std::ofstream yaml(fs::path(output) / "results.yaml");
-    yaml << "bag: " << bag << "\nname: " << name << "\nfilter: " << filter << "\nprior: " << prior_kind
-         << "\nmixing: " << mixing << "\nunobserved: " << (unobserved.empty() ? "none" : unobserved) << "\nframes: " << used
+    yaml << "bag: " << bag << "\nname: " << name << "\nfilter: " << filter
+         << "\nprior: " << prior_kind << "\nmixing: " << mixing
+         << "\nunobserved: " << (unobserved.empty() ? "none" : unobserved) << "\nframes: " << used
          << "\nframes_without_pose: " << no_pose << "\nframes_without_labels: " << no_labels
-         << "\nlut_rebuilds: " << est.lutRebuilds() << "\nrates:\n  overall: " << rate(ca, ta) << "\n";
-    for (int k = 0; k < m; ++k) yaml << "  " << world::colorClassName(classes[k]) << ": " << rate(correct[k], total[k]) << "\n";
-    const double unobserved_error = unobserved_error_frames ? unobserved_error_sum / unobserved_error_frames : -1.0;
+         << "\nlut_rebuilds: " << est.lutRebuilds() << "\nrates:\n  overall: " << rate(ca, ta)
+         << "\n";
+    for (int k = 0; k < m; ++k)
+      yaml << "  " << world::colorClassName(classes[k]) << ": " << rate(correct[k], total[k])
+           << "\n";
+    const double unobserved_error =
+        unobserved_error_frames ? unobserved_error_sum / unobserved_error_frames : -1.0;
     if (withheld_k >= 0)
-      yaml << "unobserved_mean_error: " << unobserved_error << "  # YUV levels, over " << unobserved_error_frames
-           << " frames showing the withheld colour\n";
+      yaml << "unobserved_mean_error: " << unobserved_error << "  # YUV levels, over "
+           << unobserved_error_frames << " frames showing the withheld colour\n";
     yaml << "background_rejected: " << rate(background_rejected, background_total)
          << "  # share of true background pixels classified unknown\n";
     yaml << "confusion:  # share of each true colour's pixels given each class\n";
@@ -178,18 +198,25 @@ int main(int argc, char** argv) {
       yaml << "}\n";
     }
     yaml << "pixels:\n";
-    for (int k = 0; k < m; ++k) yaml << "  " << world::colorClassName(classes[k]) << ": " << total[k] << "\n";
+    for (int k = 0; k < m; ++k)
+      yaml << "  " << world::colorClassName(classes[k]) << ": " << total[k] << "\n";
     yaml.close();
     if (plot) {
       const std::string script = ros_params::resolvePackagePath("scripts/plot_color_rates.py");
-      const std::string cmd = "PATH=/usr/bin:$PATH python3 '" + script + "' '" + (fs::path(output) / "frames.csv").string() +
-                              "' '" + (fs::path(output) / "rates.png").string() + "' '" + name + " (" + filter + ", " + prior_kind + ")' > /dev/null 2>&1";
-      if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "evaluate_color_estimation: warning: plot failed (%s)\n", cmd.c_str());
+      const std::string cmd = "PATH=/usr/bin:$PATH python3 '" + script + "' '" +
+                              (fs::path(output) / "frames.csv").string() + "' '" +
+                              (fs::path(output) / "rates.png").string() + "' '" + name + " (" +
+                              filter + ", " + prior_kind + ")' > /dev/null 2>&1";
+      if (std::system(cmd.c_str()) != 0)
+        std::fprintf(stderr, "evaluate_color_estimation: warning: plot failed (%s)\n", cmd.c_str());
     }
     std::printf("evaluate_color_estimation: overall=%.3f", rate(ca, ta));
-    for (int k = 0; k < m; ++k) std::printf(" %s=%.3f", world::colorClassName(classes[k]).c_str(), rate(correct[k], total[k]));
+    for (int k = 0; k < m; ++k)
+      std::printf(" %s=%.3f", world::colorClassName(classes[k]).c_str(),
+                  rate(correct[k], total[k]));
     if (withheld_k >= 0) std::printf(" unobserved_error=%.1f", unobserved_error);
-    std::printf(" background_rejected=%.3f frames=%d\n", rate(background_rejected, background_total), used);
+    std::printf(" background_rejected=%.3f frames=%d\n",
+                rate(background_rejected, background_total), used);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_color_estimation: error: " << e.what() << "\n";
     return 1;

@@ -1,14 +1,15 @@
 // learn_color_priors: learns K lighting priors (eq. 10) from bags recorded in earlier environments.
 //
-//   learn_color_priors --bag_dir DIR [--k 2] [--output_dir config/color_priors] [--names dark,bright]
+//   learn_color_priors --bag_dir DIR [--k 2] [--output_dir config/color_priors] [--names
+//   dark,bright]
 //                      [--seed 1] [--all_name all] [--overwrite]
 //
-// Each bag in DIR is one data set (one environment under one lighting). Pixel labels come from the bag's
-// camera/labels (the simulator's true labels, standing in for the paper's hand-labelled images) or, when
-// absent, from the field map rendered at the bag's ground-truth camera pose. The data sets are clustered
-// into K groups by k-means on their per-colour mean luminance (cluster 0 = darkest), and one prior is
-// learnt per group, plus one from all data sets (`--all_name`, for the single-filter baseline).
-// Last line: `learn_color_priors: datasets=N k=K sizes=a,b frames=F`.
+// Each bag in DIR is one data set (one environment under one lighting). Pixel labels come from the
+// bag's camera/labels (the simulator's true labels, standing in for the paper's hand-labelled
+// images) or, when absent, from the field map rendered at the bag's ground-truth camera pose. The
+// data sets are clustered into K groups by k-means on their per-colour mean luminance (cluster 0 =
+// darkest), and one prior is learnt per group, plus one from all data sets (`--all_name`, for the
+// single-filter baseline). Last line: `learn_color_priors: datasets=N k=K sizes=a,b frames=F`.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -38,8 +39,10 @@ int main(int argc, char** argv) {
   args.finish();
   if (bag_dir.empty()) args.fail("--bag_dir is required");
   std::vector<std::string> names;
-  for (std::stringstream ss(names_arg); std::getline(ss, names_arg, ',');) names.push_back(names_arg);
-  while (static_cast<int>(names.size()) < k) names.push_back("mode_" + std::to_string(names.size()));
+  for (std::stringstream ss(names_arg); std::getline(ss, names_arg, ',');)
+    names.push_back(names_arg);
+  while (static_cast<int>(names.size()) < k)
+    names.push_back("mode_" + std::to_string(names.size()));
   if (static_cast<int>(names.size()) != k) args.fail("--names needs exactly K names");
 
   try {
@@ -47,7 +50,9 @@ int main(int argc, char** argv) {
     for (const auto& e : fs::directory_iterator(bag_dir))
       if (e.path().extension() == ".bag") bags.push_back(e.path().string());
     std::sort(bags.begin(), bags.end());
-    if (static_cast<int>(bags.size()) < k) throw std::runtime_error(bag_dir + ": " + std::to_string(bags.size()) + " bags for k = " + std::to_string(k));
+    if (static_cast<int>(bags.size()) < k)
+      throw std::runtime_error(bag_dir + ": " + std::to_string(bags.size()) +
+                               " bags for k = " + std::to_string(k));
 
     const color::ColorModelConfig model;
     const world::FieldMap map;
@@ -78,10 +83,11 @@ int main(int argc, char** argv) {
     const color::PriorLearningConfig lc;
     auto write = [&](const color::LightingPrior& p) {
       const std::string path = (fs::path(out_dir) / (p.name + ".yaml")).string();
-      if (fs::exists(path) && !overwrite) throw std::runtime_error(path + " exists; pass --overwrite to replace it");
+      if (fs::exists(path) && !overwrite)
+        throw std::runtime_error(path + " exists; pass --overwrite to replace it");
       p.saveYaml(path);
-      std::printf("  wrote %s (green Y %.1f +- %.1f, white Y %.1f +- %.1f)\n", path.c_str(), p.mean[0],
-                  std::sqrt(p.cov(0, 0)), p.mean[3], std::sqrt(p.cov(3, 3)));
+      std::printf("  wrote %s (green Y %.1f +- %.1f, white Y %.1f +- %.1f)\n", path.c_str(),
+                  p.mean[0], std::sqrt(p.cov(0, 0)), p.mean[3], std::sqrt(p.cov(3, 3)));
     };
     std::ostringstream sizes;
     for (int c = 0; c < k; ++c) {
@@ -92,7 +98,8 @@ int main(int argc, char** argv) {
       write(color::learnPrior(group, model, lc, names[c]));
     }
     if (!all_name.empty()) write(color::learnPrior(sets, model, lc, all_name));
-    std::printf("learn_color_priors: datasets=%zu k=%d sizes=%s frames=%ld\n", sets.size(), k, sizes.str().c_str(), frames);
+    std::printf("learn_color_priors: datasets=%zu k=%d sizes=%s frames=%ld\n", sets.size(), k,
+                sizes.str().c_str(), frames);
   } catch (const std::exception& e) {
     std::cerr << "learn_color_priors: error: " << e.what() << "\n";
     return 1;

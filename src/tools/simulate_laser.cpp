@@ -1,0 +1,154 @@
+// simulate_laser: a robot with a 2-D laser driving a route through a polygon world, written to a
+// bag.
+//
+//   simulate_laser --world config/worlds/office.yaml --output FILE.bag [--duration_s 60] [--seed 1]
+//                  [--odom_rate_hz 20] [--overwrite]
+//
+// Topics: scan (LaserScan in `laser`), odom + tf odom -> base_link, tf_static base_link -> laser,
+// ground_truth/pose (PoseStamped in map), ground_truth/walls (adaptive_perception/LineSegmentArray
+// in `laser` at each scan's stamp: the part of every wall the scan hit, num_points = returns on
+// it). Deterministic for a seed. Last line: `simulate_laser: output=FILE scans=N duration_s=S`.
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/LaserScan.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+#include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/sim/laser_simulator.h"
+#include "adaptive_perception/world/camera_model.h"
+#include "tool_args.h"
+
+using namespace adaptive_perception;
+namespace T = adaptive_perception::ros_topics;
+
+int main(int argc, char** argv) {
+  tools::Args args(argc, argv,
+                   "simulate_laser --world FILE.yaml --output FILE.bag [--duration_s S] [--seed N] "
+                   "[--odom_rate_hz HZ] [--overwrite]");
+  const std::string world_path = args.get("world", "config/worlds/office.yaml");
+  const std::string output = args.get("output", "");
+  const double duration = args.getDouble("duration_s", 60.0);
+  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
+  const double odom_rate = args.getDouble("odom_rate_hz", 20.0);
+  const bool overwrite = args.has("overwrite");
+  args.finish();
+  if (output.empty()) args.fail("--output FILE.bag is required");
+  if (!(duration > 0.0 && duration <= 36000.0)) args.fail("--duration_s must be in (0, 36000]");
+  if (!(odom_rate >= 1.0 && odom_rate <= 1000.0)) args.fail("--odom_rate_hz must be in [1, 1000]");
+  if (std::filesystem::exists(output) && !overwrite)
+    args.fail("'" + output + "' exists; pass --overwrite to replace it");
+  try {
+    const sim::LaserWorld world =
+        sim::LaserWorld::loadYaml(ros_params::resolvePackagePath(world_path));
+    sim::LaserSimulator simulator(world, seed);
+    const std::string tmp = output + ".tmp";
+    rosbag::Bag bag(tmp, rosbag::bagmode::Write);
+    bag.setCompression(rosbag::compression::LZ4);
+    const ros::Time t0(1.6e9);
+    {
+      tf2_msgs::TFMessage st;
+      st.transforms.push_back(ros_conv::toTransform(world::planarToIsometry(world.laser.mount),
+                                                    T::kBaseFrame, T::kLaserFrame, t0));
+      auto header = boost::make_shared<ros::M_string>();
+      (*header)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
+      (*header)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
+      (*header)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
+      (*header)["latching"] = "1";
+      (*header)["callerid"] = "/simulate_laser";
+      bag.write("/tf_static", t0, st, header);
+    }
+    std::set<std::int64_t> odom_ticks, scan_ticks;
+    const auto dur_ns = static_cast<std::int64_t>(duration * 1e9);
+    for (std::int64_t k = 0;; ++k) {
+      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / odom_rate));
+      if (t > dur_ns) break;
+      odom_ticks.insert(t);
+    }
+    for (std::int64_t k = 0;; ++k) {
+      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / world.laser.rate_hz));
+      if (t > dur_ns) break;
+      scan_ticks.insert(t);
+    }
+    std::set<std::int64_t> events = odom_ticks;
+    events.insert(scan_ticks.begin(), scan_ticks.end());
+    double t_prev = 0.0;
+    long scans = 0;
+    for (std::int64_t ns : events) {
+      const double t = ns * 1e-9;
+      simulator.step(t - t_prev);
+      t_prev = t;
+      const ros::Time stamp = t0 + ros::Duration(t);
+      nav_msgs::Odometry o;
+      o.header.stamp = stamp;
+      o.header.frame_id = T::kOdomFrame;
+      o.child_frame_id = T::kBaseFrame;
+      o.pose.pose = ros_conv::toPose(simulator.odomPose());
+      bag.write("/" + std::string(T::kOdom), stamp, o);
+      tf2_msgs::TFMessage tf;
+      tf.transforms.push_back(ros_conv::toTransform(world::planarToIsometry(simulator.odomPose()),
+                                                    T::kOdomFrame, T::kBaseFrame, stamp));
+      bag.write("/tf", stamp, tf);
+      geometry_msgs::PoseStamped truth;
+      truth.header.stamp = stamp;
+      truth.header.frame_id = T::kMapFrame;
+      truth.pose = ros_conv::toPose(simulator.truePose());
+      bag.write("/" + std::string(T::kGroundTruthPose), stamp, truth);
+      if (!scan_ticks.count(ns)) continue;
+      std::vector<sim::VisibleWall> visible;
+      const laser::LaserScan2D s = simulator.scan(&visible);
+      sensor_msgs::LaserScan msg;
+      msg.header.stamp = stamp;
+      msg.header.seq = static_cast<std::uint32_t>(scans++);
+      msg.header.frame_id = T::kLaserFrame;
+      msg.angle_min = static_cast<float>(s.angle_min_rad);
+      msg.angle_increment = static_cast<float>(s.angle_increment_rad);
+      msg.angle_max = static_cast<float>(s.bearing(static_cast<int>(s.ranges_m.size()) - 1));
+      msg.range_min = static_cast<float>(s.range_min_m);
+      msg.range_max = static_cast<float>(s.range_max_m);
+      msg.scan_time = static_cast<float>(1.0 / world.laser.rate_hz);
+      msg.ranges = s.ranges_m;
+      bag.write("/" + std::string(T::kScan), stamp, msg);
+      LineSegmentArray walls;
+      walls.header = msg.header;
+      for (const auto& v : visible) {
+        LineSegment w;
+        const Eigen::Vector2d d = v.end_m - v.start_m;
+        Eigen::Vector2d n(-d.y(), d.x());
+        if (n.norm() > 0) n.normalize();
+        double rho = n.dot(v.start_m);
+        if (rho < 0) {
+          rho = -rho;
+          n = -n;
+        }
+        w.rho = rho;
+        w.alpha = std::atan2(n.y(), n.x());
+        w.start.x = v.start_m.x();
+        w.start.y = v.start_m.y();
+        w.end.x = v.end_m.x();
+        w.end.y = v.end_m.y();
+        w.num_points = static_cast<std::uint32_t>(v.hits);
+        walls.segments.push_back(w);
+      }
+      bag.write("/ground_truth/walls", stamp, walls);
+    }
+    bag.close();
+    std::filesystem::rename(tmp, output);
+    std::printf("simulate_laser: output=%s world=%s scans=%ld duration_s=%.1f\n", output.c_str(),
+                world.name.c_str(), scans, duration);
+  } catch (const std::exception& e) {
+    std::cerr << "simulate_laser: error: " << e.what() << "\n";
+    std::error_code ec;
+    std::filesystem::remove(output + ".tmp", ec);
+    return 1;
+  }
+  return 0;
+}
