@@ -20,10 +20,12 @@ export ROS_HOME="${ROS_HOME:-$AP_WS/ros_home}"
 mkdir -p "$AP_ROOT/results/demo"
 summary="$AP_ROOT/results/demo/summary.txt"
 : > "$summary"
-for bag in "$AP_ROOT"/rosbag/field_*.bag; do
+for bag in "$AP_ROOT"/rosbag/field_*.bag "$AP_ROOT"/rosbag/laser_*.bag; do
   name="$(basename "$bag" .bag)"
-  echo "demo: replaying $name (rviz=$RVIZ)"
-  roslaunch --disable-title adaptive_perception demo.launch bag:="$bag" name:="$name" rviz:="$RVIZ" \
+  launch=demo.launch
+  case "$name" in laser_*) launch=laser_demo.launch ;; esac
+  echo "demo: replaying $name through $launch (rviz=$RVIZ)"
+  roslaunch --disable-title adaptive_perception "$launch" bag:="$bag" name:="$name" rviz:="$RVIZ" \
     rate:="$RATE" > "$AP_ROOT/results/demo/$name.log" 2>&1 || true
   line="$(grep -h '^demo_monitor:' "$AP_ROOT/results/demo/$name.log" | tail -n 1)"
   if [ -z "$line" ]; then

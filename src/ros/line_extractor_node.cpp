@@ -45,7 +45,7 @@ visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const
   m.type = visualization_msgs::Marker::LINE_LIST;
   m.action = visualization_msgs::Marker::ADD;
   m.pose.orientation.w = 1.0;
-  m.scale.x = 0.04;
+  m.scale.x = 0.08;
   m.color.r = r;
   m.color.g = g;
   m.color.b = b;

@@ -7,6 +7,7 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
+#include <sensor_msgs/LaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <map>
 
+#include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
 
@@ -98,7 +100,24 @@ int main(int argc, char** argv) {
           classified[m->header.stamp] = m;
         }
       });
+  long scans = 0, line_msgs = 0, segments = 0;
+  auto scan_sub = nh.subscribe<sensor_msgs::LaserScan>(
+      T::kScan, 50, [&](const sensor_msgs::LaserScanConstPtr&) { ++scans; });
+  auto lines_sub = nh.subscribe<adaptive_perception::LineSegmentArray>(
+      "lines", 50, [&](const adaptive_perception::LineSegmentArrayConstPtr& m) {
+        ++line_msgs;
+        segments += static_cast<long>(m->segments.size());
+      });
   ros::spin();
+  if (scans > 0) {
+    std::printf(
+        "demo_monitor: bag=%s scans=%ld line_messages=%ld segments_per_scan=%.2f truth_path_m=%.2f "
+        "map_odom_tf=%ld\n",
+        name.c_str(), scans, line_msgs, line_msgs ? double(segments) / line_msgs : 0.0, c.path_m,
+        c.map_odom);
+    std::fflush(stdout);
+    return 0;
+  }
   const double span = (c.last - c.first).toSec();
   std::printf(
       "demo_monitor: bag=%s frames=%ld bad_frames=%ld image_hz=%.2f mean_luma=%.1f "
