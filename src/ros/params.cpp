@@ -14,13 +14,14 @@ std::string getName(const ros::NodeHandle& nh, const std::string& name, const st
 
 std::string resolvePackagePath(const std::string& value) {
   if (value.empty() || value[0] == '/' || std::ifstream(value).good()) return value;
-  const std::string share = ros::package::getPath("adaptive_perception");
-  if (!share.empty() && std::ifstream(share + "/" + value).good()) return share + "/" + value;
 #ifdef AP_SOURCE_DIR
-  // Tools run without a sourced workspace still find the package's files.
+  // The source tree this build came from (so tools work without a sourced workspace, and rospack is not
+  // asked, which prints errors when the package is not on ROS_PACKAGE_PATH).
   const std::string source = std::string(AP_SOURCE_DIR) + "/" + value;
   if (std::ifstream(source).good()) return source;
 #endif
+  const std::string share = ros::package::getPath("adaptive_perception");
+  if (!share.empty() && std::ifstream(share + "/" + value).good()) return share + "/" + value;
   return value;
 }
 
