@@ -22,6 +22,7 @@
 #include <iostream>
 
 #include "adaptive_perception/io/carmen_log.h"
+#include "adaptive_perception/ros/bag_writer.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/world/camera_model.h"
@@ -54,9 +55,7 @@ int main(int argc, char** argv) {
                    log.issues.size() - max_issues);
     if (log.lasers.empty()) throw std::runtime_error(input + ": no laser messages");
 
-    const std::string tmp = output + ".tmp";
-    rosbag::Bag bag(tmp, rosbag::bagmode::Write);
-    bag.setCompression(rosbag::compression::LZ4);
+    ros_bag::BagWriter bag(output, overwrite);
     auto stamp = [](double t) { return ros::Time(std::max(t, 1e-6)); };
 
     // Laser mounting: constant across the log -> tf_static.
@@ -76,13 +75,7 @@ int main(int argc, char** argv) {
       const ros::Time t0 = stamp(log.lasers.front().timestamp_s);
       st.transforms.push_back(
           ros_conv::toTransform(world::planarToIsometry(mount0), T::kBaseFrame, laser_frame, t0));
-      auto header = boost::make_shared<ros::M_string>();
-      (*header)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
-      (*header)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
-      (*header)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
-      (*header)["latching"] = "1";
-      (*header)["callerid"] = "/carmen_to_bag";
-      bag.write("/tf_static", t0, st, header);
+      bag.writeLatched("/tf_static", t0, st, "/carmen_to_bag");
     }
     std::uint32_t seq = 0;
     for (const auto& l : log.lasers) {
@@ -133,7 +126,6 @@ int main(int argc, char** argv) {
       bag.write("/" + std::string(T::kGroundTruthPose), p.header.stamp, p);
     }
     bag.close();
-    std::filesystem::rename(tmp, output);
     std::printf(
         "carmen_to_bag: output=%s scans=%zu odom=%zu truepos=%zu issues=%zu out_of_order=%ld\n",
         output.c_str(), log.lasers.size(),
@@ -141,8 +133,6 @@ int main(int argc, char** argv) {
         log.issues.size(), log.out_of_order);
   } catch (const std::exception& e) {
     std::cerr << "carmen_to_bag: error: " << e.what() << "\n";
-    std::error_code ec;
-    std::filesystem::remove(output + ".tmp", ec);
     return 1;
   }
   return 0;

@@ -24,6 +24,7 @@
 #include <set>
 
 #include "adaptive_perception/LightingState.h"
+#include "adaptive_perception/ros/bag_writer.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
@@ -59,8 +60,6 @@ int main(int argc, char** argv) {
   const bool compress = !args.has("no_compression");
   args.finish();
   if (output.empty()) args.fail("--output FILE.bag is required");
-  if (std::filesystem::exists(output) && !overwrite)
-    args.fail("'" + output + "' exists; pass --overwrite to replace it");
 
   try {
     cfg.script = sim::parseLightingScript(script);
@@ -70,9 +69,7 @@ int main(int argc, char** argv) {
     const world::HeadChain head;
     sim::FieldSimulator simulator(map, camera, head, cfg);
 
-    const std::string tmp = output + ".tmp";
-    rosbag::Bag bag(tmp, rosbag::bagmode::Write);
-    if (compress) bag.setCompression(rosbag::compression::LZ4);
+    ros_bag::BagWriter bag(output, overwrite, compress);
 
     const ros::Time t0(start_time_s);
     // Fixed links of the head chain, latched.
@@ -82,14 +79,7 @@ int main(int argc, char** argv) {
           ros_conv::toTransform(head.tiltCamera(), T::kHeadTiltFrame, T::kCameraFrame, t0));
       tf_static.transforms.push_back(ros_conv::toTransform(
           world::HeadChain::cameraOptical(), T::kCameraFrame, T::kCameraOpticalFrame, t0));
-      auto header = boost::make_shared<ros::M_string>();
-      // A custom connection header replaces rosbag's own, so it carries the type fields too.
-      (*header)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
-      (*header)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
-      (*header)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
-      (*header)["latching"] = "1";
-      (*header)["callerid"] = "/simulate_field";
-      bag.write("/tf_static", t0, tf_static, header);
+      bag.writeLatched("/tf_static", t0, tf_static, "/simulate_field");
     }
 
     // Event times in integer nanoseconds: odometry ticks and camera ticks, merged.
@@ -185,9 +175,7 @@ int main(int argc, char** argv) {
       ls.condition = light.condition;
       bag.write(slash(T::kLightingState), stamp, ls);
     }
-    bag.close();
-    std::filesystem::rename(tmp, output);
-    const auto bytes = std::filesystem::file_size(output);
+    const auto bytes = bag.close();
     std::printf(
         "simulate_field: output=%s script=%s seed=%llu environment_seed=%llu frames=%u "
         "duration_s=%.1f bytes=%llu\n",
@@ -196,8 +184,6 @@ int main(int argc, char** argv) {
         static_cast<unsigned long long>(bytes));
   } catch (const std::exception& e) {
     std::cerr << "simulate_field: error: " << e.what() << "\n";
-    std::error_code ec;
-    std::filesystem::remove(output + ".tmp", ec);
     return 1;
   }
   return 0;

@@ -20,6 +20,7 @@
 #include <set>
 
 #include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/ros/bag_writer.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
@@ -50,21 +51,13 @@ int main(int argc, char** argv) {
     const sim::LaserWorld world =
         sim::LaserWorld::loadYaml(ros_params::resolvePackagePath(world_path));
     sim::LaserSimulator simulator(world, seed);
-    const std::string tmp = output + ".tmp";
-    rosbag::Bag bag(tmp, rosbag::bagmode::Write);
-    bag.setCompression(rosbag::compression::LZ4);
+    ros_bag::BagWriter bag(output, overwrite);
     const ros::Time t0(1.6e9);
     {
       tf2_msgs::TFMessage st;
       st.transforms.push_back(ros_conv::toTransform(world::planarToIsometry(world.laser.mount),
                                                     T::kBaseFrame, T::kLaserFrame, t0));
-      auto header = boost::make_shared<ros::M_string>();
-      (*header)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
-      (*header)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
-      (*header)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
-      (*header)["latching"] = "1";
-      (*header)["callerid"] = "/simulate_laser";
-      bag.write("/tf_static", t0, st, header);
+      bag.writeLatched("/tf_static", t0, st, "/simulate_laser");
     }
     std::set<std::int64_t> odom_ticks, scan_ticks;
     const auto dur_ns = static_cast<std::int64_t>(duration * 1e9);
@@ -141,13 +134,10 @@ int main(int argc, char** argv) {
       bag.write("/ground_truth/walls", stamp, walls);
     }
     bag.close();
-    std::filesystem::rename(tmp, output);
     std::printf("simulate_laser: output=%s world=%s scans=%ld duration_s=%.1f\n", output.c_str(),
                 world.name.c_str(), scans, duration);
   } catch (const std::exception& e) {
     std::cerr << "simulate_laser: error: " << e.what() << "\n";
-    std::error_code ec;
-    std::filesystem::remove(output + ".tmp", ec);
     return 1;
   }
   return 0;
