@@ -98,12 +98,20 @@ std::vector<CameraFrame> BagFrameReader::readAll() {
     }
     if (auto it = labels_.find(f.stamp); it != labels_.end()) f.true_labels = it->second;
     if (auto it = conditions_.find(f.stamp); it != conditions_.end()) f.lighting_condition = it->second;
+    const std::string cam_frame = img->header.frame_id.empty() ? camera_frame_ : img->header.frame_id;
     try {
-      const auto t = tf_->lookupTransform(T::kMapFrame, img->header.frame_id.empty() ? camera_frame_ : img->header.frame_id, f.stamp);
+      const auto t = tf_->lookupTransform(T::kMapFrame, cam_frame, f.stamp);
       f.map_to_optical = ros_conv::toIsometry(t.transform);
       f.has_pose = true;
+      f.map_to_base = ros_conv::toIsometry(tf_->lookupTransform(T::kMapFrame, T::kBaseFrame, f.stamp).transform);
+      f.has_truth = true;
     } catch (const tf2::TransformException&) {
-      f.has_pose = false;
+    }
+    try {
+      f.odom_to_base = ros_conv::toIsometry(tf_->lookupTransform(T::kOdomFrame, T::kBaseFrame, f.stamp).transform);
+      f.base_to_optical = ros_conv::toIsometry(tf_->lookupTransform(T::kBaseFrame, cam_frame, f.stamp).transform);
+      f.has_odom = true;
+    } catch (const tf2::TransformException&) {
     }
     frames.push_back(std::move(f));
   }

@@ -44,6 +44,8 @@ class SwitchingColorFilter {
   int activeMode() const { return active_; }
   const std::string& modeName(int j) const { return names_[j]; }
   const std::vector<double>& modeProbabilities() const { return probs_; }
+  /// The mode probabilities one step ahead, before the next image: sum_i T(i, j) p_i.
+  std::vector<double> predictedModeProbabilities() const;
   const ColorFilter& mode(int j) const { return modes_[j]; }
   /// The estimate used for classification: the active mode's filter.
   const ColorFilter& active() const { return modes_[active_]; }

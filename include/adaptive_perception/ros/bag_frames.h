@@ -29,6 +29,13 @@ struct CameraFrame {
   bool has_pose = false;
   Eigen::Isometry3d map_to_optical = Eigen::Isometry3d::Identity();
   std::string lighting_condition;  // from lighting/state when present
+  // From the bag's own tf (no ground truth needed): odom -> base_link and base_link -> camera at the stamp.
+  bool has_odom = false;
+  Eigen::Isometry3d odom_to_base = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d base_to_optical = Eigen::Isometry3d::Identity();
+  // Ground truth base_link in map at the stamp, when the bag has it.
+  bool has_truth = false;
+  Eigen::Isometry3d map_to_base = Eigen::Isometry3d::Identity();
 };
 
 class BagFrameReader {

@@ -55,6 +55,13 @@ void SwitchingColorFilter::setDrift(double drift) {
   }
 }
 
+std::vector<double> SwitchingColorFilter::predictedModeProbabilities() const {
+  std::vector<double> p(modes_.size(), 0.0);
+  for (size_t j = 0; j < modes_.size(); ++j)
+    for (size_t i = 0; i < modes_.size(); ++i) p[j] += transition_(i, j) * probs_[i];
+  return p;
+}
+
 void SwitchingColorFilter::reset() {
   for (size_t j = 0; j < modes_.size(); ++j) modes_[j].reset(priors_[j]);
   probs_.assign(modes_.size(), 1.0 / static_cast<double>(modes_.size()));

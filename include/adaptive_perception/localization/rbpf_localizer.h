@@ -1,0 +1,129 @@
+#pragma once
+// Rao-Blackwellised particle filter over camera pose and lighting (Schulz & Fox 2004, section IV).
+//
+// Each particle holds a robot pose (x, y, yaw in map) and its own switching Kalman filter over the
+// lighting (color::SwitchingColorFilter). Per image:
+//   1. predict the pose from the odometry delta (MotionModel) and the lighting by its drift (eq. 6);
+//   2. weight by the image likelihood of eq. (16): the product over a pixel subsample of eq. (9), with the
+//      map colour each pixel should show from the particle's camera pose (label renderer) and the
+//      particle's predicted lighting. The paper skips background pixels; here a pixel that is background
+//      under a pose gets the uniform density over the YUV cube instead, because skipping makes poses that
+//      see more background win for having fewer (negative) terms. For real data the pixel likelihood is a mixture with
+//      a uniform density over the YUV cube (outliers: robots, people, mislabelled edges) and the product is
+//      tempered by an exponent (neighbouring pixels are not independent);
+//   3. update the particle's lighting with the colour means of its own pixel labels (section IV-B);
+//   4. resample (low variance) when the effective sample size falls below a fraction of N; inject uniform
+//      particles when the short-term average likelihood drops below the long-term one (augmented MCL:
+//      recovery from kidnapping).
+// Per-particle work runs on `threads` threads; every particle draws from its own random stream seeded by
+// (seed, frame, particle), so the result is the same for any thread count.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+
+#include "adaptive_perception/color/switching_color_filter.h"
+#include "adaptive_perception/localization/motion_model.h"
+#include "adaptive_perception/math/rng.h"
+#include "adaptive_perception/math/se2.h"
+#include "adaptive_perception/world/label_renderer.h"
+
+namespace adaptive_perception::localization {
+
+struct ImageLikelihoodConfig {
+  int pixel_stride = 4;              // use every stride-th pixel in x and y (rows staggered)
+  double outlier_probability = 0.1;  // weight of the uniform density in the pixel likelihood mixture
+  double exponent = 0.3;             // the image log-likelihood is multiplied by this
+  void validate() const;
+};
+
+struct RbpfConfig {
+  int particles = 100;
+  MotionModelConfig motion;
+  ImageLikelihoodConfig likelihood;
+  color::ColorModelConfig model = rbpfModelConfig();
+  color::SwitchingFilterConfig switching;
+  double resample_ess_fraction = 0.5;  // resample when ESS < this * N
+  // Augmented MCL on the per-pixel average log-likelihood: EMA rates, and the fraction of particles
+  // re-drawn uniformly per nat the fast average lies below the slow one (capped).
+  double recovery_alpha_slow = 0.05;
+  double recovery_alpha_fast = 0.5;
+  double recovery_gain_per_nat = 0.5;
+  double recovery_max_fraction = 0.25;
+  double free_space_margin_m = 0.15;  // uniform particles are drawn where a robot can stand
+  int threads = 1;
+  std::uint64_t seed = 1;
+
+  /// The colour model for the particles: the default colours with a lower pixel minimum, as each
+  /// particle sees only the subsample.
+  static color::ColorModelConfig rbpfModelConfig();
+  void validate() const;
+};
+
+struct Particle {
+  math::SE2 pose;
+  color::SwitchingColorFilter lighting;
+  double log_likelihood = 0.0;  // of the last image
+};
+
+class RbpfLocalizer {
+ public:
+  RbpfLocalizer(const world::FieldMap& map, const world::PinholeCamera& camera,
+                const std::vector<color::LightingPrior>& priors, const RbpfConfig& config);
+
+  /// Global localization: poses uniform over the free field, lighting filters at their priors.
+  void initUniform();
+  /// Poses from N(mean, cov) (x, y, yaw).
+  void initGaussian(const math::SE2& mean, const Eigen::Matrix3d& cov);
+
+  struct StepResult {
+    double effective_sample_size = 0.0;
+    bool resampled = false;
+    int injected = 0;
+    double mean_pixel_log_likelihood = 0.0;  // per used pixel, of the average particle likelihood
+    int pixels_used = 0;                     // by the best particle
+  };
+  /// One image: odometry delta since the previous image (in the previous base frame), elapsed time, the
+  /// YUV image (CV_8UC3) and the camera pose on the robot (base_link -> camera_optical_frame).
+  StepResult step(const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical);
+
+  /// Takes the image's pixel subsample (called by step(); public for tests and tools).
+  void setImage(const cv::Mat& yuv);
+  /// The tempered eq. (16) log-likelihood of the current image for a robot pose and lighting estimate;
+  /// fills `obs` (may be null) with the colour means under that pose's labels and `used` with the
+  /// number of pixels showing a map colour.
+  double imageLogLikelihood(const math::SE2& pose, const color::SwitchingColorFilter& lighting,
+                            const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs, int* used) const;
+
+  const std::vector<Particle>& particles() const { return particles_; }
+  const std::vector<double>& weights() const { return weights_; }
+  /// Weighted mean pose (circular mean of yaw) and its covariance.
+  math::SE2 meanPose() const;
+  Eigen::Matrix3d poseCovariance() const;
+  /// The particle with the highest weight.
+  const Particle& best() const;
+  const RbpfConfig& config() const { return config_; }
+  const std::vector<world::PixelCoord>& pixels() const { return pixels_; }
+
+ private:
+  void weighParticle(size_t i, const math::SE2& odom_delta, double dt_s, const Eigen::Isometry3d& base_to_optical,
+                     std::uint64_t frame_seed);
+  math::SE2 uniformPose(math::Rng& rng) const;
+
+  world::FieldMap map_;
+  world::LabelRenderer renderer_;
+  std::vector<color::LightingPrior> priors_;
+  RbpfConfig config_;
+  math::Rng rng_;
+  std::vector<Particle> particles_;
+  std::vector<double> weights_;
+  std::vector<world::PixelCoord> pixels_;
+  std::vector<Eigen::Vector3d> pixel_yuv_;  // the current image at pixels_
+  std::vector<int> pixels_used_;
+  std::uint64_t frame_ = 0;
+  double w_slow_ = 0.0, w_fast_ = 0.0;
+  bool have_average_ = false;
+};
+
+}  // namespace adaptive_perception::localization
