@@ -1,25 +1,27 @@
-// evaluate_localization: runs the Rao-Blackwellised localizer offline over a field bag from a uniform
-// (global) start, against ground_truth/pose and the bag's true labels.
+// evaluate_localization: runs the Rao-Blackwellised localizer offline over a field bag from a
+// uniform (global) start, against ground_truth/pose and the bag's true labels.
 //
 //   evaluate_localization --bag FILE [--particles 100] [--filter switching|single] [--threads 1]
-//       [--seed 1] [--pixel_stride 4] [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
+//       [--seed 1] [--pixel_stride 4] [--priors_dir config/color_priors] [--output DIR] [--name
+//       LABEL]
 //
-// Converged: the first frame after which the position error stays below 0.3 m (for the rest of the run,
-// or until a kidnap, after which convergence is measured again). Errors are medians over converged frames.
-// classification_rate: the best particle's lighting model (eq. 9, plain maximum likelihood) scored on
-// the true labels. Writes OUTPUT/results.yaml, frames.csv, estimate.tum, truth.tum. Last line:
-//   evaluate_localization: median_position_error_m=.. median_heading_error_deg=.. converged_after_s=..
+// Converged: the first frame after which the position error stays below 0.3 m (for the rest of the
+// run, or until a kidnap, after which convergence is measured again). Errors are medians over
+// converged frames. classification_rate: the best particle's lighting model (eq. 9, plain maximum
+// likelihood) scored on the true labels. Writes OUTPUT/results.yaml, frames.csv, estimate.tum,
+// truth.tum. Last line:
+//   evaluate_localization: median_position_error_m=.. median_heading_error_deg=..
+//   converged_after_s=..
 //                          classification_rate=.. frames_per_s=.. frames=N
+#include <Eigen/Geometry>
 #include <algorithm>
-#include <cstdlib>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
-
-#include <Eigen/Geometry>
 
 #include "adaptive_perception/color/color_lut.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
@@ -36,7 +38,8 @@ math::SE2 planar(const Eigen::Isometry3d& t) {
   return math::SE2(t.translation().x(), t.translation().y(), std::atan2(x.y(), x.x()));
 }
 void tum(std::ofstream& f, double t, const math::SE2& p) {
-  f << std::fixed << t << " " << p.x_m << " " << p.y_m << " 0 0 0 " << std::sin(0.5 * p.yaw_rad) << " " << std::cos(0.5 * p.yaw_rad) << "\n";
+  f << std::fixed << t << " " << p.x_m << " " << p.y_m << " 0 0 0 " << std::sin(0.5 * p.yaw_rad)
+    << " " << std::cos(0.5 * p.yaw_rad) << "\n";
 }
 double median(std::vector<double> v) {
   if (v.empty()) return -1.0;
@@ -47,16 +50,20 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
-                   "evaluate_localization --bag FILE [--particles N] [--filter switching|single] [--threads T] [--seed N] "
-                   "[--pixel_stride S] [--exponent E] [--priors_dir DIR] [--init global|truth] [--output DIR] [--name LABEL]");
+                   "evaluate_localization --bag FILE [--particles N] [--filter switching|single] "
+                   "[--threads T] [--seed N] "
+                   "[--pixel_stride S] [--exponent E] [--recovery_max_fraction F] [--priors_dir "
+                   "DIR] [--init global|truth] [--output DIR] [--name LABEL]");
   const std::string bag = args.get("bag", "");
   localization::RbpfConfig cfg;
   cfg.particles = static_cast<int>(args.getInt("particles", 100));
   const std::string filter = args.get("filter", "switching");
   cfg.threads = static_cast<int>(args.getInt("threads", 1));
   cfg.seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  cfg.likelihood.pixel_stride = static_cast<int>(args.getInt("pixel_stride", cfg.likelihood.pixel_stride));
+  cfg.likelihood.pixel_stride =
+      static_cast<int>(args.getInt("pixel_stride", cfg.likelihood.pixel_stride));
   cfg.likelihood.exponent = args.getDouble("exponent", cfg.likelihood.exponent);
+  cfg.recovery_max_fraction = args.getDouble("recovery_max_fraction", cfg.recovery_max_fraction);
   const std::string priors_dir = args.get("priors_dir", "config/color_priors");
   const std::string output = args.get("output", "results/evaluate_localization");
   const std::string name = args.get("name", fs::path(bag).stem().string());
@@ -64,11 +71,13 @@ int main(int argc, char** argv) {
   args.finish();
   if (init != "global" && init != "truth") args.fail("--init must be global or truth");
   if (bag.empty()) args.fail("--bag FILE is required");
-  if (filter != "switching" && filter != "single") args.fail("--filter must be switching or single");
+  if (filter != "switching" && filter != "single")
+    args.fail("--filter must be switching or single");
   try {
     const std::string dir = ros_params::resolvePackagePath(priors_dir);
     std::vector<color::LightingPrior> priors;
-    for (const std::string& m : filter == "switching" ? std::vector<std::string>{"dark", "bright"} : std::vector<std::string>{"all"})
+    for (const std::string& m : filter == "switching" ? std::vector<std::string>{"dark", "bright"}
+                                                      : std::vector<std::string>{"all"})
       priors.push_back(color::LightingPrior::loadYaml((fs::path(dir) / (m + ".yaml")).string()));
     ros_bag::BagFrameReader reader(bag);
     const auto frames = reader.readAll();
@@ -82,7 +91,8 @@ int main(int argc, char** argv) {
         }
     }
     fs::create_directories(output);
-    std::ofstream csv(fs::path(output) / "frames.csv"), est_tum(fs::path(output) / "estimate.tum"), truth_tum(fs::path(output) / "truth.tum");
+    std::ofstream csv(fs::path(output) / "frames.csv"), est_tum(fs::path(output) / "estimate.tum"),
+        truth_tum(fs::path(output) / "truth.tum");
     csv << "t_s,position_error_m,heading_error_deg,ess,classification_rate,injected\n";
     const double t0 = frames.front().stamp.toSec();
     bool have_prev = false;
@@ -94,7 +104,8 @@ int main(int argc, char** argv) {
     for (const auto& f : frames) {
       if (!f.has_odom || !f.has_truth) continue;
       const double t = f.stamp.toSec() - t0;
-      const math::SE2 delta = have_prev ? planar(prev_odom.inverse() * f.odom_to_base) : math::SE2();
+      const math::SE2 delta =
+          have_prev ? planar(prev_odom.inverse() * f.odom_to_base) : math::SE2();
       const auto c0 = std::chrono::steady_clock::now();
       const auto r = rbpf.step(delta, have_prev ? t - prev_t : 0.0, f.yuv, f.base_to_optical);
       compute_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
@@ -105,10 +116,15 @@ int main(int argc, char** argv) {
       if (std::getenv("AP_DEBUG_RBPF")) {
         int u1 = 0, u2 = 0;
         const auto& b = rbpf.best();
-        const double lt = rbpf.imageLogLikelihood(truth, b.lighting, f.base_to_optical, nullptr, &u1);
-        const double lb = rbpf.imageLogLikelihood(b.pose, b.lighting, f.base_to_optical, nullptr, &u2);
-        std::fprintf(stderr, "t=%.2f truth (%.2f %.2f %.2f) ll %.1f used %d | best (%.2f %.2f %.2f) ll %.1f used %d\n", t, truth.x_m,
-                     truth.y_m, truth.yaw_rad, lt, u1, b.pose.x_m, b.pose.y_m, b.pose.yaw_rad, lb, u2);
+        const double lt =
+            rbpf.imageLogLikelihood(truth, b.lighting, f.base_to_optical, nullptr, &u1);
+        const double lb =
+            rbpf.imageLogLikelihood(b.pose, b.lighting, f.base_to_optical, nullptr, &u2);
+        std::fprintf(stderr,
+                     "t=%.2f truth (%.2f %.2f %.2f) ll %.1f used %d | best (%.2f %.2f %.2f) ll "
+                     "%.1f used %d\n",
+                     t, truth.x_m, truth.y_m, truth.yaw_rad, lt, u1, b.pose.x_m, b.pose.y_m,
+                     b.pose.yaw_rad, lb, u2);
       }
       const double pe = std::hypot(est.x_m - truth.x_m, est.y_m - truth.y_m);
       const double he = std::fabs(math::radToDeg(math::angleDiff(est.yaw_rad, truth.yaw_rad)));
@@ -124,7 +140,8 @@ int main(int argc, char** argv) {
           means.push_back(a.colorMean(k));
           covs.push_back(a.colorCov(k) + Eigen::Matrix3d(a.pixelNoiseVar().asDiagonal()));
         }
-        lut.build(color::PixelClassifier(means, covs, gate_off.classes, gate_off.unknown_mahalanobis));
+        lut.build(
+            color::PixelClassifier(means, covs, gate_off.classes, gate_off.unknown_mahalanobis));
         cv::Mat cls;
         lut.classifyYuv(f.yuv, &cls);
         long fc = 0, ft = 0;
@@ -138,7 +155,8 @@ int main(int argc, char** argv) {
         total += ft;
         rate = ft ? double(fc) / ft : -1.0;
       }
-      csv << t << "," << pe << "," << he << "," << r.effective_sample_size << "," << rate << "," << r.injected << "\n";
+      csv << t << "," << pe << "," << he << "," << r.effective_sample_size << "," << rate << ","
+          << r.injected << "\n";
       tum(est_tum, f.stamp.toSec(), est);
       tum(truth_tum, f.stamp.toSec(), truth);
       t_s.push_back(t);
@@ -150,17 +168,24 @@ int main(int argc, char** argv) {
     // Convergence: the first frame after which the error stays below 0.3 m to the end.
     int conv = static_cast<int>(pos_err.size());
     for (int i = static_cast<int>(pos_err.size()) - 1; i >= 0 && pos_err[i] < 0.3; --i) conv = i;
-    std::vector<double> pe_c(pos_err.begin() + conv, pos_err.end()), he_c(head_err.begin() + conv, head_err.end());
+    std::vector<double> pe_c(pos_err.begin() + conv, pos_err.end()),
+        he_c(head_err.begin() + conv, head_err.end());
     const double converged_after = conv < static_cast<int>(t_s.size()) ? t_s[conv] : -1.0;
     const double fps = used / std::max(compute_s, 1e-9);
     std::ofstream yaml(fs::path(output) / "results.yaml");
-    yaml << "bag: " << bag << "\nparticles: " << cfg.particles << "\nfilter: " << filter << "\nthreads: " << cfg.threads
-         << "\npixel_stride: " << cfg.likelihood.pixel_stride << "\nframes: " << used << "\nconverged_after_s: " << converged_after
-         << "\nmedian_position_error_m: " << median(pe_c) << "\nmedian_heading_error_deg: " << median(he_c)
-         << "\nclassification_rate: " << (total ? double(correct) / total : -1.0) << "\nframes_per_s: " << fps << "\n";
-    std::printf("evaluate_localization: median_position_error_m=%.3f median_heading_error_deg=%.2f converged_after_s=%.2f "
-                "classification_rate=%.3f frames_per_s=%.1f frames=%d\n",
-                median(pe_c), median(he_c), converged_after, total ? double(correct) / total : -1.0, fps, used);
+    yaml << "bag: " << bag << "\nparticles: " << cfg.particles << "\nfilter: " << filter
+         << "\nthreads: " << cfg.threads << "\npixel_stride: " << cfg.likelihood.pixel_stride
+         << "\nframes: " << used << "\nconverged_after_s: " << converged_after
+         << "\nmedian_position_error_m: " << median(pe_c)
+         << "\nmedian_heading_error_deg: " << median(he_c)
+         << "\nclassification_rate: " << (total ? double(correct) / total : -1.0)
+         << "\nframes_per_s: " << fps << "\n";
+    std::printf(
+        "evaluate_localization: median_position_error_m=%.3f median_heading_error_deg=%.2f "
+        "converged_after_s=%.2f "
+        "classification_rate=%.3f frames_per_s=%.1f frames=%d\n",
+        median(pe_c), median(he_c), converged_after, total ? double(correct) / total : -1.0, fps,
+        used);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_localization: error: " << e.what() << "\n";
     return 1;

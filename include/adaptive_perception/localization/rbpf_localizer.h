@@ -3,25 +3,28 @@
 //
 // Each particle holds a robot pose (x, y, yaw in map) and its own switching Kalman filter over the
 // lighting (color::SwitchingColorFilter). Per image:
-//   1. predict the pose from the odometry delta (MotionModel) and the lighting by its drift (eq. 6);
-//   2. weight by the image likelihood of eq. (16): the product over a pixel subsample of eq. (9), with the
+//   1. predict the pose from the odometry delta (MotionModel) and the lighting by its drift (eq.
+//   6);
+//   2. weight by the image likelihood of eq. (16): the product over a pixel subsample of eq. (9),
+//   with the
 //      map colour each pixel should show from the particle's camera pose (label renderer) and the
-//      particle's predicted lighting. The paper skips background pixels; here a pixel that is background
-//      under a pose gets the uniform density over the YUV cube instead, because skipping makes poses that
-//      see more background win for having fewer (negative) terms. For real data the pixel likelihood is a mixture with
-//      a uniform density over the YUV cube (outliers: robots, people, mislabelled edges) and the product is
-//      tempered by an exponent (neighbouring pixels are not independent);
+//      particle's predicted lighting. The paper skips background pixels; here a pixel that is
+//      background under a pose gets the uniform density over the YUV cube instead, because skipping
+//      makes poses that see more background win for having fewer (negative) terms. For real data
+//      the pixel likelihood is a mixture with a uniform density over the YUV cube (outliers:
+//      robots, people, mislabelled edges) and the product is tempered by an exponent (neighbouring
+//      pixels are not independent);
 //   3. update the particle's lighting with the colour means of its own pixel labels (section IV-B);
-//   4. resample (low variance) when the effective sample size falls below a fraction of N; inject uniform
-//      particles when the short-term average likelihood drops below the long-term one (augmented MCL:
-//      recovery from kidnapping).
-// Per-particle work runs on `threads` threads; every particle draws from its own random stream seeded by
-// (seed, frame, particle), so the result is the same for any thread count.
-#include <cstdint>
-#include <vector>
-
+//   4. resample (low variance) when the effective sample size falls below a fraction of N; inject
+//   uniform
+//      particles when the short-term average likelihood drops below the long-term one (augmented
+//      MCL: recovery from kidnapping).
+// Per-particle work runs on `threads` threads; every particle draws from its own random stream
+// seeded by (seed, frame, particle), so the result is the same for any thread count.
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "adaptive_perception/color/switching_color_filter.h"
 #include "adaptive_perception/localization/motion_model.h"
@@ -32,9 +35,10 @@
 namespace adaptive_perception::localization {
 
 struct ImageLikelihoodConfig {
-  int pixel_stride = 4;              // use every stride-th pixel in x and y (rows staggered)
-  double outlier_probability = 0.1;  // weight of the uniform density in the pixel likelihood mixture
-  double exponent = 0.3;             // the image log-likelihood is multiplied by this
+  int pixel_stride = 4;  // use every stride-th pixel in x and y (rows staggered)
+  double outlier_probability =
+      0.1;                // weight of the uniform density in the pixel likelihood mixture
+  double exponent = 0.1;  // the image log-likelihood is multiplied by this
   void validate() const;
 };
 
@@ -50,7 +54,8 @@ struct RbpfConfig {
   double recovery_alpha_slow = 0.05;
   double recovery_alpha_fast = 0.5;
   double recovery_gain_per_nat = 0.5;
-  double recovery_max_fraction = 0.25;
+  double recovery_max_fraction =
+      0.0;  // off by default: as tuned so far it also fires at light switches
   double free_space_margin_m = 0.15;  // uniform particles are drawn where a robot can stand
   int threads = 1;
   std::uint64_t seed = 1;
@@ -84,17 +89,19 @@ class RbpfLocalizer {
     double mean_pixel_log_likelihood = 0.0;  // per used pixel, of the average particle likelihood
     int pixels_used = 0;                     // by the best particle
   };
-  /// One image: odometry delta since the previous image (in the previous base frame), elapsed time, the
-  /// YUV image (CV_8UC3) and the camera pose on the robot (base_link -> camera_optical_frame).
-  StepResult step(const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical);
+  /// One image: odometry delta since the previous image (in the previous base frame), elapsed time,
+  /// the YUV image (CV_8UC3) and the camera pose on the robot (base_link -> camera_optical_frame).
+  StepResult step(const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv,
+                  const Eigen::Isometry3d& base_to_optical);
 
   /// Takes the image's pixel subsample (called by step(); public for tests and tools).
   void setImage(const cv::Mat& yuv);
-  /// The tempered eq. (16) log-likelihood of the current image for a robot pose and lighting estimate;
-  /// fills `obs` (may be null) with the colour means under that pose's labels and `used` with the
-  /// number of pixels showing a map colour.
+  /// The tempered eq. (16) log-likelihood of the current image for a robot pose and lighting
+  /// estimate; fills `obs` (may be null) with the colour means under that pose's labels and `used`
+  /// with the number of pixels showing a map colour.
   double imageLogLikelihood(const math::SE2& pose, const color::SwitchingColorFilter& lighting,
-                            const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs, int* used) const;
+                            const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs,
+                            int* used) const;
 
   const std::vector<Particle>& particles() const { return particles_; }
   const std::vector<double>& weights() const { return weights_; }
@@ -107,8 +114,8 @@ class RbpfLocalizer {
   const std::vector<world::PixelCoord>& pixels() const { return pixels_; }
 
  private:
-  void weighParticle(size_t i, const math::SE2& odom_delta, double dt_s, const Eigen::Isometry3d& base_to_optical,
-                     std::uint64_t frame_seed);
+  void weighParticle(size_t i, const math::SE2& odom_delta, double dt_s,
+                     const Eigen::Isometry3d& base_to_optical, std::uint64_t frame_seed);
   math::SE2 uniformPose(math::Rng& rng) const;
 
   world::FieldMap map_;

@@ -26,10 +26,15 @@ std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
 }  // namespace
 
 void ImageLikelihoodConfig::validate() const {
-  if (pixel_stride < 1 || pixel_stride > 64) throw std::invalid_argument("pixel_stride = " + std::to_string(pixel_stride) + " (allowed: 1..64)");
+  if (pixel_stride < 1 || pixel_stride > 64)
+    throw std::invalid_argument("pixel_stride = " + std::to_string(pixel_stride) +
+                                " (allowed: 1..64)");
   if (!(outlier_probability >= 0.0 && outlier_probability < 1.0))
-    throw std::invalid_argument("outlier_probability = " + std::to_string(outlier_probability) + " (allowed: 0 <= p < 1)");
-  if (!(exponent > 0.0 && exponent <= 1.0)) throw std::invalid_argument("exponent = " + std::to_string(exponent) + " (allowed: 0 < e <= 1)");
+    throw std::invalid_argument("outlier_probability = " + std::to_string(outlier_probability) +
+                                " (allowed: 0 <= p < 1)");
+  if (!(exponent > 0.0 && exponent <= 1.0))
+    throw std::invalid_argument("exponent = " + std::to_string(exponent) +
+                                " (allowed: 0 < e <= 1)");
 }
 
 color::ColorModelConfig RbpfConfig::rbpfModelConfig() {
@@ -39,12 +44,17 @@ color::ColorModelConfig RbpfConfig::rbpfModelConfig() {
 }
 
 void RbpfConfig::validate() const {
-  if (particles < 1 || particles > 1000000) throw std::invalid_argument("particles = " + std::to_string(particles) + " (allowed: 1..1000000)");
-  if (threads < 1 || threads > 256) throw std::invalid_argument("threads = " + std::to_string(threads) + " (allowed: 1..256)");
+  if (particles < 1 || particles > 1000000)
+    throw std::invalid_argument("particles = " + std::to_string(particles) +
+                                " (allowed: 1..1000000)");
+  if (threads < 1 || threads > 256)
+    throw std::invalid_argument("threads = " + std::to_string(threads) + " (allowed: 1..256)");
   if (!(resample_ess_fraction > 0.0 && resample_ess_fraction <= 1.0))
-    throw std::invalid_argument("resample_ess_fraction = " + std::to_string(resample_ess_fraction) + " (allowed: 0 < f <= 1)");
+    throw std::invalid_argument("resample_ess_fraction = " + std::to_string(resample_ess_fraction) +
+                                " (allowed: 0 < f <= 1)");
   if (!(recovery_max_fraction >= 0.0 && recovery_max_fraction <= 1.0))
-    throw std::invalid_argument("recovery_max_fraction = " + std::to_string(recovery_max_fraction) + " (allowed: 0..1)");
+    throw std::invalid_argument("recovery_max_fraction = " + std::to_string(recovery_max_fraction) +
+                                " (allowed: 0..1)");
   motion.validate();
   likelihood.validate();
   model.validate();
@@ -52,7 +62,8 @@ void RbpfConfig::validate() const {
 }
 
 RbpfLocalizer::RbpfLocalizer(const world::FieldMap& map, const world::PinholeCamera& camera,
-                             const std::vector<color::LightingPrior>& priors, const RbpfConfig& config)
+                             const std::vector<color::LightingPrior>& priors,
+                             const RbpfConfig& config)
     : map_(map), renderer_(map, camera), priors_(priors), config_(config), rng_(config.seed) {
   config_.validate();
   const int s = config_.likelihood.pixel_stride;
@@ -66,7 +77,8 @@ math::SE2 RbpfLocalizer::uniformPose(math::Rng& rng) const {
   for (int tries = 0; tries < 10000; ++tries) {
     const double x = rng.uniform(-map_.carpetHalfLength(), map_.carpetHalfLength());
     const double y = rng.uniform(-map_.carpetHalfWidth(), map_.carpetHalfWidth());
-    if (map_.isFree(x, y, config_.free_space_margin_m)) return math::SE2(x, y, rng.uniform(-math::kPi, math::kPi));
+    if (map_.isFree(x, y, config_.free_space_margin_m))
+      return math::SE2(x, y, rng.uniform(-math::kPi, math::kPi));
   }
   return math::SE2(0, 0, 0);
 }
@@ -74,7 +86,8 @@ math::SE2 RbpfLocalizer::uniformPose(math::Rng& rng) const {
 void RbpfLocalizer::initUniform() {
   particles_.clear();
   const color::SwitchingColorFilter lighting(priors_, config_.model, config_.switching);
-  for (int i = 0; i < config_.particles; ++i) particles_.push_back({uniformPose(rng_), lighting, 0.0});
+  for (int i = 0; i < config_.particles; ++i)
+    particles_.push_back({uniformPose(rng_), lighting, 0.0});
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   have_average_ = false;
 }
@@ -91,15 +104,17 @@ void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& c
   have_average_ = false;
 }
 
-double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose, const color::SwitchingColorFilter& lighting,
-                                         const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs_out,
-                                         int* used_out) const {
+double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose,
+                                         const color::SwitchingColorFilter& lighting,
+                                         const Eigen::Isometry3d& base_to_optical,
+                                         color::ColorObservation* obs_out, int* used_out) const {
   const Eigen::Isometry3d cam = world::planarToIsometry(pose) * base_to_optical;
   std::vector<std::uint8_t> labels;
   renderer_.renderPixels(cam, pixels_, &labels);
   // Eq. (9) under the predicted lighting, in a mixture with the uniform density; eq. (16) is the
-  // (tempered) product over the pixels. With several lighting modes the image likelihood is the mixture
-  // over the modes with their predicted probabilities (the mode is part of the lighting state).
+  // (tempered) product over the pixels. With several lighting modes the image likelihood is the
+  // mixture over the modes with their predicted probabilities (the mode is part of the lighting
+  // state).
   const color::ColorModelConfig& mc = config_.model;
   const double log_in = std::log1p(-config_.likelihood.outlier_probability);
   const double log_out = config_.likelihood.outlier_probability > 0.0
@@ -135,9 +150,11 @@ double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose, const color::Swi
     obs.means[k] += pixel_yuv_[j];
   }
   double best = -std::numeric_limits<double>::infinity();
-  for (int m = 0; m < lighting.numModes(); ++m) best = std::max(best, std::log(std::max(mode_p[m], 1e-300)) + mode_ll[m]);
+  for (int m = 0; m < lighting.numModes(); ++m)
+    best = std::max(best, std::log(std::max(mode_p[m], 1e-300)) + mode_ll[m]);
   double sum = 0.0;
-  for (int m = 0; m < lighting.numModes(); ++m) sum += std::exp(std::log(std::max(mode_p[m], 1e-300)) + mode_ll[m] - best);
+  for (int m = 0; m < lighting.numModes(); ++m)
+    sum += std::exp(std::log(std::max(mode_p[m], 1e-300)) + mode_ll[m] - best);
   const double ll = background + best + std::log(sum);
   for (int k = 0; k < mc.numColors(); ++k)
     if (obs.counts[k] > 0) obs.means[k] /= obs.counts[k];
@@ -146,14 +163,16 @@ double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose, const color::Swi
   return config_.likelihood.exponent * ll;
 }
 
-void RbpfLocalizer::weighParticle(size_t i, const math::SE2& odom_delta, double dt_s, const Eigen::Isometry3d& base_to_optical,
+void RbpfLocalizer::weighParticle(size_t i, const math::SE2& odom_delta, double dt_s,
+                                  const Eigen::Isometry3d& base_to_optical,
                                   std::uint64_t frame_seed) {
   Particle& p = particles_[i];
   math::Rng rng(mix(frame_seed, i));
   p.pose = sampleMotion(p.pose, odom_delta, config_.motion, rng);
   p.lighting.predict(dt_s);
   color::ColorObservation obs;
-  p.log_likelihood = imageLogLikelihood(p.pose, p.lighting, base_to_optical, &obs, &pixels_used_[i]);
+  p.log_likelihood =
+      imageLogLikelihood(p.pose, p.lighting, base_to_optical, &obs, &pixels_used_[i]);
   // Section IV-B: the particle's lighting filter takes the colour means under its own labels.
   p.lighting.update(obs);
 }
@@ -170,25 +189,29 @@ void RbpfLocalizer::setImage(const cv::Mat& yuv) {
   }
 }
 
-RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv,
+RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, double dt_s,
+                                              const cv::Mat& yuv,
                                               const Eigen::Isometry3d& base_to_optical) {
   setImage(yuv);
   pixels_used_.assign(particles_.size(), 0);
   const std::uint64_t frame_seed = mix(config_.seed, ++frame_);
   const int threads = std::min<int>(config_.threads, static_cast<int>(particles_.size()));
   if (threads <= 1) {
-    for (size_t i = 0; i < particles_.size(); ++i) weighParticle(i, odom_delta, dt_s, base_to_optical, frame_seed);
+    for (size_t i = 0; i < particles_.size(); ++i)
+      weighParticle(i, odom_delta, dt_s, base_to_optical, frame_seed);
   } else {
     std::vector<std::thread> pool;
     for (int t = 0; t < threads; ++t)
       pool.emplace_back([&, t] {
-        for (size_t i = t; i < particles_.size(); i += threads) weighParticle(i, odom_delta, dt_s, base_to_optical, frame_seed);
+        for (size_t i = t; i < particles_.size(); i += threads)
+          weighParticle(i, odom_delta, dt_s, base_to_optical, frame_seed);
       });
     for (auto& th : pool) th.join();
   }
   StepResult r;
   std::vector<double> logw(particles_.size());
-  for (size_t i = 0; i < particles_.size(); ++i) logw[i] = std::log(std::max(weights_[i], 1e-300)) + particles_[i].log_likelihood;
+  for (size_t i = 0; i < particles_.size(); ++i)
+    logw[i] = std::log(std::max(weights_[i], 1e-300)) + particles_[i].log_likelihood;
   math::normalizeLogWeights(logw, &weights_);
   r.effective_sample_size = math::effectiveSampleSize(weights_);
   // Average likelihood per pixel (untempered), for recovery.
@@ -216,15 +239,18 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
     }
   }
   if (r.effective_sample_size < config_.resample_ess_fraction * particles_.size()) {
-    const auto idx = math::resampleIndices(weights_, particles_.size(), math::ResamplingScheme::kSystematic, rng_);
+    const auto idx = math::resampleIndices(weights_, particles_.size(),
+                                           math::ResamplingScheme::kSystematic, rng_);
     std::vector<Particle> next;
     next.reserve(particles_.size());
     for (size_t i : idx) next.push_back(particles_[i]);
     particles_ = std::move(next);
     weights_.assign(particles_.size(), 1.0 / particles_.size());
     r.resampled = true;
-    // Augmented MCL: replace a share of the particles by uniform ones when the recent likelihood fell.
-    const double fraction = std::clamp(config_.recovery_gain_per_nat * (w_slow_ - w_fast_), 0.0, config_.recovery_max_fraction);
+    // Augmented MCL: replace a share of the particles by uniform ones when the recent likelihood
+    // fell.
+    const double fraction = std::clamp(config_.recovery_gain_per_nat * (w_slow_ - w_fast_), 0.0,
+                                       config_.recovery_max_fraction);
     const int inject = static_cast<int>(std::floor(fraction * particles_.size()));
     for (int k = 0; k < inject; ++k) {
       Particle& p = particles_[rng_.uniformInt(0, static_cast<int>(particles_.size()) - 1)];

@@ -1,6 +1,6 @@
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/localization/motion_model.h"
@@ -42,12 +42,13 @@ struct Scene {
   world::HeadChain head;
   std::vector<color::LightingPrior> priors = {
       color::LightingPrior::loadYaml(std::string(AP_SOURCE_DIR) + "/config/color_priors/dark.yaml"),
-      color::LightingPrior::loadYaml(std::string(AP_SOURCE_DIR) + "/config/color_priors/bright.yaml")};
+      color::LightingPrior::loadYaml(std::string(AP_SOURCE_DIR) +
+                                     "/config/color_priors/bright.yaml")};
 };
 }  // namespace
 
-// A particle at the true pose outweighs shifted ones on a simulated image (frames that show a beacon or
-// goal, where the image says something about the pose).
+// A particle at the true pose outweighs shifted ones on a simulated image (frames that show a
+// beacon or goal, where the image says something about the pose).
 TEST(Rbpf, TruePoseOutweighsShiftedPoses) {
   Scene s;
   sim::FieldSimConfig sc;
@@ -61,15 +62,17 @@ TEST(Rbpf, TruePoseOutweighsShiftedPoses) {
     sim.advanceTo(t);
     const auto img = sim.renderCamera();
     int non_field = 0;
-    for (size_t k = 0; k < img.labels.total(); ++k) non_field += img.labels.data[k] >= 2 && img.labels.data[k] <= 4;
+    for (size_t k = 0; k < img.labels.total(); ++k)
+      non_field += img.labels.data[k] >= 2 && img.labels.data[k] <= 4;
     if (non_field < 200) continue;  // no beacon or goal in view
     rbpf.setImage(color::unpackUyvy(img.uyvy));
     const Eigen::Isometry3d b2o = s.head.baseToOptical(sim.state().pan_rad, sim.state().tilt_rad);
     const math::SE2 truth = sim.state().true_pose;
     const double at_truth = rbpf.imageLogLikelihood(truth, lighting, b2o, nullptr, nullptr);
     bool all = true;
-    for (const math::SE2& off : {math::SE2(0.3, 0, 0), math::SE2(-0.3, 0, 0), math::SE2(0, 0.3, 0), math::SE2(0, 0, 0.3),
-                                 math::SE2(0, 0, -0.3), math::SE2(1.0, 0.5, 0.5)})
+    for (const math::SE2& off :
+         {math::SE2(0.3, 0, 0), math::SE2(-0.3, 0, 0), math::SE2(0, 0.3, 0), math::SE2(0, 0, 0.3),
+          math::SE2(0, 0, -0.3), math::SE2(1.0, 0.5, 0.5)})
       all &= at_truth > rbpf.imageLogLikelihood(truth * off, lighting, b2o, nullptr, nullptr);
     ++frames;
     wins += all;
