@@ -1,8 +1,5 @@
 #include "adaptive_perception/ros/bag_frames.h"
 
-#include <cstring>
-#include <stdexcept>
-
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
@@ -12,6 +9,9 @@
 #include <tf2/buffer_core.h>
 #include <tf2/exceptions.h>
 #include <tf2_msgs/TFMessage.h>
+
+#include <cstring>
+#include <stdexcept>
 
 #include "adaptive_perception/LightingState.h"
 #include "adaptive_perception/ros/msg_conversion.h"
@@ -24,7 +24,8 @@ namespace T = adaptive_perception::ros_topics;
 namespace {
 bool isTopic(const rosbag::MessageInstance& m, const char* topic) {
   const std::string& t = m.getTopic();
-  return t == topic || (t.size() == std::strlen(topic) + 1 && t[0] == '/' && t.compare(1, std::string::npos, topic) == 0);
+  return t == topic || (t.size() == std::strlen(topic) + 1 && t[0] == '/' &&
+                        t.compare(1, std::string::npos, topic) == 0);
 }
 }  // namespace
 
@@ -49,9 +50,11 @@ BagFrameReader::BagFrameReader(const std::string& path, const std::string& camer
       if (auto tf = m.instantiate<tf2_msgs::TFMessage>())
         for (const auto& t : tf->transforms) tf_->setTransform(t, "bag", is_static);
     } else if (isTopic(m, T::kGroundTruthPose)) {
-      if (auto p = m.instantiate<geometry_msgs::PoseStamped>()) truth[p->header.stamp] = ros_conv::toIsometry(p->pose);
+      if (auto p = m.instantiate<geometry_msgs::PoseStamped>())
+        truth[p->header.stamp] = ros_conv::toIsometry(p->pose);
     } else if (isTopic(m, T::kOdom)) {
-      if (auto o = m.instantiate<nav_msgs::Odometry>()) odom[o->header.stamp] = ros_conv::toIsometry(o->pose.pose);
+      if (auto o = m.instantiate<nav_msgs::Odometry>())
+        odom[o->header.stamp] = ros_conv::toIsometry(o->pose.pose);
     } else if (isTopic(m, T::kCameraLabels)) {
       if (auto l = m.instantiate<sensor_msgs::Image>()) {
         try {
@@ -65,7 +68,8 @@ BagFrameReader::BagFrameReader(const std::string& path, const std::string& camer
         has_camera_info_ = true;
       }
     } else if (isTopic(m, T::kLightingState)) {
-      if (auto ls = m.instantiate<adaptive_perception::LightingState>()) conditions_[ls->header.stamp] = ls->condition;
+      if (auto ls = m.instantiate<adaptive_perception::LightingState>())
+        conditions_[ls->header.stamp] = ls->condition;
     } else if (isTopic(m, T::kCameraImage)) {
       has_images = true;
     }
@@ -75,14 +79,16 @@ BagFrameReader::BagFrameReader(const std::string& path, const std::string& camer
   for (const auto& [stamp, map_base] : truth) {
     auto it = odom.find(stamp);
     if (it == odom.end()) continue;
-    tf_->setTransform(ros_conv::toTransform(map_base * it->second.inverse(), T::kMapFrame, T::kOdomFrame, stamp),
-                      "ground_truth", false);
+    tf_->setTransform(
+        ros_conv::toTransform(map_base * it->second.inverse(), T::kMapFrame, T::kOdomFrame, stamp),
+        "ground_truth", false);
   }
 }
 
 std::vector<CameraFrame> BagFrameReader::readAll() {
   rosbag::Bag bag(path_, rosbag::bagmode::Read);
-  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{T::kCameraImage, std::string("/") + T::kCameraImage}));
+  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{
+                             T::kCameraImage, std::string("/") + T::kCameraImage}));
   std::vector<CameraFrame> frames;
   for (const rosbag::MessageInstance& m : view) {
     auto img = m.instantiate<sensor_msgs::Image>();
@@ -97,19 +103,24 @@ std::vector<CameraFrame> BagFrameReader::readAll() {
       continue;
     }
     if (auto it = labels_.find(f.stamp); it != labels_.end()) f.true_labels = it->second;
-    if (auto it = conditions_.find(f.stamp); it != conditions_.end()) f.lighting_condition = it->second;
-    const std::string cam_frame = img->header.frame_id.empty() ? camera_frame_ : img->header.frame_id;
+    if (auto it = conditions_.find(f.stamp); it != conditions_.end())
+      f.lighting_condition = it->second;
+    const std::string cam_frame =
+        img->header.frame_id.empty() ? camera_frame_ : img->header.frame_id;
     try {
       const auto t = tf_->lookupTransform(T::kMapFrame, cam_frame, f.stamp);
       f.map_to_optical = ros_conv::toIsometry(t.transform);
       f.has_pose = true;
-      f.map_to_base = ros_conv::toIsometry(tf_->lookupTransform(T::kMapFrame, T::kBaseFrame, f.stamp).transform);
+      f.map_to_base = ros_conv::toIsometry(
+          tf_->lookupTransform(T::kMapFrame, T::kBaseFrame, f.stamp).transform);
       f.has_truth = true;
     } catch (const tf2::TransformException&) {
     }
     try {
-      f.odom_to_base = ros_conv::toIsometry(tf_->lookupTransform(T::kOdomFrame, T::kBaseFrame, f.stamp).transform);
-      f.base_to_optical = ros_conv::toIsometry(tf_->lookupTransform(T::kBaseFrame, cam_frame, f.stamp).transform);
+      f.odom_to_base = ros_conv::toIsometry(
+          tf_->lookupTransform(T::kOdomFrame, T::kBaseFrame, f.stamp).transform);
+      f.base_to_optical =
+          ros_conv::toIsometry(tf_->lookupTransform(T::kBaseFrame, cam_frame, f.stamp).transform);
       f.has_odom = true;
     } catch (const tf2::TransformException&) {
     }

@@ -2,39 +2,11 @@
 
 #include <cmath>
 
+#include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 
 namespace adaptive_perception {
-
-laser::LaserScan2D fromLaserScan(const sensor_msgs::LaserScan& msg) {
-  laser::LaserScan2D s;
-  s.angle_min_rad = msg.angle_min;
-  s.angle_increment_rad = msg.angle_increment;
-  s.range_min_m = msg.range_min;
-  s.range_max_m = msg.range_max;
-  s.ranges_m = msg.ranges;
-  return s;
-}
-
-LineSegmentArray toLineSegmentArray(const std::vector<laser::LineSegment>& segments,
-                                    const std_msgs::Header& header) {
-  LineSegmentArray out;
-  out.header = header;
-  for (const auto& s : segments) {
-    LineSegment m;
-    m.rho = s.line.rho_m;
-    m.alpha = s.line.alpha_rad;
-    m.covariance = {s.line.cov(0, 0), s.line.cov(0, 1), s.line.cov(1, 0), s.line.cov(1, 1)};
-    m.start.x = s.start_m.x();
-    m.start.y = s.start_m.y();
-    m.end.x = s.end_m.x();
-    m.end.y = s.end_m.y();
-    m.num_points = static_cast<std::uint32_t>(s.num_points);
-    out.segments.push_back(m);
-  }
-  return out;
-}
 
 visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const std::string& ns,
                                             float r, float g, float b) {
@@ -135,9 +107,9 @@ void LineExtractorNode::onScan(const sensor_msgs::LaserScanConstPtr& msg) {
   std::vector<laser::LineSegment> segs;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    segs = extractor_.extract(fromLaserScan(*msg));
+    segs = extractor_.extract(ros_conv::fromLaserScan(*msg));
   }
-  const LineSegmentArray lines = toLineSegmentArray(segs, msg->header);
+  const LineSegmentArray lines = ros_conv::toLineSegmentArray(segs, msg->header);
   lines_pub_.publish(lines);
   if (markers_pub_.getNumSubscribers() > 0)
     markers_pub_.publish(lineMarkers(lines, "lines", 1.0f, 0.3f, 0.0f));

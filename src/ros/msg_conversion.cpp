@@ -164,4 +164,57 @@ geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& t, const st
   return m;
 }
 
+laser::LaserScan2D fromLaserScan(const sensor_msgs::LaserScan& msg) {
+  laser::LaserScan2D s;
+  s.angle_min_rad = msg.angle_min;
+  s.angle_increment_rad = msg.angle_increment;
+  s.range_min_m = msg.range_min;
+  s.range_max_m = msg.range_max;
+  s.ranges_m = msg.ranges;
+  return s;
+}
+
+adaptive_perception::LineSegmentArray toLineSegmentArray(
+    const std::vector<laser::LineSegment>& segments, const std_msgs::Header& header) {
+  adaptive_perception::LineSegmentArray out;
+  out.header = header;
+  for (const auto& s : segments) {
+    adaptive_perception::LineSegment m;
+    m.rho = s.line.rho_m;
+    m.alpha = s.line.alpha_rad;
+    m.covariance = {s.line.cov(0, 0), s.line.cov(0, 1), s.line.cov(1, 0), s.line.cov(1, 1)};
+    m.start.x = s.start_m.x();
+    m.start.y = s.start_m.y();
+    m.end.x = s.end_m.x();
+    m.end.y = s.end_m.y();
+    m.num_points = static_cast<std::uint32_t>(s.num_points);
+    out.segments.push_back(m);
+  }
+  return out;
+}
+
+std::vector<laser::LineSegment> fromLineSegmentArray(
+    const adaptive_perception::LineSegmentArray& msg) {
+  std::vector<laser::LineSegment> out;
+  for (const auto& m : msg.segments) {
+    laser::LineSegment s;
+    s.line.rho_m = m.rho;
+    s.line.alpha_rad = m.alpha;
+    s.line.cov << m.covariance[0], m.covariance[1], m.covariance[2], m.covariance[3];
+    s.start_m = {m.start.x, m.start.y};
+    s.end_m = {m.end.x, m.end.y};
+    s.num_points = static_cast<int>(m.num_points);
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::vector<laser::TrueWallPiece> wallPieces(const adaptive_perception::LineSegmentArray& msg) {
+  std::vector<laser::TrueWallPiece> out;
+  for (const auto& w : msg.segments)
+    out.push_back({Eigen::Vector2d(w.start.x, w.start.y), Eigen::Vector2d(w.end.x, w.end.y),
+                   static_cast<int>(w.num_points)});
+  return out;
+}
+
 }  // namespace adaptive_perception::ros_conv

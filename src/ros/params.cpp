@@ -15,8 +15,8 @@ std::string getName(const ros::NodeHandle& nh, const std::string& name, const st
 std::string resolvePackagePath(const std::string& value) {
   if (value.empty() || value[0] == '/' || std::ifstream(value).good()) return value;
 #ifdef AP_SOURCE_DIR
-  // The source tree this build came from (so tools work without a sourced workspace, and rospack is not
-  // asked, which prints errors when the package is not on ROS_PACKAGE_PATH).
+  // The source tree this build came from (so tools work without a sourced workspace, and rospack is
+  // not asked, which prints errors when the package is not on ROS_PACKAGE_PATH).
   const std::string source = std::string(AP_SOURCE_DIR) + "/" + value;
   if (std::ifstream(source).good()) return source;
 #endif

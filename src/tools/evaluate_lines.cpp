@@ -26,22 +26,12 @@
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/laser/line_evaluation.h"
 #include "adaptive_perception/math/angles.h"
-#include "adaptive_perception/ros/line_extractor_node.h"
+#include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
-
-namespace {
-std::vector<laser::TrueWallPiece> truthPieces(const LineSegmentArray& walls) {
-  std::vector<laser::TrueWallPiece> out;
-  for (const auto& w : walls.segments)
-    out.push_back({Eigen::Vector2d(w.start.x, w.start.y), Eigen::Vector2d(w.end.x, w.end.y),
-                   static_cast<int>(w.num_points)});
-  return out;
-}
-}  // namespace
 
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
@@ -72,7 +62,7 @@ int main(int argc, char** argv) {
     if (scans.empty()) throw std::runtime_error(bag_path + ": no scan messages");
     // Speed: extraction alone over the whole bag.
     std::vector<laser::LaserScan2D> core_scans;
-    for (const auto& s : scans) core_scans.push_back(fromLaserScan(*s));
+    for (const auto& s : scans) core_scans.push_back(ros_conv::fromLaserScan(*s));
     const auto t0 = std::chrono::steady_clock::now();
     long segs_total = 0;
     for (const auto& s : core_scans) segs_total += static_cast<long>(extractor.extract(s).size());
@@ -84,8 +74,8 @@ int main(int argc, char** argv) {
     for (size_t i = 0; i < core_scans.size(); ++i) {
       auto it = truth.find(scans[i]->header.stamp);
       if (it == truth.end()) continue;
-      score.add(
-          laser::scoreSegments(extractor.extract(core_scans[i]), truthPieces(*it->second), cfg));
+      score.add(laser::scoreSegments(extractor.extract(core_scans[i]),
+                                     ros_conv::wallPieces(*it->second), cfg));
     }
     fs::create_directories(output);
     // One scan and its segments for the plot.

@@ -110,27 +110,21 @@ int main(int argc, char** argv) {
       msg.scan_time = static_cast<float>(1.0 / world.laser.rate_hz);
       msg.ranges = s.ranges_m;
       bag.write("/" + std::string(T::kScan), stamp, msg);
-      LineSegmentArray walls;
-      walls.header = msg.header;
+      std::vector<laser::LineSegment> seen;
       for (const auto& v : visible) {
-        LineSegment w;
+        laser::LineSegment w;
         const Eigen::Vector2d d = v.end_m - v.start_m;
         Eigen::Vector2d n(-d.y(), d.x());
         if (n.norm() > 0) n.normalize();
-        double rho = n.dot(v.start_m);
-        if (rho < 0) {
-          rho = -rho;
-          n = -n;
-        }
-        w.rho = rho;
-        w.alpha = std::atan2(n.y(), n.x());
-        w.start.x = v.start_m.x();
-        w.start.y = v.start_m.y();
-        w.end.x = v.end_m.x();
-        w.end.y = v.end_m.y();
-        w.num_points = static_cast<std::uint32_t>(v.hits);
-        walls.segments.push_back(w);
+        if (n.dot(v.start_m) < 0) n = -n;
+        w.line.rho_m = n.dot(v.start_m);
+        w.line.alpha_rad = std::atan2(n.y(), n.x());
+        w.start_m = v.start_m;
+        w.end_m = v.end_m;
+        w.num_points = v.hits;
+        seen.push_back(w);
       }
+      const LineSegmentArray walls = ros_conv::toLineSegmentArray(seen, msg.header);
       bag.write("/ground_truth/walls", stamp, walls);
     }
     bag.close();

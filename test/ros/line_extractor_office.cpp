@@ -8,34 +8,14 @@
 
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/laser/line_evaluation.h"
+#include "adaptive_perception/ros/msg_conversion.h"
 
 using adaptive_perception::LineSegmentArray;
 using adaptive_perception::LineSegmentArrayConstPtr;
 namespace laser = adaptive_perception::laser;
+namespace ros_conv = adaptive_perception::ros_conv;
 
 namespace {
-
-std::vector<laser::TrueWallPiece> pieces(const LineSegmentArray& a) {
-  std::vector<laser::TrueWallPiece> out;
-  for (const auto& w : a.segments)
-    out.push_back({Eigen::Vector2d(w.start.x, w.start.y), Eigen::Vector2d(w.end.x, w.end.y),
-                   static_cast<int>(w.num_points)});
-  return out;
-}
-
-std::vector<laser::LineSegment> segments(const LineSegmentArray& a) {
-  std::vector<laser::LineSegment> out;
-  for (const auto& m : a.segments) {
-    laser::LineSegment s;
-    s.line.rho_m = m.rho;
-    s.line.alpha_rad = m.alpha;
-    s.start_m = {m.start.x, m.start.y};
-    s.end_m = {m.end.x, m.end.y};
-    s.num_points = static_cast<int>(m.num_points);
-    out.push_back(s);
-  }
-  return out;
-}
 
 TEST(LineExtractorOffice, PublishesTheWallsInView) {
   ros::NodeHandle nh, p("~");
@@ -80,7 +60,8 @@ TEST(LineExtractorOffice, PublishesTheWallsInView) {
     EXPECT_EQ(l->header.frame_id, "laser");
     auto t = truth.find(stamp);
     ASSERT_NE(t, truth.end()) << "segments with a stamp no scan had";
-    score.add(laser::scoreSegments(segments(*l), pieces(*t->second), cfg));
+    score.add(laser::scoreSegments(ros_conv::fromLineSegmentArray(*l),
+                                   ros_conv::wallPieces(*t->second), cfg));
   }
   std::printf("line_extractor_office: precision=%.3f recall=%.3f scored_walls=%ld\n",
               score.precision(), score.recall(), score.truth_eligible);

@@ -1,17 +1,18 @@
 #pragma once
 // Offline access to a bag's camera frames with their camera pose in `map`, for the evaluate_* and
-// learn_* tools: every image on camera/image_raw (as YUV), its true labels from camera/labels when the
-// bag has them (simulator bags), the camera model from camera/camera_info, and map -> camera_optical_frame
-// at the image stamp from the bag's own tf tree, closed to `map` with the ground truth as
-// ground_truth_tf_publisher does (map -> odom = truth * (odom -> base_link)^-1 at the truth's stamp).
-#include <map>
-#include <memory>
-#include <string>
-#include <vector>
+// learn_* tools: every image on camera/image_raw (as YUV), its true labels from camera/labels when
+// the bag has them (simulator bags), the camera model from camera/camera_info, and map ->
+// camera_optical_frame at the image stamp from the bag's own tf tree, closed to `map` with the
+// ground truth as ground_truth_tf_publisher does (map -> odom = truth * (odom -> base_link)^-1 at
+// the truth's stamp).
+#include <ros/time.h>
 
 #include <Eigen/Geometry>
+#include <map>
+#include <memory>
 #include <opencv2/core.hpp>
-#include <ros/time.h>
+#include <string>
+#include <vector>
 
 #include "adaptive_perception/world/camera_model.h"
 
@@ -29,7 +30,8 @@ struct CameraFrame {
   bool has_pose = false;
   Eigen::Isometry3d map_to_optical = Eigen::Isometry3d::Identity();
   std::string lighting_condition;  // from lighting/state when present
-  // From the bag's own tf (no ground truth needed): odom -> base_link and base_link -> camera at the stamp.
+  // From the bag's own tf (no ground truth needed): odom -> base_link and base_link -> camera at
+  // the stamp.
   bool has_odom = false;
   Eigen::Isometry3d odom_to_base = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d base_to_optical = Eigen::Isometry3d::Identity();
@@ -40,9 +42,10 @@ struct CameraFrame {
 
 class BagFrameReader {
  public:
-  /// Opens and indexes the bag (tf, ground truth, labels). Throws std::runtime_error naming the file on
-  /// an unreadable bag or one without camera/image_raw.
-  explicit BagFrameReader(const std::string& path, const std::string& camera_frame = "camera_optical_frame");
+  /// Opens and indexes the bag (tf, ground truth, labels). Throws std::runtime_error naming the
+  /// file on an unreadable bag or one without camera/image_raw.
+  explicit BagFrameReader(const std::string& path,
+                          const std::string& camera_frame = "camera_optical_frame");
   ~BagFrameReader();
 
   /// All frames in stamp order (images that cannot be read are counted in skippedFrames()).

@@ -6,6 +6,7 @@
 #include <ros/time.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <sensor_msgs/LaserScan.h>
 #include <std_msgs/Header.h>
 
 #include <Eigen/Geometry>
@@ -13,6 +14,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/laser/line_evaluation.h"
+#include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/world/camera_model.h"
 
@@ -51,5 +55,15 @@ Eigen::Isometry3d toIsometry(const geometry_msgs::Transform& t);
 geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& parent_to_child,
                                             const std::string& parent, const std::string& child,
                                             const ros::Time& stamp);
+
+/// The core scan of a LaserScan message.
+laser::LaserScan2D fromLaserScan(const sensor_msgs::LaserScan& msg);
+/// Segments <-> LineSegmentArray (the header gives the stamp and frame).
+LineSegmentArray toLineSegmentArray(const std::vector<laser::LineSegment>& segments,
+                                    const std_msgs::Header& header);
+std::vector<laser::LineSegment> fromLineSegmentArray(const LineSegmentArray& msg);
+/// The true wall pieces of a simulator's ground_truth/walls message (num_points = returns on the
+/// piece).
+std::vector<laser::TrueWallPiece> wallPieces(const LineSegmentArray& msg);
 
 }  // namespace adaptive_perception::ros_conv
