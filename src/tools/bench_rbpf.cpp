@@ -1,0 +1,88 @@
+// bench_rbpf: frames per second of the Rao-Blackwellised localizer at 208x160 on a simulated
+// sequence (the field simulator, seed 1, bright lighting), tracking from the true start pose.
+//
+//   bench_rbpf [--particles N] [--threads T] [--frames F] [--pixel_stride S]
+//
+// Without --particles/--threads it sweeps 100, 300 and 1000 particles on 1 thread and on all cores.
+// Last line: `bench_rbpf: frames_per_s=... (for the first configuration) ...` with one key per
+// configuration: frames_per_s_<particles>_<threads>.
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+#include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/localization/rbpf_localizer.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/sim/field_simulator.h"
+#include "tool_args.h"
+
+using namespace adaptive_perception;
+
+int main(int argc, char** argv) {
+  tools::Args args(argc, argv,
+                   "bench_rbpf [--particles N] [--threads T] [--frames F] [--pixel_stride S]");
+  const long particles = args.getInt("particles", 0);
+  const long threads = args.getInt("threads", 0);
+  const int frames = static_cast<int>(args.getInt("frames", 40));
+  const int stride = static_cast<int>(
+      args.getInt("pixel_stride", localization::ImageLikelihoodConfig().pixel_stride));
+  args.finish();
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::pair<int, int>> configs;
+  if (particles > 0 || threads > 0) {
+    configs.push_back({particles > 0 ? static_cast<int>(particles) : 100,
+                       threads > 0 ? static_cast<int>(threads) : 1});
+  } else {
+    for (int n : {100, 300, 1000})
+      for (int t : {1, cores}) configs.push_back({n, t});
+  }
+  const world::FieldMap map;
+  const world::PinholeCamera cam = world::PinholeCamera::aiboErs7();
+  const world::HeadChain head;
+  const std::string dir = ros_params::resolvePackagePath("config/color_priors");
+  const std::vector<color::LightingPrior> priors = {
+      color::LightingPrior::loadYaml(dir + "/dark.yaml"),
+      color::LightingPrior::loadYaml(dir + "/bright.yaml")};
+  // The sequence, rendered once.
+  sim::FieldSimConfig sc;
+  sim::FieldSimulator simulator(map, cam, head, sc);
+  const math::SE2 start = simulator.state().true_pose;
+  std::vector<cv::Mat> images;
+  std::vector<math::SE2> deltas;
+  std::vector<Eigen::Isometry3d> heads;
+  math::SE2 prev = simulator.state().odom_pose;
+  for (int k = 0; k < frames; ++k) {
+    simulator.advanceTo(0.1 * k);
+    images.push_back(color::unpackUyvy(simulator.renderCamera().uyvy));
+    deltas.push_back(math::between(prev, simulator.state().odom_pose));
+    heads.push_back(head.baseToOptical(simulator.state().pan_rad, simulator.state().tilt_rad));
+    prev = simulator.state().odom_pose;
+  }
+  std::string summary = "bench_rbpf:";
+  bool first = true;
+  for (const auto& [n, t] : configs) {
+    localization::RbpfConfig cfg;
+    cfg.particles = n;
+    cfg.threads = t;
+    cfg.likelihood.pixel_stride = stride;
+    localization::RbpfLocalizer rbpf(map, cam, priors, cfg);
+    rbpf.initGaussian(start, Eigen::Vector3d(0.01, 0.01, 0.01).asDiagonal());
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < frames; ++k) rbpf.step(deltas[k], 0.1, images[k], heads[k]);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double fps = frames / s;
+    std::printf("%5d particles, %d thread(s), stride %d (%zu pixels): %.1f frames/s\n", n, t,
+                stride, rbpf.pixels().size(), fps);
+    char buf[96];
+    if (first) {
+      std::snprintf(buf, sizeof buf, " frames_per_s=%.1f", fps);
+      summary += buf;
+      first = false;
+    }
+    std::snprintf(buf, sizeof buf, " frames_per_s_%d_%d=%.1f", n, t, fps);
+    summary += buf;
+  }
+  std::printf("%s\n", summary.c_str());
+  return 0;
+}
