@@ -182,21 +182,10 @@ void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   ++frames_;
   freq_->tick();
 
-  const color::SwitchingColorFilter& f = estimator_->filter();
-  adaptive_perception::ColorModel model;
-  model.header = msg->header;
-  model.header.frame_id = map_frame_;
-  for (auto c : config_.model.classes) model.color_names.push_back(world::colorClassName(c));
-  const color::ColorFilter& a = f.active();
-  model.mean.assign(a.mean().data(), a.mean().data() + a.mean().size());
-  model.covariance.resize(a.cov().size());
-  for (int i = 0; i < a.cov().rows(); ++i)
-    for (int j = 0; j < a.cov().cols(); ++j)
-      model.covariance[i * a.cov().cols() + j] = a.cov()(i, j);
-  for (int ch = 0; ch < 3; ++ch) model.pixel_noise_var[ch] = a.pixelNoiseVar()[ch];
-  for (int j = 0; j < f.numModes(); ++j) model.mode_names.push_back(f.modeName(j));
-  model.mode_probabilities = f.modeProbabilities();
-  model.active_mode = static_cast<std::uint8_t>(f.activeMode());
+  std_msgs::Header model_header = msg->header;
+  model_header.frame_id = map_frame_;
+  const adaptive_perception::ColorModel model =
+      ros_conv::toColorModel(estimator_->filter(), model_header);
   model_pub_.publish(model);
   classified_pub_.publish(ros_conv::mono8ToImage(r.classified, msg->header));
   if (classified_color_pub_.getNumSubscribers() > 0)

@@ -11,6 +11,7 @@ GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   odom_frame_ = ros_params::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
   base_frame_ = ros_params::getName(pnh, "base_frame", ros_topics::kBaseFrame);
   path_length_ = ros_params::getInRange(pnh, "path_length", 2000, 0, 100000);
+  publish_tf_ = ros_params::get<bool>(pnh, "publish_tf", true);
 
   truth_sub_.subscribe(nh, ros_topics::kGroundTruthPose, 20);
   odom_sub_.subscribe(nh, ros_topics::kOdom, 20);
@@ -45,8 +46,9 @@ void GroundTruthTfNode::callback(const geometry_msgs::PoseStampedConstPtr& truth
     ROS_WARN_THROTTLE(5.0, "non-finite ground truth or odometry pose: skipped");
     return;
   }
-  broadcaster_.sendTransform(ros_conv::toTransform(map_base * odom_base.inverse(), map_frame_,
-                                                   odom_frame_, truth->header.stamp));
+  if (publish_tf_)
+    broadcaster_.sendTransform(ros_conv::toTransform(map_base * odom_base.inverse(), map_frame_,
+                                                     odom_frame_, truth->header.stamp));
   freq_->tick();
   diagnostics_.update();
   if (path_length_ > 0) {

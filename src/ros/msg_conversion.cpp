@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/world/color_class.h"
 
 namespace adaptive_perception::ros_conv {
 
@@ -215,6 +216,23 @@ std::vector<laser::TrueWallPiece> wallPieces(const adaptive_perception::LineSegm
     out.push_back({Eigen::Vector2d(w.start.x, w.start.y), Eigen::Vector2d(w.end.x, w.end.y),
                    static_cast<int>(w.num_points)});
   return out;
+}
+
+ColorModel toColorModel(const color::SwitchingColorFilter& f, const std_msgs::Header& header) {
+  ColorModel model;
+  model.header = header;
+  for (auto c : f.modelConfig().classes) model.color_names.push_back(world::colorClassName(c));
+  const color::ColorFilter& a = f.active();
+  model.mean.assign(a.mean().data(), a.mean().data() + a.mean().size());
+  model.covariance.resize(a.cov().size());
+  for (int i = 0; i < a.cov().rows(); ++i)
+    for (int j = 0; j < a.cov().cols(); ++j)
+      model.covariance[i * a.cov().cols() + j] = a.cov()(i, j);
+  for (int ch = 0; ch < 3; ++ch) model.pixel_noise_var[ch] = a.pixelNoiseVar()[ch];
+  for (int j = 0; j < f.numModes(); ++j) model.mode_names.push_back(f.modeName(j));
+  model.mode_probabilities = f.modeProbabilities();
+  model.active_mode = static_cast<std::uint8_t>(f.activeMode());
+  return model;
 }
 
 }  // namespace adaptive_perception::ros_conv

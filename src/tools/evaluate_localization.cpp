@@ -33,10 +33,6 @@ using namespace adaptive_perception;
 namespace fs = std::filesystem;
 
 namespace {
-math::SE2 planar(const Eigen::Isometry3d& t) {
-  const Eigen::Vector3d x = t.linear().col(0);
-  return math::SE2(t.translation().x(), t.translation().y(), std::atan2(x.y(), x.x()));
-}
 void tum(std::ofstream& f, double t, const math::SE2& p) {
   f << std::fixed << t << " " << p.x_m << " " << p.y_m << " 0 0 0 " << std::sin(0.5 * p.yaw_rad)
     << " " << std::cos(0.5 * p.yaw_rad) << "\n";
@@ -52,7 +48,8 @@ int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "evaluate_localization --bag FILE [--particles N] [--filter switching|single] "
                    "[--threads T] [--seed N] "
-                   "[--pixel_stride S] [--exponent E] [--recovery_max_fraction F] [--priors_dir "
+                   "[--pixel_stride S] [--exponent E] [--min_ess_fraction F] "
+                   "[--recovery_max_fraction F] [--priors_dir "
                    "DIR] [--init global|truth] [--output DIR] [--name LABEL]");
   const std::string bag = args.get("bag", "");
   localization::RbpfConfig cfg;
@@ -64,10 +61,13 @@ int main(int argc, char** argv) {
       static_cast<int>(args.getInt("pixel_stride", cfg.likelihood.pixel_stride));
   cfg.likelihood.exponent = args.getDouble("exponent", cfg.likelihood.exponent);
   cfg.recovery_max_fraction = args.getDouble("recovery_max_fraction", cfg.recovery_max_fraction);
+  cfg.min_ess_fraction = args.getDouble("min_ess_fraction", cfg.min_ess_fraction);
+  cfg.global_pool_size = static_cast<int>(args.getInt("global_pool_size", cfg.global_pool_size));
   const std::string priors_dir = args.get("priors_dir", "config/color_priors");
   const std::string output = args.get("output", "results/evaluate_localization");
   const std::string name = args.get("name", fs::path(bag).stem().string());
   const std::string init = args.get("init", "global");
+  cfg.mirror_fraction = args.getDouble("mirror_fraction", cfg.mirror_fraction);
   args.finish();
   if (init != "global" && init != "truth") args.fail("--init must be global or truth");
   if (bag.empty()) args.fail("--bag FILE is required");
@@ -86,14 +86,15 @@ int main(int argc, char** argv) {
     if (init == "truth") {  // tracking: start around the first true pose (0.2 m, 10 degrees)
       for (const auto& f : frames)
         if (f.has_truth) {
-          rbpf.initGaussian(planar(f.map_to_base), Eigen::Vector3d(0.04, 0.04, 0.03).asDiagonal());
+          rbpf.initGaussian(world::isometryToPlanar(f.map_to_base),
+                            Eigen::Vector3d(0.04, 0.04, 0.03).asDiagonal());
           break;
         }
     }
     fs::create_directories(output);
     std::ofstream csv(fs::path(output) / "frames.csv"), est_tum(fs::path(output) / "estimate.tum"),
         truth_tum(fs::path(output) / "truth.tum");
-    csv << "t_s,position_error_m,heading_error_deg,ess,classification_rate,injected\n";
+    csv << "t_s,position_error_m,heading_error_deg,ess,tempering,classification_rate,injected\n";
     const double t0 = frames.front().stamp.toSec();
     bool have_prev = false;
     Eigen::Isometry3d prev_odom = Eigen::Isometry3d::Identity();
@@ -105,14 +106,14 @@ int main(int argc, char** argv) {
       if (!f.has_odom || !f.has_truth) continue;
       const double t = f.stamp.toSec() - t0;
       const math::SE2 delta =
-          have_prev ? planar(prev_odom.inverse() * f.odom_to_base) : math::SE2();
+          have_prev ? world::isometryToPlanar(prev_odom.inverse() * f.odom_to_base) : math::SE2();
       const auto c0 = std::chrono::steady_clock::now();
       const auto r = rbpf.step(delta, have_prev ? t - prev_t : 0.0, f.yuv, f.base_to_optical);
       compute_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
       have_prev = true;
       prev_odom = f.odom_to_base;
       prev_t = t;
-      const math::SE2 est = rbpf.meanPose(), truth = planar(f.map_to_base);
+      const math::SE2 est = rbpf.estimate().pose, truth = world::isometryToPlanar(f.map_to_base);
       if (std::getenv("AP_DEBUG_RBPF")) {
         int u1 = 0, u2 = 0;
         const auto& b = rbpf.best();
@@ -120,6 +121,24 @@ int main(int argc, char** argv) {
             rbpf.imageLogLikelihood(truth, b.lighting, f.base_to_optical, nullptr, &u1);
         const double lb =
             rbpf.imageLogLikelihood(b.pose, b.lighting, f.base_to_optical, nullptr, &u2);
+        const color::SwitchingColorFilter fresh(priors, cfg.model, cfg.switching);
+        int u3 = 0;
+        const double lt0 = rbpf.imageLogLikelihood(truth, fresh, f.base_to_optical, nullptr, &u3);
+        const double lm0 =
+            rbpf.imageLogLikelihood(math::SE2(-truth.x_m, -truth.y_m, truth.yaw_rad + M_PI), fresh,
+                                    f.base_to_optical, nullptr, &u3);
+        double near = 0;
+        int nn = 0;
+        for (size_t i = 0; i < rbpf.particles().size(); ++i) {
+          const auto& q = rbpf.particles()[i].pose;
+          if (std::hypot(q.x_m - truth.x_m, q.y_m - truth.y_m) < 0.3 &&
+              std::fabs(math::angleDiff(q.yaw_rad, truth.yaw_rad)) < 0.3) {
+            near += rbpf.weights()[i];
+            ++nn;
+          }
+        }
+        std::fprintf(stderr, "   fresh: truth %.1f mirror %.1f; near truth %d w %.3f temper %.3f\n",
+                     lt0, lm0, nn, near, r.tempering);
         std::fprintf(stderr,
                      "t=%.2f truth (%.2f %.2f %.2f) ll %.1f used %d | best (%.2f %.2f %.2f) ll "
                      "%.1f used %d\n",
@@ -155,8 +174,8 @@ int main(int argc, char** argv) {
         total += ft;
         rate = ft ? double(fc) / ft : -1.0;
       }
-      csv << t << "," << pe << "," << he << "," << r.effective_sample_size << "," << rate << ","
-          << r.injected << "\n";
+      csv << t << "," << pe << "," << he << "," << r.effective_sample_size << "," << r.tempering
+          << "," << rate << "," << r.injected << "\n";
       tum(est_tum, f.stamp.toSec(), est);
       tum(truth_tum, f.stamp.toSec(), truth);
       t_s.push_back(t);

@@ -37,18 +37,21 @@ namespace adaptive_perception::localization {
 struct ImageLikelihoodConfig {
   int pixel_stride = 4;  // use every stride-th pixel in x and y (rows staggered)
   double outlier_probability =
-      0.1;                // weight of the uniform density in the pixel likelihood mixture
-  double exponent = 0.1;  // the image log-likelihood is multiplied by this
+      0.1;                 // weight of the uniform density in the pixel likelihood mixture
+  double exponent = 0.02;  // the image log-likelihood is multiplied by this
   void validate() const;
 };
 
 struct RbpfConfig {
-  int particles = 100;
+  int particles = 500;
   MotionModelConfig motion;
   ImageLikelihoodConfig likelihood;
   color::ColorModelConfig model = rbpfModelConfig();
   color::SwitchingFilterConfig switching;
   double resample_ess_fraction = 0.5;  // resample when ESS < this * N
+  // Adaptive tempering: an image whose likelihood would leave fewer than this fraction of the
+  // particles effective is flattened until it leaves that many (0 turns it off).
+  double min_ess_fraction = 0.0;
   // Augmented MCL on the per-pixel average log-likelihood: EMA rates, and the fraction of particles
   // re-drawn uniformly per nat the fast average lies below the slow one (capped).
   double recovery_alpha_slow = 0.05;
@@ -57,6 +60,17 @@ struct RbpfConfig {
   double recovery_max_fraction =
       0.0;  // off by default: as tuned so far it also fires at light switches
   double free_space_margin_m = 0.15;  // uniform particles are drawn where a robot can stand
+  // Global localization from the first image: after initUniform(), the next step() scores this many
+  // uniform poses on a coarse pixel grid (every global_pixel_stride-th pixel) and draws the
+  // particles from them, so that every part of the field is searched, not just where N random
+  // particles happened to land. 0 turns it off (the N uniform particles are used as they are).
+  int global_pool_size = 60000;
+  // The field's lines are point-symmetric about the centre spot; only the goal and beacon colours
+  // tell the halves apart, and they are in view for a few frames only. At each resampling this
+  // fraction of the particles is replaced by the point mirror (-x, -y, yaw + pi) of other
+  // particles, so the other half's hypothesis stays alive until colours decide between them.
+  double mirror_fraction = 0.05;
+  int global_pixel_stride = 12;
   int threads = 1;
   std::uint64_t seed = 1;
 
@@ -86,6 +100,8 @@ class RbpfLocalizer {
     double effective_sample_size = 0.0;
     bool resampled = false;
     int injected = 0;
+    int mirrored = 0;
+    double tempering = 1.0;  // the factor applied to this image's log-likelihood (1: none)
     double mean_pixel_log_likelihood = 0.0;  // per used pixel, of the average particle likelihood
     int pixels_used = 0;                     // by the best particle
   };
@@ -102,12 +118,21 @@ class RbpfLocalizer {
   double imageLogLikelihood(const math::SE2& pose, const color::SwitchingColorFilter& lighting,
                             const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs,
                             int* used) const;
+  /// True from initUniform() until the next step() has drawn the particles from the pool.
+  bool globalSearchPending() const { return global_pending_; }
 
   const std::vector<Particle>& particles() const { return particles_; }
   const std::vector<double>& weights() const { return weights_; }
-  /// Weighted mean pose (circular mean of yaw) and its covariance.
-  math::SE2 meanPose() const;
-  Eigen::Matrix3d poseCovariance() const;
+  struct PoseEstimate {
+    math::SE2 pose;               // weighted mean (circular in yaw) of the main cluster
+    Eigen::Matrix3d covariance;   // of the main cluster (x, y, yaw)
+    double cluster_weight = 0.0;  // share of the weight in the main cluster
+    double spread_m = 0.0;        // sqrt(trace of the x-y covariance) of ALL particles
+  };
+  /// The pose estimate: the weighted mean of the main cluster (the heaviest cell of a 0.25 m x 45
+  /// degree grid and the particles within 0.5 m and 0.6 rad of it), not of all particles, whose
+  /// mean may lie between two hypotheses.
+  PoseEstimate estimate() const;
   /// The particle with the highest weight.
   const Particle& best() const;
   const RbpfConfig& config() const { return config_; }
@@ -117,6 +142,18 @@ class RbpfLocalizer {
   void weighParticle(size_t i, const math::SE2& odom_delta, double dt_s,
                      const Eigen::Isometry3d& base_to_optical, std::uint64_t frame_seed);
   math::SE2 uniformPose(math::Rng& rng) const;
+  std::vector<size_t> mainCluster() const;
+  math::SE2 weightedMean(const std::vector<size_t>& idx) const;
+  Eigen::Matrix3d covarianceAbout(const std::vector<size_t>& idx, const math::SE2& mean) const;
+  double logLikelihoodAt(const std::vector<world::PixelCoord>& pixels,
+                         const std::vector<Eigen::Vector3d>& yuv, const math::SE2& pose,
+                         const color::SwitchingColorFilter& lighting,
+                         const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs,
+                         int* used) const;
+  void globalSearch(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
+                    std::uint64_t frame_seed);
+  template <typename F>
+  void parallelFor(size_t n, F&& f) const;
 
   world::FieldMap map_;
   world::LabelRenderer renderer_;
@@ -131,6 +168,7 @@ class RbpfLocalizer {
   std::uint64_t frame_ = 0;
   double w_slow_ = 0.0, w_fast_ = 0.0;
   bool have_average_ = false;
+  bool global_pending_ = false;
 };
 
 }  // namespace adaptive_perception::localization

@@ -7,11 +7,12 @@
 // Parameters (private):
 //   ~map_frame (string, "map"), ~odom_frame (string, "odom"), ~base_frame (string, "base_link").
 //   ~path_length (int, 2000, 0..100000): poses kept in the published path (0 = no path).
+//   ~publish_tf (bool, true): false when a localizer owns map -> odom (only the path is published).
 // Subscribed:
 //   ground_truth/pose (geometry_msgs/PoseStamped): base_link in map.
 //   odom (nav_msgs/Odometry): base_link in odom.
 // Published:
-//   tf map -> odom, stamped with the pair's stamp.
+//   tf map -> odom, stamped with the pair's stamp (unless ~publish_tf is false).
 //   ground_truth/path (nav_msgs/Path): the true trajectory, for rviz.
 //   /diagnostics: rate of matched pairs.
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -42,6 +43,7 @@ class GroundTruthTfNode {
       message_filters::sync_policies::ExactTime<geometry_msgs::PoseStamped, nav_msgs::Odometry>;
   std::string map_frame_, odom_frame_, base_frame_;
   int path_length_ = 2000;
+  bool publish_tf_ = true;
   message_filters::Subscriber<geometry_msgs::PoseStamped> truth_sub_;
   message_filters::Subscriber<nav_msgs::Odometry> odom_sub_;
   std::unique_ptr<message_filters::Synchronizer<Policy>> sync_;

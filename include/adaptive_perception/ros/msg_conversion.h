@@ -14,7 +14,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "adaptive_perception/ColorModel.h"
 #include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/color/switching_color_filter.h"
 #include "adaptive_perception/laser/line_evaluation.h"
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/math/se2.h"
@@ -55,6 +57,10 @@ Eigen::Isometry3d toIsometry(const geometry_msgs::Transform& t);
 geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& parent_to_child,
                                             const std::string& parent, const std::string& child,
                                             const ros::Time& stamp);
+
+/// The ColorModel message of a switching filter: the active mode's estimate and every mode's
+/// probability.
+ColorModel toColorModel(const color::SwitchingColorFilter& filter, const std_msgs::Header& header);
 
 /// The core scan of a LaserScan message.
 laser::LaserScan2D fromLaserScan(const sensor_msgs::LaserScan& msg);

@@ -52,5 +52,7 @@ struct HeadChain {
 /// The 3-D pose of a planar base pose (map -> base_link), with optional body height/pitch/roll.
 Eigen::Isometry3d planarToIsometry(const math::SE2& pose, double z_m = 0.0, double roll_rad = 0.0,
                                    double pitch_rad = 0.0);
+/// The planar pose (x, y, yaw of the x axis projected on the ground) of a 3-D pose.
+math::SE2 isometryToPlanar(const Eigen::Isometry3d& pose);
 
 }  // namespace adaptive_perception::world

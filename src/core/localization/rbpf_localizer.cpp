@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <thread>
+#include <tuple>
 
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/math/gaussian.h"
@@ -52,6 +55,18 @@ void RbpfConfig::validate() const {
   if (!(resample_ess_fraction > 0.0 && resample_ess_fraction <= 1.0))
     throw std::invalid_argument("resample_ess_fraction = " + std::to_string(resample_ess_fraction) +
                                 " (allowed: 0 < f <= 1)");
+  if (global_pool_size < 0 || global_pool_size > 10000000)
+    throw std::invalid_argument("global_pool_size = " + std::to_string(global_pool_size) +
+                                " (allowed: 0..10000000)");
+  if (global_pixel_stride < 1 || global_pixel_stride > 64)
+    throw std::invalid_argument("global_pixel_stride = " + std::to_string(global_pixel_stride) +
+                                " (allowed: 1..64)");
+  if (!(mirror_fraction >= 0.0 && mirror_fraction <= 0.5))
+    throw std::invalid_argument("mirror_fraction = " + std::to_string(mirror_fraction) +
+                                " (allowed: 0..0.5)");
+  if (!(min_ess_fraction >= 0.0 && min_ess_fraction <= 1.0))
+    throw std::invalid_argument("min_ess_fraction = " + std::to_string(min_ess_fraction) +
+                                " (allowed: 0..1)");
   if (!(recovery_max_fraction >= 0.0 && recovery_max_fraction <= 1.0))
     throw std::invalid_argument("recovery_max_fraction = " + std::to_string(recovery_max_fraction) +
                                 " (allowed: 0..1)");
@@ -61,15 +76,30 @@ void RbpfConfig::validate() const {
   switching.validate();
 }
 
+std::vector<world::PixelCoord> pixelGrid(const world::PinholeCamera& camera, int s) {
+  std::vector<world::PixelCoord> pixels;
+  for (int v = s / 2; v < camera.height_px; v += s)
+    for (int u = ((v / s) % 2) * (s / 2); u < camera.width_px; u += s)
+      pixels.push_back({static_cast<std::uint16_t>(u), static_cast<std::uint16_t>(v)});
+  return pixels;
+}
+
+std::vector<Eigen::Vector3d> pixelValues(const cv::Mat& yuv,
+                                         const std::vector<world::PixelCoord>& pixels) {
+  std::vector<Eigen::Vector3d> out(pixels.size());
+  for (size_t j = 0; j < pixels.size(); ++j) {
+    const cv::Vec3b c = yuv.at<cv::Vec3b>(pixels[j].v, pixels[j].u);
+    out[j] = Eigen::Vector3d(c[0], c[1], c[2]);
+  }
+  return out;
+}
+
 RbpfLocalizer::RbpfLocalizer(const world::FieldMap& map, const world::PinholeCamera& camera,
                              const std::vector<color::LightingPrior>& priors,
                              const RbpfConfig& config)
     : map_(map), renderer_(map, camera), priors_(priors), config_(config), rng_(config.seed) {
   config_.validate();
-  const int s = config_.likelihood.pixel_stride;
-  for (int v = s / 2; v < camera.height_px; v += s)
-    for (int u = ((v / s) % 2) * (s / 2); u < camera.width_px; u += s)
-      pixels_.push_back({static_cast<std::uint16_t>(u), static_cast<std::uint16_t>(v)});
+  pixels_ = pixelGrid(camera, config_.likelihood.pixel_stride);
   initUniform();
 }
 
@@ -90,6 +120,7 @@ void RbpfLocalizer::initUniform() {
     particles_.push_back({uniformPose(rng_), lighting, 0.0});
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   have_average_ = false;
+  global_pending_ = config_.global_pool_size > 0;
 }
 
 void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& cov) {
@@ -102,15 +133,25 @@ void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& c
   }
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   have_average_ = false;
+  global_pending_ = false;
 }
 
 double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose,
                                          const color::SwitchingColorFilter& lighting,
                                          const Eigen::Isometry3d& base_to_optical,
                                          color::ColorObservation* obs_out, int* used_out) const {
+  return logLikelihoodAt(pixels_, pixel_yuv_, pose, lighting, base_to_optical, obs_out, used_out);
+}
+
+double RbpfLocalizer::logLikelihoodAt(const std::vector<world::PixelCoord>& pixels,
+                                      const std::vector<Eigen::Vector3d>& pixel_yuv,
+                                      const math::SE2& pose,
+                                      const color::SwitchingColorFilter& lighting,
+                                      const Eigen::Isometry3d& base_to_optical,
+                                      color::ColorObservation* obs_out, int* used_out) const {
   const Eigen::Isometry3d cam = world::planarToIsometry(pose) * base_to_optical;
   std::vector<std::uint8_t> labels;
-  renderer_.renderPixels(cam, pixels_, &labels);
+  renderer_.renderPixels(cam, pixels, &labels);
   // Eq. (9) under the predicted lighting, in a mixture with the uniform density; eq. (16) is the
   // (tempered) product over the pixels. With several lighting modes the image likelihood is the
   // mixture over the modes with their predicted probabilities (the mode is part of the lighting
@@ -133,7 +174,7 @@ double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose,
   obs.means.assign(mc.numColors(), Eigen::Vector3d::Zero());
   obs.variances.assign(mc.numColors(), Eigen::Vector3d::Zero());
   double background = 0.0;
-  for (size_t j = 0; j < pixels_.size(); ++j) {
+  for (size_t j = 0; j < pixels.size(); ++j) {
     const int k = slot[labels[j]];
     if (k < 0) {
       // Background (or an unmodelled colour) under this pose: the uniform density. Every pixel must
@@ -142,12 +183,12 @@ double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose,
       continue;
     }
     for (int m = 0; m < lighting.numModes(); ++m) {
-      const double a = log_in + cls[m].logLikelihood(pixel_yuv_[j], k);
+      const double a = log_in + cls[m].logLikelihood(pixel_yuv[j], k);
       mode_ll[m] += std::max(a, log_out) + std::log1p(std::exp(-std::fabs(a - log_out)));
     }
     ++used;
     ++obs.counts[k];
-    obs.means[k] += pixel_yuv_[j];
+    obs.means[k] += pixel_yuv[j];
   }
   double best = -std::numeric_limits<double>::infinity();
   for (int m = 0; m < lighting.numModes(); ++m)
@@ -174,7 +215,7 @@ void RbpfLocalizer::weighParticle(size_t i, const math::SE2& odom_delta, double 
   p.log_likelihood =
       imageLogLikelihood(p.pose, p.lighting, base_to_optical, &obs, &pixels_used_[i]);
   // Section IV-B: the particle's lighting filter takes the colour means under its own labels.
-  p.lighting.update(obs);
+  if (!std::getenv("AP_NO_LIGHT_UPDATE")) p.lighting.update(obs);
 }
 
 void RbpfLocalizer::setImage(const cv::Mat& yuv) {
@@ -182,37 +223,103 @@ void RbpfLocalizer::setImage(const cv::Mat& yuv) {
   if (yuv.type() != CV_8UC3 || yuv.cols != cam.width_px || yuv.rows != cam.height_px)
     throw std::invalid_argument("RbpfLocalizer: expected a " + std::to_string(cam.width_px) + "x" +
                                 std::to_string(cam.height_px) + " YUV image");
-  pixel_yuv_.resize(pixels_.size());
-  for (size_t j = 0; j < pixels_.size(); ++j) {
-    const cv::Vec3b c = yuv.at<cv::Vec3b>(pixels_[j].v, pixels_[j].u);
-    pixel_yuv_[j] = Eigen::Vector3d(c[0], c[1], c[2]);
+  pixel_yuv_ = pixelValues(yuv, pixels_);
+}
+
+template <typename F>
+void RbpfLocalizer::parallelFor(size_t n, F&& f) const {
+  const int threads = std::min<int>(config_.threads, static_cast<int>(n));
+  if (threads <= 1) {
+    for (size_t i = 0; i < n; ++i) f(i);
+    return;
   }
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+    pool.emplace_back([&, t] {
+      for (size_t i = t; i < n; i += threads) f(i);
+    });
+  for (auto& th : pool) th.join();
+}
+
+void RbpfLocalizer::globalSearch(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
+                                 std::uint64_t frame_seed) {
+  // Score a large pool of uniform poses on a coarse pixel grid under the prior lighting, and draw
+  // the particles from it with the tempering that keeps min_ess_fraction of them distinct.
+  const std::vector<world::PixelCoord> coarse =
+      pixelGrid(renderer_.camera(), config_.global_pixel_stride);
+  const std::vector<Eigen::Vector3d> values = pixelValues(yuv, coarse);
+  const color::SwitchingColorFilter lighting(priors_, config_.model, config_.switching);
+  const size_t n = static_cast<size_t>(config_.global_pool_size);
+  std::vector<math::SE2> pool(n);
+  std::vector<double> ll(n);
+  parallelFor(n, [&](size_t i) {
+    // Pairs of point-mirrored poses (see mirror_fraction): both halves are searched alike.
+    math::Rng rng(mix(frame_seed ^ 0x5bd1e995ull, i / 2));
+    pool[i] = uniformPose(rng);
+    if (i % 2 == 1)
+      pool[i] = math::SE2(-pool[i].x_m, -pool[i].y_m, math::wrapAngle(pool[i].yaw_rad + math::kPi));
+    ll[i] = logLikelihoodAt(coarse, values, pool[i], lighting, base_to_optical, nullptr, nullptr);
+  });
+  std::vector<double> w;
+  // Keep half the particles effective: one image rarely tells where on the field the robot is.
+  const double target = 0.5 * config_.particles;
+  auto weigh = [&](double lambda) {
+    std::vector<double> logw(n);
+    for (size_t i = 0; i < n; ++i) logw[i] = lambda * ll[i];
+    math::normalizeLogWeights(logw, &w);
+    return math::effectiveSampleSize(w);
+  };
+  double lo = 0.0, hi = 1.0;
+  if (weigh(1.0) >= target) {
+    lo = 1.0;
+  } else {
+    for (int it = 0; it < 30; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (weigh(mid) >= target ? lo : hi) = mid;
+    }
+  }
+  weigh(lo);
+  const auto idx =
+      math::resampleIndices(w, config_.particles, math::ResamplingScheme::kSystematic, rng_);
+  particles_.clear();
+  for (size_t i : idx) particles_.push_back({pool[i], lighting, 0.0});
+  weights_.assign(particles_.size(), 1.0 / particles_.size());
+  global_pending_ = false;
 }
 
 RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, double dt_s,
                                               const cv::Mat& yuv,
                                               const Eigen::Isometry3d& base_to_optical) {
   setImage(yuv);
-  pixels_used_.assign(particles_.size(), 0);
   const std::uint64_t frame_seed = mix(config_.seed, ++frame_);
-  const int threads = std::min<int>(config_.threads, static_cast<int>(particles_.size()));
-  if (threads <= 1) {
-    for (size_t i = 0; i < particles_.size(); ++i)
-      weighParticle(i, odom_delta, dt_s, base_to_optical, frame_seed);
-  } else {
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-      pool.emplace_back([&, t] {
-        for (size_t i = t; i < particles_.size(); i += threads)
-          weighParticle(i, odom_delta, dt_s, base_to_optical, frame_seed);
-      });
-    for (auto& th : pool) th.join();
-  }
+  if (global_pending_) globalSearch(yuv, base_to_optical, frame_seed);
+  pixels_used_.assign(particles_.size(), 0);
+  parallelFor(particles_.size(),
+              [&](size_t i) { weighParticle(i, odom_delta, dt_s, base_to_optical, frame_seed); });
   StepResult r;
-  std::vector<double> logw(particles_.size());
-  for (size_t i = 0; i < particles_.size(); ++i)
-    logw[i] = std::log(std::max(weights_[i], 1e-300)) + particles_[i].log_likelihood;
-  math::normalizeLogWeights(logw, &weights_);
+  // Adaptive tempering: when this image alone would leave fewer than min_ess_fraction * N
+  // effective particles, its likelihood is flattened by the largest factor lambda <= 1 that keeps
+  // them (bisection). A global start or a kidnap then narrows over several frames instead of
+  // collapsing onto whichever particle happened to land nearest a peak.
+  const std::vector<double> prior_w = weights_;
+  auto weigh = [&](double lambda) {
+    std::vector<double> logw(particles_.size());
+    for (size_t i = 0; i < particles_.size(); ++i)
+      logw[i] = std::log(std::max(prior_w[i], 1e-300)) + lambda * particles_[i].log_likelihood;
+    math::normalizeLogWeights(logw, &weights_);
+    return math::effectiveSampleSize(weights_);
+  };
+  const double target = config_.min_ess_fraction * particles_.size();
+  r.tempering = 1.0;
+  if (weigh(1.0) < target && target > 1.0) {
+    double lo = 0.0, hi = 1.0;
+    for (int it = 0; it < 30; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (weigh(mid) >= target ? lo : hi) = mid;
+    }
+    r.tempering = lo;
+    weigh(lo);
+  }
   r.effective_sample_size = math::effectiveSampleSize(weights_);
   // Average likelihood per pixel (untempered), for recovery.
   std::vector<double> ll(particles_.size());
@@ -257,30 +364,84 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
       p.pose = uniformPose(rng_);
     }
     r.injected = inject;
+    const int mirror = static_cast<int>(std::floor(config_.mirror_fraction * particles_.size()));
+    const int n = static_cast<int>(particles_.size());
+    for (int k = 0; k < mirror; ++k) {
+      const Particle& src = particles_[rng_.uniformInt(0, n - 1)];
+      Particle& dst = particles_[rng_.uniformInt(0, n - 1)];
+      const math::SE2 m(-src.pose.x_m, -src.pose.y_m,
+                        math::wrapAngle(src.pose.yaw_rad + math::kPi));
+      dst.lighting = src.lighting;
+      dst.pose = m;
+    }
+    r.mirrored = mirror;
   }
   return r;
 }
 
-math::SE2 RbpfLocalizer::meanPose() const {
-  double x = 0, y = 0, c = 0, s = 0;
+std::vector<size_t> RbpfLocalizer::mainCluster() const {
+  // The heaviest cell of a coarse (x, y, yaw) grid, then every particle near that cell's mean.
+  constexpr double kCell = 0.25, kRadius = 0.5, kYaw = 0.6;
+  std::map<std::tuple<int, int, int>, double> cells;
+  auto key = [&](const math::SE2& p) {
+    return std::make_tuple(static_cast<int>(std::floor(p.x_m / kCell)),
+                           static_cast<int>(std::floor(p.y_m / kCell)),
+                           static_cast<int>(std::floor((p.yaw_rad + math::kPi) / (math::kPi / 4))));
+  };
+  for (size_t i = 0; i < particles_.size(); ++i) cells[key(particles_[i].pose)] += weights_[i];
+  const auto top = std::max_element(cells.begin(), cells.end(), [](const auto& a, const auto& b) {
+                     return a.second < b.second;
+                   })->first;
+  std::vector<size_t> in_cell;
+  for (size_t i = 0; i < particles_.size(); ++i)
+    if (key(particles_[i].pose) == top) in_cell.push_back(i);
+  const math::SE2 c = weightedMean(in_cell);
+  std::vector<size_t> out;
   for (size_t i = 0; i < particles_.size(); ++i) {
+    const math::SE2& p = particles_[i].pose;
+    if (std::hypot(p.x_m - c.x_m, p.y_m - c.y_m) < kRadius &&
+        std::fabs(math::angleDiff(p.yaw_rad, c.yaw_rad)) < kYaw)
+      out.push_back(i);
+  }
+  return out;
+}
+
+math::SE2 RbpfLocalizer::weightedMean(const std::vector<size_t>& idx) const {
+  double x = 0, y = 0, c = 0, s = 0, w = 0;
+  for (size_t i : idx) {
     x += weights_[i] * particles_[i].pose.x_m;
     y += weights_[i] * particles_[i].pose.y_m;
     c += weights_[i] * std::cos(particles_[i].pose.yaw_rad);
     s += weights_[i] * std::sin(particles_[i].pose.yaw_rad);
+    w += weights_[i];
   }
-  return math::SE2(x, y, std::atan2(s, c));
+  if (w <= 0.0) return math::SE2();
+  return math::SE2(x / w, y / w, std::atan2(s, c));
 }
 
-Eigen::Matrix3d RbpfLocalizer::poseCovariance() const {
-  const math::SE2 m = meanPose();
+Eigen::Matrix3d RbpfLocalizer::covarianceAbout(const std::vector<size_t>& idx,
+                                               const math::SE2& m) const {
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (size_t i = 0; i < particles_.size(); ++i) {
+  double w = 0.0;
+  for (size_t i : idx) {
     const Eigen::Vector3d d(particles_[i].pose.x_m - m.x_m, particles_[i].pose.y_m - m.y_m,
                             math::angleDiff(particles_[i].pose.yaw_rad, m.yaw_rad));
     cov += weights_[i] * d * d.transpose();
+    w += weights_[i];
   }
-  return cov;
+  return w > 0.0 ? Eigen::Matrix3d(cov / w) : cov;
+}
+
+RbpfLocalizer::PoseEstimate RbpfLocalizer::estimate() const {
+  std::vector<size_t> all(particles_.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  PoseEstimate e;
+  const std::vector<size_t> cluster = mainCluster();
+  e.pose = weightedMean(cluster);
+  e.covariance = covarianceAbout(cluster, e.pose);
+  for (size_t i : cluster) e.cluster_weight += weights_[i];
+  e.spread_m = std::sqrt(covarianceAbout(all, weightedMean(all)).topLeftCorner<2, 2>().trace());
+  return e;
 }
 
 const Particle& RbpfLocalizer::best() const {

@@ -77,4 +77,9 @@ Eigen::Isometry3d planarToIsometry(const math::SE2& pose, double z, double roll,
   return t;
 }
 
+math::SE2 isometryToPlanar(const Eigen::Isometry3d& t) {
+  const Eigen::Vector3d x = t.linear().col(0);
+  return math::SE2(t.translation().x(), t.translation().y(), std::atan2(x.y(), x.x()));
+}
+
 }  // namespace adaptive_perception::world

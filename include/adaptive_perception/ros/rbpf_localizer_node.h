@@ -1,0 +1,99 @@
+#pragma once
+// rbpf_localizer: Rao-Blackwellised particle filter over the robot pose on the field and the
+// lighting (Schulz & Fox 2004, section IV). The algorithm is localization::RbpfLocalizer; this node
+// feeds it images, odometry and the head chain from tf, and publishes its estimate.
+//
+// Parameters (private; defaults and ranges in config/rbpf_localizer.yaml):
+//   ~particles (int), ~threads (int, 0 = all cores), ~seed (int).
+//   ~pixel_stride (int, px), ~outlier_probability, ~exponent: the image likelihood (eq. 16).
+//   ~min_ess_fraction, ~resample_ess_fraction: adaptive tempering and resampling thresholds.
+//   ~global_pool_size, ~global_pixel_stride: the global search from the first image.
+//   ~recovery_alpha_slow, ~recovery_alpha_fast, ~recovery_gain_per_nat, ~recovery_max_fraction:
+//   augmented-MCL injection of uniform particles.
+//   ~odom_alpha1..4, ~odom_min_translation_std_m, ~odom_min_rotation_std_rad: motion model.
+//   ~filter (switching | single), ~priors (list), ~single_prior, ~priors_dir, ~field_file,
+//   ~mode_stay_probability, ~drift_std_per_sqrt_s: the per-particle lighting filters.
+//   ~initial_pose ([x_m, y_m, yaw_rad], optional: without it the node starts with a global search),
+//   ~initial_pose_std ([x_m, y_m, yaw_rad]).
+//   ~map_frame, ~odom_frame, ~base_frame, ~publish_tf (bool), ~transform_tolerance_s,
+//   ~tf_timeout_s.
+// Subscribed:
+//   camera/image_raw (sensor_msgs/Image: yuv422 | bgr8 | rgb8, 208x160 or camera/camera_info's
+//   size), camera/camera_info (optional), initialpose (geometry_msgs/PoseWithCovarianceStamped,
+//   rviz "2D Pose Estimate"), tf odom -> base_link and base_link -> image frame at the image stamp.
+// Published:
+//   rbpf_localizer/pose (geometry_msgs/PoseWithCovarianceStamped), rbpf_localizer/particles
+//   (geometry_msgs/PoseArray), tf map -> odom, color_model (adaptive_perception/ColorModel of the
+//   best particle), rbpf_localizer/classified (mono8 class ids) and rbpf_localizer/classified_color
+//   (bgr8), /diagnostics (rate, effective sample size, spread, tempering).
+// Services:
+//   global_localization (std_srvs/Empty, as amcl): particles uniform again, global search on the
+//   next image.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <std_srvs/Empty.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "adaptive_perception/color/color_lut.h"
+#include "adaptive_perception/localization/rbpf_localizer.h"
+
+namespace adaptive_perception {
+
+class RbpfLocalizerNode {
+ public:
+  /// Throws ros_params::ParamError / std::runtime_error (bad prior or field file) with a clear
+  /// message.
+  RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+ private:
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg);
+  void onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
+  bool onGlobalLocalization(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  bool ensureLocalizer(int width, int height);
+  void publish(const std_msgs::Header& image_header, const Eigen::Isometry3d& odom_to_base,
+               const cv::Mat& yuv);
+
+  ros::NodeHandle nh_, pnh_;
+  std::mutex mutex_;
+  localization::RbpfConfig config_;
+  std::vector<color::LightingPrior> priors_;
+  world::FieldMap map_;
+  std::optional<world::PinholeCamera> camera_;
+  std::unique_ptr<localization::RbpfLocalizer> rbpf_;
+  // A pose to start from (initial_pose parameter or initialpose topic), applied when the localizer
+  // is (re)built.
+  std::optional<std::pair<math::SE2, Eigen::Matrix3d>> pending_pose_;
+  std::string map_frame_, odom_frame_, base_frame_;
+  bool publish_tf_ = true;
+  double transform_tolerance_s_ = 0.1, tf_timeout_s_ = 0.1;
+  std::optional<Eigen::Isometry3d> last_odom_;
+  ros::Time last_stamp_;
+  color::ColorLutCache lut_;
+
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  ros::Subscriber image_sub_, info_sub_, initial_pose_sub_;
+  ros::Publisher pose_pub_, particles_pub_, model_pub_, classified_pub_, classified_color_pub_;
+  ros::ServiceServer global_srv_;
+  diagnostic_updater::Updater diagnostics_;
+  double min_freq_ = 0.5, max_freq_ = 100.0;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+  long frames_ = 0, skipped_no_tf_ = 0, skipped_bad_image_ = 0, resets_ = 0;
+  localization::RbpfLocalizer::StepResult last_;
+  double last_compute_s_ = 0.0;
+};
+
+}  // namespace adaptive_perception

@@ -1,0 +1,347 @@
+#include "adaptive_perception/ros/rbpf_localizer_node.h"
+
+#include <geometry_msgs/PoseArray.h>
+#include <tf2/exceptions.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+
+namespace adaptive_perception {
+
+namespace fs = std::filesystem;
+using ros_params::ParamError;
+
+namespace {
+Eigen::Matrix3d diag3(const std::vector<double>& v) {
+  return Eigen::Vector3d(v[0] * v[0], v[1] * v[1], v[2] * v[2]).asDiagonal();
+}
+}  // namespace
+
+RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
+  namespace P = ros_params;
+  localization::RbpfConfig& c = config_;
+  c.particles = P::getInRange(pnh, "particles", c.particles, 1, 1000000);
+  const int threads = P::getInRange(pnh, "threads", 0, 0, 256);
+  c.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  c.seed = static_cast<std::uint64_t>(P::getInRange(pnh, "seed", 1, 0, 1 << 30));
+  c.likelihood.pixel_stride = P::getInRange(pnh, "pixel_stride", c.likelihood.pixel_stride, 1, 64);
+  c.likelihood.outlier_probability =
+      P::getInRange(pnh, "outlier_probability", c.likelihood.outlier_probability, 0.0, 0.999);
+  c.likelihood.exponent = P::getInRange(pnh, "exponent", c.likelihood.exponent, 1e-6, 1.0);
+  c.min_ess_fraction = P::getInRange(pnh, "min_ess_fraction", c.min_ess_fraction, 0.0, 1.0);
+  c.resample_ess_fraction =
+      P::getInRange(pnh, "resample_ess_fraction", c.resample_ess_fraction, 1e-3, 1.0);
+  c.global_pool_size = P::getInRange(pnh, "global_pool_size", c.global_pool_size, 0, 10000000);
+  c.global_pixel_stride = P::getInRange(pnh, "global_pixel_stride", c.global_pixel_stride, 1, 64);
+  c.mirror_fraction = P::getInRange(pnh, "mirror_fraction", c.mirror_fraction, 0.0, 0.5);
+  c.recovery_alpha_slow =
+      P::getInRange(pnh, "recovery_alpha_slow", c.recovery_alpha_slow, 0.0, 1.0);
+  c.recovery_alpha_fast =
+      P::getInRange(pnh, "recovery_alpha_fast", c.recovery_alpha_fast, 0.0, 1.0);
+  c.recovery_gain_per_nat =
+      P::getInRange(pnh, "recovery_gain_per_nat", c.recovery_gain_per_nat, 0.0, 100.0);
+  c.recovery_max_fraction =
+      P::getInRange(pnh, "recovery_max_fraction", c.recovery_max_fraction, 0.0, 1.0);
+  localization::MotionModelConfig& m = c.motion;
+  m.alpha1 = P::getInRange(pnh, "odom_alpha1", m.alpha1, 0.0, 10.0);
+  m.alpha2 = P::getInRange(pnh, "odom_alpha2", m.alpha2, 0.0, 10.0);
+  m.alpha3 = P::getInRange(pnh, "odom_alpha3", m.alpha3, 0.0, 10.0);
+  m.alpha4 = P::getInRange(pnh, "odom_alpha4", m.alpha4, 0.0, 10.0);
+  m.min_translation_std_m =
+      P::getInRange(pnh, "odom_min_translation_std_m", m.min_translation_std_m, 0.0, 1.0);
+  m.min_rotation_std_rad =
+      P::getInRange(pnh, "odom_min_rotation_std_rad", m.min_rotation_std_rad, 0.0, 1.0);
+  c.model.drift_std_per_sqrt_s =
+      P::getInRange(pnh, "drift_std_per_sqrt_s", c.model.drift_std_per_sqrt_s, 0.0, 100.0);
+  c.switching.mode_stay_probability =
+      P::getInRange(pnh, "mode_stay_probability", c.switching.mode_stay_probability, 1e-3, 1.0);
+
+  const std::string filter = P::get<std::string>(pnh, "filter", "switching");
+  std::vector<std::string> names;
+  if (filter == "switching") {
+    names = P::get<std::vector<std::string>>(pnh, "priors", {"dark", "bright"});
+  } else if (filter == "single") {
+    names = {P::get<std::string>(pnh, "single_prior", "all")};
+  } else {
+    throw ParamError("parameter " + pnh.resolveName("filter") + " = '" + filter +
+                     "' (allowed: switching, single)");
+  }
+  if (names.empty())
+    throw ParamError("parameter " + pnh.resolveName("priors") + " must name at least one prior");
+  const std::string dir =
+      P::resolvePackagePath(P::getName(pnh, "priors_dir", "config/color_priors"));
+  for (const auto& n : names)
+    priors_.push_back(color::LightingPrior::loadYaml((fs::path(dir) / (n + ".yaml")).string()));
+  map_ = world::FieldMap::loadYaml(
+      P::resolvePackagePath(P::getName(pnh, "field_file", "config/field_4legged.yaml")));
+
+  const auto initial = P::get<std::vector<double>>(pnh, "initial_pose", {});
+  const auto initial_std = P::get<std::vector<double>>(pnh, "initial_pose_std", {0.2, 0.2, 0.17});
+  if (!initial.empty() && initial.size() != 3)
+    throw ParamError("parameter " + pnh.resolveName("initial_pose") +
+                     " must be [x_m, y_m, yaw_rad] or empty (global localization)");
+  if (initial_std.size() != 3 || initial_std[0] <= 0 || initial_std[1] <= 0 || initial_std[2] <= 0)
+    throw ParamError("parameter " + pnh.resolveName("initial_pose_std") +
+                     " must be three positive standard deviations [x_m, y_m, yaw_rad]");
+  if (initial.size() == 3)
+    pending_pose_ =
+        std::make_pair(math::SE2(initial[0], initial[1], initial[2]), diag3(initial_std));
+
+  map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
+  odom_frame_ = P::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
+  base_frame_ = P::getName(pnh, "base_frame", ros_topics::kBaseFrame);
+  publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
+  transform_tolerance_s_ =
+      P::getInRange(pnh, "transform_tolerance_s", transform_tolerance_s_, 0.0, 10.0);
+  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", tf_timeout_s_, 0.0, 5.0);
+  try {
+    config_.validate();
+  } catch (const std::invalid_argument& e) {
+    throw ParamError(std::string("rbpf_localizer parameters: ") + e.what());
+  }
+
+  pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("rbpf_localizer/pose", 5);
+  particles_pub_ = nh.advertise<geometry_msgs::PoseArray>("rbpf_localizer/particles", 2);
+  model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_model", 5);
+  classified_pub_ = nh.advertise<sensor_msgs::Image>("rbpf_localizer/classified", 2);
+  classified_color_pub_ = nh.advertise<sensor_msgs::Image>("rbpf_localizer/classified_color", 2);
+  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 1, &RbpfLocalizerNode::onImage, this);
+  info_sub_ = nh.subscribe(ros_topics::kCameraInfo, 1, &RbpfLocalizerNode::onCameraInfo, this);
+  initial_pose_sub_ = nh.subscribe("initialpose", 1, &RbpfLocalizerNode::onInitialPose, this);
+  global_srv_ =
+      nh.advertiseService("global_localization", &RbpfLocalizerNode::onGlobalLocalization, this);
+
+  diagnostics_.setHardwareID("rbpf_localizer");
+  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
+  diagnostics_.add(*freq_);
+  diagnostics_.add("localizer", this, &RbpfLocalizerNode::diagnose);
+  ROS_INFO("rbpf_localizer: %d particles on %d thread(s), %s filter with %zu prior(s), %s start",
+           c.particles, c.threads, filter.c_str(), priors_.size(),
+           pending_pose_ ? "tracking" : "global");
+}
+
+void RbpfLocalizerNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  try {
+    const world::PinholeCamera cam = ros_conv::fromCameraInfo(*msg);
+    if (!camera_ || cam.width_px != camera_->width_px || cam.height_px != camera_->height_px ||
+        cam.fx_px != camera_->fx_px || cam.fy_px != camera_->fy_px || cam.cx_px != camera_->cx_px ||
+        cam.cy_px != camera_->cy_px) {
+      if (rbpf_) {
+        ROS_WARN("rbpf_localizer: camera model changed: the filter restarts");
+        const auto e = rbpf_->estimate();
+        pending_pose_ = std::make_pair(e.pose, e.covariance + Eigen::Matrix3d::Identity() * 1e-4);
+      }
+      camera_ = cam;
+      rbpf_.reset();
+    }
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(10.0, "rbpf_localizer: camera_info ignored: %s", e.what());
+  }
+}
+
+bool RbpfLocalizerNode::ensureLocalizer(int width, int height) {
+  if (!camera_) {
+    if (width != 208 || height != 160) {
+      ROS_WARN_THROTTLE(5.0, "rbpf_localizer: waiting for camera/camera_info (image is %dx%d)",
+                        width, height);
+      return false;
+    }
+    camera_ = world::PinholeCamera::aiboErs7();
+  }
+  if (camera_->width_px != width || camera_->height_px != height) {
+    ROS_ERROR_THROTTLE(5.0,
+                       "rbpf_localizer: image is %dx%d but camera_info says %dx%d: frame dropped",
+                       width, height, camera_->width_px, camera_->height_px);
+    ++skipped_bad_image_;
+    return false;
+  }
+  if (!rbpf_) {
+    rbpf_ = std::make_unique<localization::RbpfLocalizer>(map_, *camera_, priors_, config_);
+    if (pending_pose_) rbpf_->initGaussian(pending_pose_->first, pending_pose_->second);
+    pending_pose_.reset();
+    last_odom_.reset();
+  }
+  return true;
+}
+
+void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+  cv::Mat yuv;
+  try {
+    yuv = ros_conv::imageToYuv(*msg);
+  } catch (const ros_conv::ImageFormatError& e) {
+    ROS_ERROR_THROTTLE(10.0, "rbpf_localizer: frame dropped: %s", e.what());
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++skipped_bad_image_;
+    return;
+  }
+  geometry_msgs::TransformStamped odom_base, base_cam;
+  try {
+    odom_base = tf_buffer_.lookupTransform(odom_frame_, base_frame_, msg->header.stamp,
+                                           ros::Duration(tf_timeout_s_));
+    base_cam = tf_buffer_.lookupTransform(base_frame_, msg->header.frame_id, msg->header.stamp,
+                                          ros::Duration(tf_timeout_s_));
+  } catch (const tf2::TransformException& e) {
+    ROS_WARN_THROTTLE(5.0, "rbpf_localizer: no odometry / head pose for the image (%s): skipped",
+                      e.what());
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++skipped_no_tf_;
+    return;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!ensureLocalizer(yuv.cols, yuv.rows)) return;
+  const Eigen::Isometry3d odom = ros_conv::toIsometry(odom_base.transform);
+  double dt_s = 0.0;
+  math::SE2 delta;
+  if (last_odom_) {
+    dt_s = (msg->header.stamp - last_stamp_).toSec();
+    if (dt_s < 0.0) {
+      ROS_WARN(
+          "rbpf_localizer: time went backwards by %.3f s (bag looped?): global localization "
+          "again",
+          -dt_s);
+      rbpf_->initUniform();
+      ++resets_;
+      dt_s = 0.0;
+    } else {
+      delta = world::isometryToPlanar(last_odom_->inverse() * odom);
+    }
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    last_ = rbpf_->step(delta, dt_s, yuv, ros_conv::toIsometry(base_cam.transform));
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(10.0, "rbpf_localizer: frame dropped: %s", e.what());
+    ++skipped_bad_image_;
+    return;
+  }
+  last_compute_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  last_odom_ = odom;
+  last_stamp_ = msg->header.stamp;
+  ++frames_;
+  freq_->tick();
+  publish(msg->header, odom, yuv);
+  diagnostics_.update();
+}
+
+void RbpfLocalizerNode::publish(const std_msgs::Header& image_header,
+                                const Eigen::Isometry3d& odom_to_base, const cv::Mat& yuv) {
+  const auto e = rbpf_->estimate();
+  std_msgs::Header h = image_header;
+  h.frame_id = map_frame_;
+  geometry_msgs::PoseWithCovarianceStamped pose;
+  pose.header = h;
+  pose.pose.pose = ros_conv::toPose(e.pose);
+  // Row-major 6x6 over (x, y, z, roll, pitch, yaw).
+  const int idx[3] = {0, 1, 5};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) pose.pose.covariance[idx[i] * 6 + idx[j]] = e.covariance(i, j);
+  pose_pub_.publish(pose);
+  if (particles_pub_.getNumSubscribers() > 0) {
+    geometry_msgs::PoseArray pa;
+    pa.header = h;
+    for (const auto& p : rbpf_->particles()) pa.poses.push_back(ros_conv::toPose(p.pose));
+    particles_pub_.publish(pa);
+  }
+  if (publish_tf_) {
+    // map -> odom = (map -> base) * (odom -> base)^-1, future-dated by the tolerance as amcl does.
+    const Eigen::Isometry3d map_to_base = world::planarToIsometry(e.pose);
+    const Eigen::Isometry3d odom_planar =
+        world::planarToIsometry(world::isometryToPlanar(odom_to_base));
+    tf_broadcaster_.sendTransform(
+        ros_conv::toTransform(map_to_base * odom_planar.inverse(), map_frame_, odom_frame_,
+                              image_header.stamp + ros::Duration(transform_tolerance_s_)));
+  }
+  const color::SwitchingColorFilter& lighting = rbpf_->best().lighting;
+  model_pub_.publish(ros_conv::toColorModel(lighting, h));
+  if (classified_pub_.getNumSubscribers() > 0 || classified_color_pub_.getNumSubscribers() > 0) {
+    lut_.update(lighting.active().classifier());
+    cv::Mat labels;
+    lut_.lut().classifyYuv(yuv, &labels);
+    if (classified_pub_.getNumSubscribers() > 0)
+      classified_pub_.publish(ros_conv::mono8ToImage(labels, image_header));
+    if (classified_color_pub_.getNumSubscribers() > 0)
+      classified_color_pub_.publish(
+          ros_conv::bgr8ToImage(color::colorizeLabels(labels), image_header));
+  }
+}
+
+void RbpfLocalizerNode::onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg) {
+  Eigen::Isometry3d pose = ros_conv::toIsometry(msg->pose.pose);
+  if (!msg->header.frame_id.empty() && msg->header.frame_id != map_frame_) {
+    try {
+      pose = ros_conv::toIsometry(
+                 tf_buffer_.lookupTransform(map_frame_, msg->header.frame_id, ros::Time(0))
+                     .transform) *
+             pose;
+    } catch (const tf2::TransformException& e) {
+      ROS_ERROR("rbpf_localizer: initialpose in frame '%s' ignored: %s",
+                msg->header.frame_id.c_str(), e.what());
+      return;
+    }
+  }
+  Eigen::Matrix3d cov;
+  const int idx[3] = {0, 1, 5};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) cov(i, j) = msg->pose.covariance[idx[i] * 6 + idx[j]];
+  // rviz sends x, y variance 0.25 and yaw 0.068; a zero or broken covariance gets the defaults.
+  if (!cov.allFinite() || cov(0, 0) <= 0 || cov(1, 1) <= 0 || cov(2, 2) <= 0 ||
+      Eigen::LLT<Eigen::Matrix3d>(cov).info() != Eigen::Success)
+    cov = diag3({0.2, 0.2, 0.17});
+  const math::SE2 p = world::isometryToPlanar(pose);
+  std::lock_guard<std::mutex> lock(mutex_);
+  ROS_INFO("rbpf_localizer: initial pose (%.2f m, %.2f m, %.1f deg)", p.x_m, p.y_m,
+           p.yaw_rad * 180.0 / M_PI);
+  if (rbpf_)
+    rbpf_->initGaussian(p, cov);
+  else
+    pending_pose_ = std::make_pair(p, cov);
+  ++resets_;
+}
+
+bool RbpfLocalizerNode::onGlobalLocalization(std_srvs::Empty::Request&,
+                                             std_srvs::Empty::Response&) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (rbpf_) rbpf_->initUniform();
+  pending_pose_.reset();
+  ++resets_;
+  ROS_INFO("rbpf_localizer: global localization: particles spread over the field");
+  return true;
+}
+
+void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  if (!rbpf_) {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no image processed yet");
+  } else {
+    const auto e = rbpf_->estimate();
+    if (e.cluster_weight < 0.5)
+      stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                   "not converged: the main cluster holds less than half the weight");
+    else
+      stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "localized");
+    stat.add("particles", rbpf_->particles().size());
+    stat.add("effective sample size", last_.effective_sample_size);
+    stat.add("main cluster weight", e.cluster_weight);
+    stat.add("spread of all particles (m)", e.spread_m);
+    stat.add("position std of the estimate (m)",
+             std::sqrt(e.covariance.topLeftCorner<2, 2>().trace()));
+    stat.add("tempering", last_.tempering);
+    stat.add("injected (last resampling)", last_.injected);
+    stat.add("compute time of the last frame (s)", last_compute_s_);
+    stat.add("lighting mode", rbpf_->best().lighting.modeName(rbpf_->best().lighting.activeMode()));
+  }
+  stat.add("frames", frames_);
+  stat.add("frames skipped (no tf)", skipped_no_tf_);
+  stat.add("frames skipped (bad image)", skipped_bad_image_);
+  stat.add("re-initialisations", resets_);
+}
+
+}  // namespace adaptive_perception
