@@ -1,18 +1,21 @@
 // evaluate_localization: runs the Rao-Blackwellised localizer offline over a field bag from a
 // uniform (global) start, against ground_truth/pose and the bag's true labels.
 //
-//   evaluate_localization --bag FILE [--particles 100] [--filter switching|single] [--threads 1]
-//       [--seed 1] [--pixel_stride 4] [--priors_dir config/color_priors] [--output DIR] [--name
-//       LABEL]
+//   evaluate_localization --bag FILE [--particles 500] [--filter switching|single] [--threads 1]
+//       [--seed 1] [--pixel_stride 4] [--exponent E] [--min_ess_fraction F] [--mirror_fraction F]
+//       [--global_pool_size N] [--recovery_max_fraction F] [--init global|truth]
+//       [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
+// (defaults: those of localization::RbpfConfig)
 //
 // Converged: the first frame after which the position error stays below 0.3 m (for the rest of the
-// run, or until a kidnap, after which convergence is measured again). Errors are medians over
-// converged frames. classification_rate: the best particle's lighting model (eq. 9, plain maximum
-// likelihood) scored on the true labels. Writes OUTPUT/results.yaml, frames.csv, estimate.tum,
-// truth.tum. Last line:
+// run, or until a kidnap, a jump of the true pose over 0.5 m between frames, after which
+// convergence is measured again: reconverged_after_kidnap_s). Errors are medians over converged
+// frames. classification_rate: the best particle's lighting model (eq. 9, plain maximum likelihood)
+// scored on the true labels. Writes OUTPUT/results.yaml, frames.csv, estimate.tum, truth.tum
+// (scripts/plot_localization.py plots them). Last line:
 //   evaluate_localization: median_position_error_m=.. median_heading_error_deg=..
-//   converged_after_s=..
-//                          classification_rate=.. frames_per_s=.. frames=N
+//       converged_after_s=.. [reconverged_after_kidnap_s=..] classification_rate=.. frames_per_s=..
+//       frames=N
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -53,7 +56,7 @@ int main(int argc, char** argv) {
                    "DIR] [--init global|truth] [--output DIR] [--name LABEL]");
   const std::string bag = args.get("bag", "");
   localization::RbpfConfig cfg;
-  cfg.particles = static_cast<int>(args.getInt("particles", 100));
+  cfg.particles = static_cast<int>(args.getInt("particles", cfg.particles));
   const std::string filter = args.get("filter", "switching");
   cfg.threads = static_cast<int>(args.getInt("threads", 1));
   cfg.seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
@@ -100,6 +103,8 @@ int main(int argc, char** argv) {
     Eigen::Isometry3d prev_odom = Eigen::Isometry3d::Identity();
     double prev_t = 0.0, compute_s = 0.0;
     std::vector<double> t_s, pos_err, head_err;
+    std::vector<int> kidnaps;  // frame indices where the true pose jumped (a kidnap)
+    math::SE2 prev_truth;
     long correct = 0, total = 0;
     int used = 0;
     for (const auto& f : frames) {
@@ -178,33 +183,47 @@ int main(int argc, char** argv) {
           << "," << rate << "," << r.injected << "\n";
       tum(est_tum, f.stamp.toSec(), est);
       tum(truth_tum, f.stamp.toSec(), truth);
+      if (!t_s.empty() && std::hypot(truth.x_m - prev_truth.x_m, truth.y_m - prev_truth.y_m) > 0.5)
+        kidnaps.push_back(static_cast<int>(t_s.size()));
+      prev_truth = truth;
       t_s.push_back(t);
       pos_err.push_back(pe);
       head_err.push_back(he);
       ++used;
     }
     if (used == 0) throw std::runtime_error(bag + ": no frame with odometry and ground truth");
-    // Convergence: the first frame after which the error stays below 0.3 m to the end.
-    int conv = static_cast<int>(pos_err.size());
-    for (int i = static_cast<int>(pos_err.size()) - 1; i >= 0 && pos_err[i] < 0.3; --i) conv = i;
-    std::vector<double> pe_c(pos_err.begin() + conv, pos_err.end()),
-        he_c(head_err.begin() + conv, head_err.end());
-    const double converged_after = conv < static_cast<int>(t_s.size()) ? t_s[conv] : -1.0;
+    // Convergence per segment (the run, split at kidnaps): the first frame after which the error
+    // stays below 0.3 m to the end of the segment; times from the segment's start.
+    std::vector<int> bounds{0};
+    bounds.insert(bounds.end(), kidnaps.begin(), kidnaps.end());
+    bounds.push_back(static_cast<int>(pos_err.size()));
+    std::vector<double> pe_c, he_c, converged_after_seg;
+    for (size_t k = 0; k + 1 < bounds.size(); ++k) {
+      int conv = bounds[k + 1];
+      for (int i = bounds[k + 1] - 1; i >= bounds[k] && pos_err[i] < 0.3; --i) conv = i;
+      pe_c.insert(pe_c.end(), pos_err.begin() + conv, pos_err.begin() + bounds[k + 1]);
+      he_c.insert(he_c.end(), head_err.begin() + conv, head_err.begin() + bounds[k + 1]);
+      converged_after_seg.push_back(conv < bounds[k + 1] ? t_s[conv] - t_s[bounds[k]] : -1.0);
+    }
+    const double converged_after = converged_after_seg.front();
+    const double after_kidnap = converged_after_seg.size() > 1 ? converged_after_seg[1] : -1.0;
     const double fps = used / std::max(compute_s, 1e-9);
     std::ofstream yaml(fs::path(output) / "results.yaml");
     yaml << "bag: " << bag << "\nparticles: " << cfg.particles << "\nfilter: " << filter
          << "\nthreads: " << cfg.threads << "\npixel_stride: " << cfg.likelihood.pixel_stride
          << "\nframes: " << used << "\nconverged_after_s: " << converged_after
+         << "\nkidnaps: " << kidnaps.size() << "\nreconverged_after_kidnap_s: " << after_kidnap
          << "\nmedian_position_error_m: " << median(pe_c)
          << "\nmedian_heading_error_deg: " << median(he_c)
          << "\nclassification_rate: " << (total ? double(correct) / total : -1.0)
          << "\nframes_per_s: " << fps << "\n";
     std::printf(
         "evaluate_localization: median_position_error_m=%.3f median_heading_error_deg=%.2f "
-        "converged_after_s=%.2f "
-        "classification_rate=%.3f frames_per_s=%.1f frames=%d\n",
-        median(pe_c), median(he_c), converged_after, total ? double(correct) / total : -1.0, fps,
-        used);
+        "converged_after_s=%.2f%s classification_rate=%.3f frames_per_s=%.1f frames=%d\n",
+        median(pe_c), median(he_c), converged_after,
+        kidnaps.empty() ? ""
+                        : (" reconverged_after_kidnap_s=" + std::to_string(after_kidnap)).c_str(),
+        total ? double(correct) / total : -1.0, fps, used);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_localization: error: " << e.what() << "\n";
     return 1;

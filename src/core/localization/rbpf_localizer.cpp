@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -215,7 +214,7 @@ void RbpfLocalizer::weighParticle(size_t i, const math::SE2& odom_delta, double 
   p.log_likelihood =
       imageLogLikelihood(p.pose, p.lighting, base_to_optical, &obs, &pixels_used_[i]);
   // Section IV-B: the particle's lighting filter takes the colour means under its own labels.
-  if (!std::getenv("AP_NO_LIGHT_UPDATE")) p.lighting.update(obs);
+  p.lighting.update(obs);
 }
 
 void RbpfLocalizer::setImage(const cv::Mat& yuv) {

@@ -90,6 +90,7 @@ TEST(Rbpf, DeterministicAcrossThreadCounts) {
   for (int threads : {1, 3}) {
     RbpfConfig cfg;
     cfg.particles = 40;
+    cfg.global_pool_size = 4000;  // the global search from the first image is covered too
     cfg.threads = threads;
     cfg.seed = 9;
     RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
@@ -111,4 +112,38 @@ TEST(Rbpf, DeterministicAcrossThreadCounts) {
     results.push_back(v);
   }
   EXPECT_EQ(results[0], results[1]);
+}
+
+// The pose estimate follows the main cluster, not the mean of all particles: after initGaussian the
+// estimate is near the mean, and its covariance near the sampling covariance.
+TEST(Rbpf, EstimateOfAGaussianCloud) {
+  Scene s;
+  RbpfConfig cfg;
+  cfg.particles = 4000;
+  RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
+  const math::SE2 mean(1.0, -0.5, 0.4);
+  rbpf.initGaussian(mean, Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.05 * 0.05).asDiagonal());
+  const auto e = rbpf.estimate();
+  EXPECT_NEAR(e.pose.x_m, 1.0, 0.005);
+  EXPECT_NEAR(e.pose.y_m, -0.5, 0.005);
+  EXPECT_NEAR(e.pose.yaw_rad, 0.4, 0.005);
+  EXPECT_NEAR(std::sqrt(e.covariance(0, 0)), 0.05, 0.005);
+  EXPECT_NEAR(std::sqrt(e.covariance(2, 2)), 0.05, 0.005);
+  EXPECT_NEAR(e.cluster_weight, 1.0, 1e-9);
+  EXPECT_FALSE(rbpf.globalSearchPending());
+}
+
+// A uniform start is global: the particles cover the field (spread of metres) and the next image
+// triggers the global search.
+TEST(Rbpf, UniformStartCoversTheField) {
+  Scene s;
+  RbpfConfig cfg;
+  cfg.particles = 2000;
+  RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
+  EXPECT_TRUE(rbpf.globalSearchPending());
+  const auto e = rbpf.estimate();
+  // Uniform over the carpet less the 0.15 m margin, 5.7 x 3.9 m: the x-y spread is
+  // sqrt(5.7^2/12 + 3.9^2/12) = 1.99 m (the goal mouths cut out change it by less than 0.01 m).
+  EXPECT_NEAR(e.spread_m, 1.99, 0.08);
+  EXPECT_LT(e.cluster_weight, 0.2);
 }
