@@ -1,0 +1,36 @@
+#pragma once
+// Models of line-landmark EKF SLAM (Garulli et al. 2005, perception paper section 2.2, eqs. 1-9):
+// the robot pose r = (x, y, theta) in map, line landmarks in Hessian normal form
+//   x cos(alpha) + y sin(alpha) = rho,  rho >= 0, alpha in (-pi, pi],
+// and their Jacobians. Every angle is wrapped; a line seen from the other side of its origin keeps
+// rho >= 0 by flipping alpha by pi (the Jacobian of rho changes sign with it).
+#include <Eigen/Core>
+
+#include "adaptive_perception/math/se2.h"
+
+namespace adaptive_perception::slam {
+
+struct Line {
+  double rho_m = 0.0;
+  double alpha_rad = 0.0;
+};
+
+/// Robot motion (eq. 5): pose composed with the odometry delta (dx, dy, dtheta) measured in the
+/// previous robot frame. F_x = d(new pose)/d(pose), F_v = d(new pose)/d(delta).
+math::SE2 predictPose(const math::SE2& pose, const math::SE2& delta, Eigen::Matrix3d* f_x,
+                      Eigen::Matrix3d* f_v);
+
+/// Observation: the map line as seen in the robot frame. H_r = dz/d(pose) (2x3), H_l = dz/d(line)
+/// (2x2).
+Line observeLine(const math::SE2& pose, const Line& map_line, Eigen::Matrix<double, 2, 3>* h_r,
+                 Eigen::Matrix2d* h_l);
+
+/// Inverse observation: the map line of a line observed in the robot frame. G_r = d(line)/d(pose),
+/// G_z = d(line)/d(observation).
+Line lineToMap(const math::SE2& pose, const Line& observed, Eigen::Matrix<double, 2, 3>* g_r,
+               Eigen::Matrix2d* g_z);
+
+/// The innovation z - h with the angle wrapped.
+Eigen::Vector2d lineInnovation(const Line& z, const Line& predicted);
+
+}  // namespace adaptive_perception::slam

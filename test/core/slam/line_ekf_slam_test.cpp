@@ -1,0 +1,202 @@
+// Line-landmark EKF SLAM: Jacobians against central differences, the inverse observation, the
+// Joseph update against the textbook update, JCBB against nearest neighbour.
+#include "adaptive_perception/slam/line_ekf_slam.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "adaptive_perception/math/angles.h"
+#include "adaptive_perception/math/kalman_filter.h"
+
+using namespace adaptive_perception;
+using slam::Line;
+
+namespace {
+
+Eigen::Vector2d vec(const Line& l) { return Eigen::Vector2d(l.rho_m, l.alpha_rad); }
+Eigen::Vector3d vec(const math::SE2& p) { return Eigen::Vector3d(p.x_m, p.y_m, p.yaw_rad); }
+
+template <typename F>
+Eigen::MatrixXd numericJacobian(F f, const Eigen::VectorXd& x, int rows) {
+  const double h = 1e-6;
+  Eigen::MatrixXd j(rows, x.size());
+  for (int c = 0; c < x.size(); ++c) {
+    Eigen::VectorXd a = x, b = x;
+    a[c] += h;
+    b[c] -= h;
+    Eigen::VectorXd d = f(a) - f(b);
+    if (rows >= 2) d[rows - 1] = math::wrapAngle(d[rows - 1]);  // last component is an angle
+    j.col(c) = d / (2 * h);
+  }
+  return j;
+}
+
+TEST(LineModel, PredictJacobiansMatchNumericalDifferentiation) {
+  const math::SE2 p(1.0, -2.0, 0.7), d(0.3, -0.1, 0.2);
+  Eigen::Matrix3d fx, fv;
+  slam::predictPose(p, d, &fx, &fv);
+  const auto by_pose = [&](const Eigen::VectorXd& v) {
+    return Eigen::VectorXd(
+        vec(slam::predictPose(math::SE2(v[0], v[1], v[2]), d, nullptr, nullptr)));
+  };
+  const auto by_delta = [&](const Eigen::VectorXd& v) {
+    return Eigen::VectorXd(
+        vec(slam::predictPose(p, math::SE2(v[0], v[1], v[2]), nullptr, nullptr)));
+  };
+  EXPECT_TRUE(fx.isApprox(numericJacobian(by_pose, vec(p), 3), 1e-6)) << fx;
+  EXPECT_TRUE(fv.isApprox(numericJacobian(by_delta, vec(d), 3), 1e-6)) << fv;
+}
+
+// Both branches: the robot on the origin's side of the line, and beyond it (rho flips).
+TEST(LineModel, ObservationJacobiansMatchNumericalDifferentiation) {
+  for (const math::SE2& p : {math::SE2(0.5, 0.2, 0.3), math::SE2(4.0, 3.0, -2.0)}) {
+    const Line l{2.0, 0.4};
+    Eigen::Matrix<double, 2, 3> hr;
+    Eigen::Matrix2d hl;
+    slam::observeLine(p, l, &hr, &hl);
+    const auto by_pose = [&](const Eigen::VectorXd& v) {
+      return Eigen::VectorXd(
+          vec(slam::observeLine(math::SE2(v[0], v[1], v[2]), l, nullptr, nullptr)));
+    };
+    const auto by_line = [&](const Eigen::VectorXd& v) {
+      return Eigen::VectorXd(vec(slam::observeLine(p, Line{v[0], v[1]}, nullptr, nullptr)));
+    };
+    EXPECT_TRUE(Eigen::MatrixXd(hr).isApprox(numericJacobian(by_pose, vec(p), 2), 1e-6)) << hr;
+    EXPECT_TRUE(Eigen::MatrixXd(hl).isApprox(numericJacobian(by_line, vec(l), 2), 1e-6)) << hl;
+  }
+}
+
+TEST(LineModel, InverseObservationRoundTripsAndItsJacobiansMatch) {
+  for (const math::SE2& p : {math::SE2(0.5, 0.2, 0.3), math::SE2(-3.0, 1.0, 2.5)}) {
+    for (const Line z : {Line{1.5, -0.8}, Line{0.7, 2.9}}) {
+      Eigen::Matrix<double, 2, 3> gr;
+      Eigen::Matrix2d gz;
+      const Line m = slam::lineToMap(p, z, &gr, &gz);
+      EXPECT_GE(m.rho_m, 0.0);
+      const Line back = slam::observeLine(p, m, nullptr, nullptr);
+      EXPECT_NEAR(back.rho_m, z.rho_m, 1e-12);
+      EXPECT_NEAR(math::angleDiff(back.alpha_rad, z.alpha_rad), 0.0, 1e-12);
+      const auto by_pose = [&](const Eigen::VectorXd& v) {
+        return Eigen::VectorXd(
+            vec(slam::lineToMap(math::SE2(v[0], v[1], v[2]), z, nullptr, nullptr)));
+      };
+      const auto by_obs = [&](const Eigen::VectorXd& v) {
+        return Eigen::VectorXd(vec(slam::lineToMap(p, Line{v[0], v[1]}, nullptr, nullptr)));
+      };
+      EXPECT_TRUE(Eigen::MatrixXd(gr).isApprox(numericJacobian(by_pose, vec(p), 2), 1e-6)) << gr;
+      EXPECT_TRUE(Eigen::MatrixXd(gz).isApprox(numericJacobian(by_obs, vec(z), 2), 1e-6)) << gz;
+    }
+  }
+}
+
+slam::LineObservation obsOf(const Line& l, double sd_rho = 0.01, double sd_alpha = 0.005) {
+  slam::LineObservation o;
+  o.line = l;
+  o.cov = Eigen::Vector2d(sd_rho * sd_rho, sd_alpha * sd_alpha).asDiagonal();
+  o.start_m = Eigen::Vector2d(l.rho_m * std::cos(l.alpha_rad), l.rho_m * std::sin(l.alpha_rad));
+  o.end_m = o.start_m + Eigen::Vector2d(-std::sin(l.alpha_rad), std::cos(l.alpha_rad));
+  return o;
+}
+
+// The expanded Joseph form equals the textbook (I - K H) P on a well-conditioned case, computed by
+// the independent math::KalmanFilter with the same linearisation.
+TEST(LineEkfSlam, JosephUpdateEqualsTextbookUpdate) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.confirm_sightings = 1;
+  slam::LineEkfSlam ekf(cfg, math::SE2(0, 0, 0), Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
+  ekf.update({obsOf(Line{2.0, 0.1}), obsOf(Line{1.5, 1.7})});
+  ASSERT_EQ(ekf.numLandmarks(), 2);
+  ekf.predict(math::SE2(0.2, 0.05, 0.1));
+  const Eigen::VectorXd x0 = ekf.state();
+  const Eigen::MatrixXd p0 = ekf.covariance();
+  const std::vector<slam::LineObservation> obs{obsOf(Line{1.81, 0.0}), obsOf(Line{1.47, 1.61})};
+  ASSERT_EQ(ekf.associate(obs), (std::vector<int>{0, 1}));
+  // Reference: stacked H and innovation, z' = nu + H x so that z' - H x = nu.
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(4, x0.size()), r = Eigen::MatrixXd::Zero(4, 4);
+  Eigen::VectorXd nu(4);
+  const math::SE2 pose(x0[0], x0[1], x0[2]);
+  for (int k = 0; k < 2; ++k) {
+    Eigen::Matrix<double, 2, 3> hr;
+    Eigen::Matrix2d hl;
+    const Line pred = slam::observeLine(pose, ekf.landmark(k), &hr, &hl);
+    nu.segment<2>(2 * k) = slam::lineInnovation(obs[k].line, pred);
+    h.block<2, 3>(2 * k, 0) = hr;
+    h.block<2, 2>(2 * k, slam::LineEkfSlam::landmarkIndex(k)) = hl;
+    r.block<2, 2>(2 * k, 2 * k) = obs[k].cov;
+  }
+  math::KalmanFilter ref(x0, p0);
+  ref.updateStandardForm(h, nu + h * x0, r);
+  ekf.update(obs);
+  EXPECT_TRUE(ekf.state().isApprox(ref.mean(), 1e-9));
+  EXPECT_TRUE(ekf.covariance().isApprox(ref.cov(), 1e-9));
+}
+
+// Ill-conditioned: a nearly exact observation of a nearly unknown landmark. The covariance stays
+// symmetric positive semi-definite.
+TEST(LineEkfSlam, JosephUpdateStaysPositiveOnIllConditionedCase) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.confirm_sightings = 1;
+  slam::LineEkfSlam ekf(cfg, math::SE2(), Eigen::Vector3d(1e4, 1e4, 1.0).asDiagonal());
+  ekf.update({obsOf(Line{3.0, 0.2}, 1e-6, 1e-7), obsOf(Line{2.0, 1.9}, 1e-6, 1e-7)});
+  for (int i = 0; i < 20; ++i) {
+    ekf.predict(math::SE2(0.0, 0.0, 0.0), Eigen::Vector3d(1e-12, 1e-12, 1e-12).asDiagonal());
+    ekf.update({obsOf(Line{3.0, 0.2}, 1e-6, 1e-7), obsOf(Line{2.0, 1.9}, 1e-6, 1e-7)});
+  }
+  const Eigen::MatrixXd& p = ekf.covariance();
+  EXPECT_TRUE(p.isApprox(p.transpose(), 1e-12));
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p).eigenvalues();
+  EXPECT_GT(ev.minCoeff(), -1e-9 * ev.maxCoeff()) << ev.transpose();
+}
+
+// Two parallel walls 0.3 m apart and a robot whose x is uncertain by 0.3 m: each observed line is
+// individually compatible with both walls. Nearest neighbour pairs both with the nearer wall; JCBB
+// finds the jointly compatible hypothesis (the robot moved 0.3 m).
+TEST(LineEkfSlam, JcbbFindsTheHypothesisNearestNeighbourMisses) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.confirm_sightings = 1;
+  slam::LineEkfSlam ekf(cfg);
+  ekf.update({obsOf(Line{2.0, 0.0}, 0.005, 0.002), obsOf(Line{2.3, 0.0}, 0.005, 0.002)});
+  ASSERT_EQ(ekf.numLandmarks(), 2);
+  ekf.predict(math::SE2(), Eigen::Vector3d(0.3 * 0.3, 1e-4, 1e-6).asDiagonal());
+  const std::vector<slam::LineObservation> seen{obsOf(Line{1.7, 0.0}, 0.005, 0.002),
+                                                obsOf(Line{2.0, 0.0}, 0.005, 0.002)};
+  slam::LineEkfSlamConfig nn_cfg = cfg;
+  nn_cfg.association = slam::Association::kNearestNeighbour;
+  slam::LineEkfSlam nn(nn_cfg);
+  nn.update({obsOf(Line{2.0, 0.0}, 0.005, 0.002), obsOf(Line{2.3, 0.0}, 0.005, 0.002)});
+  nn.predict(math::SE2(), Eigen::Vector3d(0.3 * 0.3, 1e-4, 1e-6).asDiagonal());
+  EXPECT_EQ(nn.associate(seen), (std::vector<int>{0, 0}));
+  EXPECT_EQ(ekf.associate(seen), (std::vector<int>{0, 1}));
+  ekf.update(seen);
+  EXPECT_NEAR(ekf.pose().x_m, 0.3, 0.01);
+}
+
+TEST(LineEkfSlam, TentativeLandmarksAreDroppedConfirmedOnesKept) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.confirm_sightings = 3;
+  cfg.tentative_timeout_scans = 2;
+  slam::LineEkfSlam ekf(cfg);
+  ekf.update({obsOf(Line{2.0, 0.0}), obsOf(Line{1.0, 1.57})});
+  ekf.update({obsOf(Line{2.0, 0.0})});
+  ekf.update({obsOf(Line{2.0, 0.0})});  // wall 0 confirmed; wall 1 unseen for 2 scans: dropped
+  ASSERT_EQ(ekf.numLandmarks(), 1);
+  EXPECT_TRUE(ekf.landmarkInfo(0).confirmed());
+  EXPECT_NEAR(ekf.landmark(0).rho_m, 2.0, 1e-6);
+  EXPECT_EQ(ekf.state().size(), 5);
+}
+
+TEST(LineEkfSlam, BadConfigurationIsRejectedWithItsName) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.gate_probability = 1.5;
+  try {
+    slam::LineEkfSlam ekf(cfg);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("gate_probability"), std::string::npos);
+  }
+  EXPECT_THROW(slam::parseAssociation("nearest"), std::invalid_argument);
+}
+
+}  // namespace
