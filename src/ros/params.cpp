@@ -2,6 +2,7 @@
 
 #include <ros/package.h>
 
+#include <filesystem>
 #include <fstream>
 
 namespace adaptive_perception::ros_params {
@@ -23,6 +24,28 @@ std::string resolvePackagePath(const std::string& value) {
   const std::string share = ros::package::getPath("adaptive_perception");
   if (!share.empty() && std::ifstream(share + "/" + value).good()) return share + "/" + value;
   return value;
+}
+
+std::vector<color::LightingPrior> loadLightingPriors(const ros::NodeHandle& pnh,
+                                                     std::string* filter, std::string* dir) {
+  *filter = get<std::string>(pnh, "filter", "switching");
+  std::vector<std::string> names;
+  if (*filter == "switching") {
+    names = get<std::vector<std::string>>(pnh, "priors", {"dark", "bright"});
+  } else if (*filter == "single") {
+    names = {get<std::string>(pnh, "single_prior", "all")};
+  } else {
+    throw ParamError("parameter " + pnh.resolveName("filter") + " = '" + *filter +
+                     "' (allowed: switching, single)");
+  }
+  if (names.empty())
+    throw ParamError("parameter " + pnh.resolveName("priors") + " must name at least one prior");
+  *dir = resolvePackagePath(getName(pnh, "priors_dir", "config/color_priors"));
+  std::vector<color::LightingPrior> priors;
+  for (const auto& n : names)
+    priors.push_back(
+        color::LightingPrior::loadYaml((std::filesystem::path(*dir) / (n + ".yaml")).string()));
+  return priors;
 }
 
 }  // namespace adaptive_perception::ros_params

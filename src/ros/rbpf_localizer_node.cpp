@@ -63,22 +63,8 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   c.switching.mode_stay_probability =
       P::getInRange(pnh, "mode_stay_probability", c.switching.mode_stay_probability, 1e-3, 1.0);
 
-  const std::string filter = P::get<std::string>(pnh, "filter", "switching");
-  std::vector<std::string> names;
-  if (filter == "switching") {
-    names = P::get<std::vector<std::string>>(pnh, "priors", {"dark", "bright"});
-  } else if (filter == "single") {
-    names = {P::get<std::string>(pnh, "single_prior", "all")};
-  } else {
-    throw ParamError("parameter " + pnh.resolveName("filter") + " = '" + filter +
-                     "' (allowed: switching, single)");
-  }
-  if (names.empty())
-    throw ParamError("parameter " + pnh.resolveName("priors") + " must name at least one prior");
-  const std::string dir =
-      P::resolvePackagePath(P::getName(pnh, "priors_dir", "config/color_priors"));
-  for (const auto& n : names)
-    priors_.push_back(color::LightingPrior::loadYaml((fs::path(dir) / (n + ".yaml")).string()));
+  std::string filter, dir;
+  priors_ = P::loadLightingPriors(pnh, &filter, &dir);
   map_ = world::FieldMap::loadYaml(
       P::resolvePackagePath(P::getName(pnh, "field_file", "config/field_4legged.yaml")));
 

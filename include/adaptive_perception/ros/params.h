@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "adaptive_perception/color/color_model.h"
+
 namespace adaptive_perception::ros_params {
 
 class ParamError : public std::runtime_error {
@@ -43,5 +45,11 @@ std::string getName(const ros::NodeHandle& nh, const std::string& name, const st
 /// A file in the package's share directory (e.g. "config/field_4legged.yaml") when `value` is
 /// relative and not found from the current directory; `value` itself otherwise.
 std::string resolvePackagePath(const std::string& value);
+
+/// The lighting priors a colour node runs on, from ~filter (switching: the ~priors list; single:
+/// ~single_prior) and ~priors_dir (YAML files NAME.yaml). Returns the priors and sets *filter and
+/// *dir; throws ParamError on a bad ~filter or empty list, std::runtime_error on a bad prior file.
+std::vector<color::LightingPrior> loadLightingPriors(const ros::NodeHandle& pnh,
+                                                     std::string* filter, std::string* dir);
 
 }  // namespace adaptive_perception::ros_params
