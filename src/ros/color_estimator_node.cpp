@@ -104,37 +104,16 @@ void ColorEstimatorNode::onReconfigure(adaptive_perception::ColorEstimatorConfig
 
 void ColorEstimatorNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg) {
   std::lock_guard<std::mutex> lock(mutex_);
-  try {
-    const world::PinholeCamera cam = ros_conv::fromCameraInfo(*msg);
-    if (!camera_ || cam.width_px != camera_->width_px || cam.height_px != camera_->height_px ||
-        cam.fx_px != camera_->fx_px || cam.fy_px != camera_->fy_px || cam.cx_px != camera_->cx_px ||
-        cam.cy_px != camera_->cy_px) {
-      camera_ = cam;
-      estimator_.reset();
-    }
-  } catch (const std::exception& e) {
-    ROS_ERROR_THROTTLE(10.0, "color_estimator: camera_info ignored: %s", e.what());
-  }
+  if (camera_.onCameraInfo(*msg)) estimator_.reset();
 }
 
 bool ColorEstimatorNode::ensureEstimator(int width, int height) {
-  if (!camera_) {
-    if (width != 208 || height != 160) {
-      ROS_WARN_THROTTLE(5.0, "color_estimator: waiting for camera/camera_info (image is %dx%d)",
-                        width, height);
-      return false;
-    }
-    camera_ = world::PinholeCamera::aiboErs7();
-  }
-  if (camera_->width_px != width || camera_->height_px != height) {
-    ROS_ERROR_THROTTLE(5.0,
-                       "color_estimator: image is %dx%d but camera_info says %dx%d: frame dropped",
-                       width, height, camera_->width_px, camera_->height_px);
-    ++skipped_bad_image_;
+  if (!camera_.readyFor(width, height)) {
+    if (camera_.known()) ++skipped_bad_image_;  // size disagrees with camera_info
     return false;
   }
   if (!estimator_)
-    estimator_ = std::make_unique<color::ColorEstimator>(map_, *camera_, priors_, config_);
+    estimator_ = std::make_unique<color::ColorEstimator>(map_, camera_.camera(), priors_, config_);
   return true;
 }
 

@@ -116,42 +116,20 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 
 void RbpfLocalizerNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg) {
   std::lock_guard<std::mutex> lock(mutex_);
-  try {
-    const world::PinholeCamera cam = ros_conv::fromCameraInfo(*msg);
-    if (!camera_ || cam.width_px != camera_->width_px || cam.height_px != camera_->height_px ||
-        cam.fx_px != camera_->fx_px || cam.fy_px != camera_->fy_px || cam.cx_px != camera_->cx_px ||
-        cam.cy_px != camera_->cy_px) {
-      if (rbpf_) {
-        ROS_WARN("rbpf_localizer: camera model changed: the filter restarts");
-        const auto e = rbpf_->estimate();
-        pending_pose_ = std::make_pair(e.pose, e.covariance + Eigen::Matrix3d::Identity() * 1e-4);
-      }
-      camera_ = cam;
-      rbpf_.reset();
-    }
-  } catch (const std::exception& e) {
-    ROS_ERROR_THROTTLE(10.0, "rbpf_localizer: camera_info ignored: %s", e.what());
-  }
+  if (!camera_.onCameraInfo(*msg) || !rbpf_) return;
+  ROS_WARN("rbpf_localizer: camera model changed: the filter restarts around its estimate");
+  const auto e = rbpf_->estimate();
+  pending_pose_ = std::make_pair(e.pose, e.covariance + Eigen::Matrix3d::Identity() * 1e-4);
+  rbpf_.reset();
 }
 
 bool RbpfLocalizerNode::ensureLocalizer(int width, int height) {
-  if (!camera_) {
-    if (width != 208 || height != 160) {
-      ROS_WARN_THROTTLE(5.0, "rbpf_localizer: waiting for camera/camera_info (image is %dx%d)",
-                        width, height);
-      return false;
-    }
-    camera_ = world::PinholeCamera::aiboErs7();
-  }
-  if (camera_->width_px != width || camera_->height_px != height) {
-    ROS_ERROR_THROTTLE(5.0,
-                       "rbpf_localizer: image is %dx%d but camera_info says %dx%d: frame dropped",
-                       width, height, camera_->width_px, camera_->height_px);
-    ++skipped_bad_image_;
+  if (!camera_.readyFor(width, height)) {
+    if (camera_.known()) ++skipped_bad_image_;  // size disagrees with camera_info
     return false;
   }
   if (!rbpf_) {
-    rbpf_ = std::make_unique<localization::RbpfLocalizer>(map_, *camera_, priors_, config_);
+    rbpf_ = std::make_unique<localization::RbpfLocalizer>(map_, camera_.camera(), priors_, config_);
     if (pending_pose_) rbpf_->initGaussian(pending_pose_->first, pending_pose_->second);
     pending_pose_.reset();
     last_odom_.reset();

@@ -39,6 +39,7 @@
 #include "adaptive_perception/ColorEstimatorConfig.h"
 #include "adaptive_perception/SavePrior.h"
 #include "adaptive_perception/color/color_estimator.h"
+#include "adaptive_perception/ros/camera_model_source.h"
 
 namespace adaptive_perception {
 
@@ -61,7 +62,7 @@ class ColorEstimatorNode {
   color::ColorEstimatorConfig config_;
   std::vector<color::LightingPrior> priors_;
   world::FieldMap map_;
-  std::optional<world::PinholeCamera> camera_;
+  ros_conv::CameraModelSource camera_{"color_estimator"};
   std::unique_ptr<color::ColorEstimator> estimator_;
   std::string map_frame_;
   double tf_timeout_s_ = 0.1;

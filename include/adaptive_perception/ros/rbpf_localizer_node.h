@@ -46,6 +46,7 @@
 
 #include "adaptive_perception/color/color_lut.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
+#include "adaptive_perception/ros/camera_model_source.h"
 
 namespace adaptive_perception {
 
@@ -70,7 +71,7 @@ class RbpfLocalizerNode {
   localization::RbpfConfig config_;
   std::vector<color::LightingPrior> priors_;
   world::FieldMap map_;
-  std::optional<world::PinholeCamera> camera_;
+  ros_conv::CameraModelSource camera_{"rbpf_localizer"};
   std::unique_ptr<localization::RbpfLocalizer> rbpf_;
   // A pose to start from (initial_pose parameter or initialpose topic), applied when the localizer
   // is (re)built.
