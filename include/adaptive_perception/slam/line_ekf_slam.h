@@ -12,8 +12,28 @@
 //      with their full cross-covariance (G_r P G_r^T + G_z R G_z^T);
 //   3. tentative landmarks (seen fewer than confirm_sightings times) that go unseen for
 //      tentative_timeout_scans scans are removed.
+//
+// Fully observable variants (section 2.2, eqs. 19-27):
+//   - kStandard: the plain filter; its map is only known relative to the first observations.
+//   - kAnchor: confirmed landmarks become fixed global references (eqs. 20-22, 24-25). A line fixes
+//     two of the three pose degrees of freedom, so two non-parallel lines are anchored (the line
+//     counterpart of the paper's point anchor): the first confirmed landmark, then the first one at
+//     least anchor_min_angle_rad away in direction. Anchoring conditions the state on the
+//     landmark's current estimate (the map frame is redefined by it) and moves it out of the state;
+//     its observations keep correcting the pose with H = [H_r 0].
+//   - kExternal: an absolute pose sensor (eqs. 23, 26-27) through updateExternalPosition() /
+//     updateExternalPose().
+//   Retirement (any variant, retire_after_updates > 0): a landmark revised more than that many
+//   times leaves the state (marginalised: its last estimate and marginal covariance are kept), but
+//   its observations still correct the pose, with the landmark covariance added to the measurement
+//   noise (the paper's USC SAL run used 50).
+//
+// Landmark indices: 0 .. numLandmarks()-1 are the landmarks in the state; numLandmarks() ..
+// numLandmarks()+numFixedLandmarks()-1 the fixed (anchored or retired) ones, as returned by
+// associate().
 #include <Eigen/Core>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "adaptive_perception/math/se2.h"
@@ -25,6 +45,11 @@ enum class Association { kNearestNeighbour, kJcbb };
 /// "nn" | "jcbb"; throws std::invalid_argument naming the allowed values.
 Association parseAssociation(const std::string& name);
 
+enum class Variant { kStandard, kAnchor, kExternal };
+/// "standard" | "anchor" | "external"; throws std::invalid_argument naming the allowed values.
+Variant parseVariant(const std::string& name);
+std::string variantName(Variant v);
+
 struct LineEkfSlamConfig {
   Association association = Association::kJcbb;
   double gate_probability = 0.99;      // chi-square gate of individual and joint compatibility
@@ -35,6 +60,9 @@ struct LineEkfSlamConfig {
   // sd(dtheta) = a1 |r| + a2 |t| + min_r.
   double alpha1 = 0.1, alpha2 = 0.05, alpha3 = 0.05, alpha4 = 0.01;
   double min_translation_std_m = 0.001, min_rotation_std_rad = 0.001;
+  Variant variant = Variant::kStandard;
+  double anchor_min_angle_rad = 0.5;  // direction difference of the second anchor to the first
+  int retire_after_updates = 0;       // 0: retirement off; the paper used 50
   void validate() const;
 };
 
@@ -46,6 +74,15 @@ struct Landmark {
   Eigen::Vector2d start_m = Eigen::Vector2d::Zero(), end_m = Eigen::Vector2d::Zero();
   bool confirmed() const { return confirmed_flag; }
   bool confirmed_flag = false;
+};
+
+/// A landmark outside the state: an anchor (zero covariance, defines the map frame) or a retired
+/// landmark (its marginal covariance at retirement).
+struct FixedLandmark {
+  Landmark info;
+  Line line;
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  bool anchor = false;
 };
 
 struct LineObservation {
@@ -70,13 +107,19 @@ class LineEkfSlam {
   void predict(const math::SE2& odom_delta, const Eigen::Matrix3d& delta_cov);
 
   struct UpdateResult {
-    int matched = 0, added = 0, removed = 0;
+    int matched = 0, added = 0, removed = 0, anchored = 0, retired = 0;
     std::vector<int> association;  // per observation: landmark index or -1
   };
   UpdateResult update(const std::vector<LineObservation>& observations);
 
   /// Data association alone (for tests and tools): per observation a landmark index or -1.
   std::vector<int> associate(const std::vector<LineObservation>& observations) const;
+
+  /// External absolute sensor (eqs. 26-27): the robot position (x, y) in map, or the full pose
+  /// (x, y, yaw), with its covariance. Joseph-form update; returns the squared Mahalanobis distance
+  /// of the innovation (the caller may gate on it).
+  double updateExternalPosition(const Eigen::Vector2d& xy_m, const Eigen::Matrix2d& cov);
+  double updateExternalPose(const math::SE2& pose, const Eigen::Matrix3d& cov);
 
   math::SE2 pose() const { return math::SE2(x_[0], x_[1], x_[2]); }
   Eigen::Matrix3d poseCovariance() const { return p_.topLeftCorner<3, 3>(); }
@@ -86,6 +129,8 @@ class LineEkfSlam {
     return p_.block<2, 2>(landmarkIndex(i), landmarkIndex(i));
   }
   const Landmark& landmarkInfo(int i) const { return landmarks_[i]; }
+  int numFixedLandmarks() const { return static_cast<int>(fixed_.size()); }
+  const FixedLandmark& fixedLandmark(int k) const { return fixed_[k]; }
   const Eigen::VectorXd& state() const { return x_; }
   const Eigen::MatrixXd& covariance() const { return p_; }
   const LineEkfSlamConfig& config() const { return config_; }
@@ -95,9 +140,25 @@ class LineEkfSlam {
   struct Pairing {
     int obs, lm;
   };
-  /// Stacked innovation and Jacobian of a set of pairings.
-  void stack(const std::vector<LineObservation>& obs, const std::vector<Pairing>& pairs,
-             Eigen::VectorXd* nu, Eigen::MatrixXd* h, Eigen::MatrixXd* r) const;
+  /// One block of measurement rows in sparse form: z - h = nu, H = [hr at the pose columns,
+  /// hl at columns col..col+1 (none when col < 0)], noise r.
+  struct Block {
+    Eigen::VectorXd nu;
+    Eigen::MatrixXd hr, hl, r;
+    int col = -1;
+  };
+  Block pairingBlock(const LineObservation& obs, int lm) const;
+  std::vector<Block> blocks(const std::vector<LineObservation>& obs,
+                            const std::vector<Pairing>& pairs) const;
+  /// S = H P H^T + R of stacked blocks, using only the non-zero columns of H (O(m^2)).
+  Eigen::MatrixXd innovationCovariance(const std::vector<Block>& b) const;
+  /// The stacked update (eqs. 6-9); returns the squared Mahalanobis distance of the innovation.
+  double applyUpdate(const std::vector<Block>& b);
+  void normaliseLandmarks();
+  void anchorOrRetire(UpdateResult* res);
+  /// Moves landmark i out of the state: conditioned on its estimate (anchor) or marginalised.
+  void fixLandmark(int i, bool anchor);
+  void extendExtent(const Line& l, const LineObservation& obs, Landmark* lm);
   double jointMahalanobis(const std::vector<LineObservation>& obs,
                           const std::vector<Pairing>& pairs) const;
   void jcbb(const std::vector<LineObservation>& obs,
@@ -112,6 +173,7 @@ class LineEkfSlam {
   Eigen::VectorXd x_;
   Eigen::MatrixXd p_;
   std::vector<Landmark> landmarks_;
+  std::vector<FixedLandmark> fixed_;
   std::uint64_t next_id_ = 0;
   int scan_ = 0;
 };

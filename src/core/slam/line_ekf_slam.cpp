@@ -18,6 +18,24 @@ Association parseAssociation(const std::string& name) {
   throw std::invalid_argument("association = '" + name + "' (allowed: nn, jcbb)");
 }
 
+Variant parseVariant(const std::string& name) {
+  if (name == "standard") return Variant::kStandard;
+  if (name == "anchor") return Variant::kAnchor;
+  if (name == "external") return Variant::kExternal;
+  throw std::invalid_argument("variant = '" + name + "' (allowed: standard, anchor, external)");
+}
+
+std::string variantName(Variant v) {
+  switch (v) {
+    case Variant::kAnchor:
+      return "anchor";
+    case Variant::kExternal:
+      return "external";
+    default:
+      return "standard";
+  }
+}
+
 void LineEkfSlamConfig::validate() const {
   auto check = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument(what);
@@ -30,6 +48,11 @@ void LineEkfSlamConfig::validate() const {
       tentative_timeout_scans >= 1,
       "tentative_timeout_scans = " + std::to_string(tentative_timeout_scans) + " (allowed: >= 1)");
   check(min_new_line_length_m >= 0.0, "min_new_line_length_m must be >= 0");
+  check(anchor_min_angle_rad >= 0.0 && anchor_min_angle_rad <= math::kPi / 2.0,
+        "anchor_min_angle_rad = " + std::to_string(anchor_min_angle_rad) + " (allowed: 0 .. pi/2)");
+  check(retire_after_updates >= 0,
+        "retire_after_updates = " + std::to_string(retire_after_updates) +
+            " (allowed: 0 = off, or >= 1)");
   for (double a : {alpha1, alpha2, alpha3, alpha4, min_translation_std_m, min_rotation_std_rad})
     check(a >= 0.0 && std::isfinite(a), "odometry noise parameters must be finite and >= 0");
 }
@@ -64,32 +87,131 @@ void LineEkfSlam::predict(const math::SE2& d, const Eigen::Matrix3d& q) {
   }
 }
 
-void LineEkfSlam::stack(const std::vector<LineObservation>& obs, const std::vector<Pairing>& pairs,
-                        Eigen::VectorXd* nu, Eigen::MatrixXd* h, Eigen::MatrixXd* r) const {
-  const int m = static_cast<int>(pairs.size()), n = static_cast<int>(x_.size());
-  nu->resize(2 * m);
-  h->setZero(2 * m, n);
-  r->setZero(2 * m, 2 * m);
-  for (int k = 0; k < m; ++k) {
-    Eigen::Matrix<double, 2, 3> hr;
-    Eigen::Matrix2d hl;
-    const Line pred = observeLine(pose(), landmark(pairs[k].lm), &hr, &hl);
-    nu->segment<2>(2 * k) = lineInnovation(obs[pairs[k].obs].line, pred);
-    h->block<2, 3>(2 * k, 0) = hr;
-    h->block<2, 2>(2 * k, landmarkIndex(pairs[k].lm)) = hl;
-    r->block<2, 2>(2 * k, 2 * k) = obs[pairs[k].obs].cov;
+LineEkfSlam::Block LineEkfSlam::pairingBlock(const LineObservation& obs, int lm) const {
+  Block b;
+  Eigen::Matrix<double, 2, 3> hr;
+  Eigen::Matrix2d hl;
+  const bool fixed = lm >= numLandmarks();
+  const FixedLandmark* f = fixed ? &fixed_[lm - numLandmarks()] : nullptr;
+  const Line pred = observeLine(pose(), fixed ? f->line : landmark(lm), &hr, &hl);
+  b.nu = lineInnovation(obs.line, pred);
+  b.hr = hr;
+  b.r = obs.cov;
+  if (fixed) {
+    b.r += hl * f->cov * hl.transpose();  // a retired landmark's own uncertainty
+  } else {
+    b.hl = hl;
+    b.col = landmarkIndex(lm);
+  }
+  return b;
+}
+
+std::vector<LineEkfSlam::Block> LineEkfSlam::blocks(const std::vector<LineObservation>& obs,
+                                                    const std::vector<Pairing>& pairs) const {
+  std::vector<Block> out;
+  out.reserve(pairs.size());
+  for (const auto& p : pairs) out.push_back(pairingBlock(obs[p.obs], p.lm));
+  return out;
+}
+
+Eigen::MatrixXd LineEkfSlam::innovationCovariance(const std::vector<Block>& b) const {
+  std::vector<int> off(b.size() + 1, 0);
+  for (size_t k = 0; k < b.size(); ++k) off[k + 1] = off[k] + static_cast<int>(b[k].nu.size());
+  Eigen::MatrixXd s(off.back(), off.back());
+  const Eigen::Matrix3d prr = p_.topLeftCorner<3, 3>();
+  for (size_t a = 0; a < b.size(); ++a) {
+    // Row a of H P: hr_a P_r* + hl_a P_l*, restricted to the columns the other blocks use.
+    for (size_t c = a; c < b.size(); ++c) {
+      Eigen::MatrixXd sac = b[a].hr * prr * b[c].hr.transpose();
+      if (b[c].col >= 0) sac += b[a].hr * p_.block(0, b[c].col, 3, 2) * b[c].hl.transpose();
+      if (b[a].col >= 0) {
+        sac += b[a].hl * p_.block(b[a].col, 0, 2, 3) * b[c].hr.transpose();
+        if (b[c].col >= 0)
+          sac += b[a].hl * p_.block(b[a].col, b[c].col, 2, 2) * b[c].hl.transpose();
+      }
+      if (a == c) sac += b[a].r;
+      s.block(off[a], off[c], sac.rows(), sac.cols()) = sac;
+      s.block(off[c], off[a], sac.cols(), sac.rows()) = sac.transpose();
+    }
+  }
+  return s;
+}
+
+double LineEkfSlam::applyUpdate(const std::vector<Block>& b) {
+  const int n = static_cast<int>(x_.size());
+  int d = 0;
+  for (const auto& blk : b) d += static_cast<int>(blk.nu.size());
+  Eigen::VectorXd nu(d);
+  Eigen::MatrixXd pht(n, d);  // P H^T from the non-zero columns of H: O(n d)
+  for (size_t k = 0, o = 0; k < b.size(); o += b[k].nu.size(), ++k) {
+    const int dk = static_cast<int>(b[k].nu.size());
+    nu.segment(o, dk) = b[k].nu;
+    pht.middleCols(o, dk) = p_.leftCols(3) * b[k].hr.transpose();
+    if (b[k].col >= 0) pht.middleCols(o, dk) += p_.middleCols(b[k].col, 2) * b[k].hl.transpose();
+  }
+  // S = H (P H^T) + R from the same P H^T the covariance update uses, so that the expanded Joseph
+  // form below stays consistent to round-off.
+  Eigen::MatrixXd s(d, d);
+  for (size_t k = 0, o = 0; k < b.size(); o += b[k].nu.size(), ++k) {
+    const int dk = static_cast<int>(b[k].nu.size());
+    s.middleRows(o, dk) = b[k].hr * pht.topRows(3);
+    if (b[k].col >= 0) s.middleRows(o, dk) += b[k].hl * pht.middleRows(b[k].col, 2);
+    s.block(o, o, dk, dk) += b[k].r;
+  }
+  const Eigen::LLT<Eigen::MatrixXd> llt(s);
+  if (llt.info() != Eigen::Success)
+    throw std::runtime_error("LineEkfSlam: innovation covariance not positive definite");
+  const Eigen::MatrixXd k = llt.solve(pht.transpose()).transpose();  // eq. 7: P H^T S^-1
+  x_ += k * nu;                                                      // eq. 6 with innovation eq. 8
+  // Eq. 9, Joseph form (I - K H) P (I - K H)^T + K R K^T, expanded so it costs O(n^2 d):
+  // P - K (H P) - (P H^T) K^T + K (H P H^T + R) K^T.
+  const Eigen::MatrixXd khp = k * pht.transpose();
+  p_ = p_ - khp - khp.transpose() + k * s * k.transpose();
+  p_ = 0.5 * (p_ + p_.transpose());
+  normaliseLandmarks();
+  return nu.dot(llt.solve(nu));
+}
+
+void LineEkfSlam::normaliseLandmarks() {
+  x_[2] = math::wrapAngle(x_[2]);
+  for (int j = 0; j < numLandmarks(); ++j) {
+    double& rho = x_[landmarkIndex(j)];
+    double& alpha = x_[landmarkIndex(j) + 1];
+    if (rho < 0.0) {  // keep rho >= 0 (flip the sign of the row/column of rho)
+      rho = -rho;
+      alpha += math::kPi;
+      p_.row(landmarkIndex(j)) *= -1.0;
+      p_.col(landmarkIndex(j)) *= -1.0;
+    }
+    alpha = math::wrapAngle(alpha);
   }
 }
 
 double LineEkfSlam::jointMahalanobis(const std::vector<LineObservation>& obs,
                                      const std::vector<Pairing>& pairs) const {
   if (pairs.empty()) return 0.0;
-  Eigen::VectorXd nu;
-  Eigen::MatrixXd h, r;
-  stack(obs, pairs, &nu, &h, &r);
-  const Eigen::MatrixXd s = h * p_ * h.transpose() + r;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(s);
+  const std::vector<Block> b = blocks(obs, pairs);
+  Eigen::VectorXd nu(2 * b.size());
+  for (size_t k = 0; k < b.size(); ++k) nu.segment<2>(2 * k) = b[k].nu;
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(innovationCovariance(b));
   return nu.dot(ldlt.solve(nu));
+}
+
+double LineEkfSlam::updateExternalPosition(const Eigen::Vector2d& xy_m,
+                                           const Eigen::Matrix2d& cov) {
+  Block b;  // eqs. 26-27: h = t, H = [I 0]
+  b.nu = xy_m - x_.head<2>();
+  b.hr = Eigen::Matrix<double, 2, 3>::Identity();
+  b.r = cov;
+  return applyUpdate({b});
+}
+
+double LineEkfSlam::updateExternalPose(const math::SE2& z, const Eigen::Matrix3d& cov) {
+  Block b;
+  b.nu = Eigen::Vector3d(z.x_m - x_[0], z.y_m - x_[1], math::angleDiff(z.yaw_rad, x_[2]));
+  b.hr = Eigen::Matrix3d::Identity();
+  b.r = cov;
+  return applyUpdate({b});
 }
 
 void LineEkfSlam::jcbb(const std::vector<LineObservation>& obs,
@@ -127,7 +249,7 @@ std::vector<int> LineEkfSlam::associate(const std::vector<LineObservation>& obs)
   std::vector<std::vector<int>> candidates(obs.size());
   std::vector<std::vector<double>> d2s(obs.size());
   for (size_t i = 0; i < obs.size(); ++i) {
-    for (int j = 0; j < numLandmarks(); ++j) {
+    for (int j = 0; j < numLandmarks() + numFixedLandmarks(); ++j) {
       const double d2 = jointMahalanobis(obs, {{static_cast<int>(i), j}});
       if (d2 <= gate2) {
         candidates[i].push_back(j);
@@ -163,16 +285,24 @@ std::vector<int> LineEkfSlam::associate(const std::vector<LineObservation>& obs)
 }
 
 void LineEkfSlam::extendExtent(int i, const LineObservation& obs) {
+  if (i >= numLandmarks()) {
+    FixedLandmark& f = fixed_[i - numLandmarks()];
+    extendExtent(f.line, obs, &f.info);
+  } else {
+    extendExtent(landmark(i), obs, &landmarks_[i]);
+  }
+}
+
+void LineEkfSlam::extendExtent(const Line& l, const LineObservation& obs, Landmark* lm_out) {
   // Endpoints to map, projected on the landmark line, merged with the extent along its direction.
   const math::SE2 r = pose();
   const double c = std::cos(r.yaw_rad), s = std::sin(r.yaw_rad);
   auto to_map = [&](const Eigen::Vector2d& p) {
     return Eigen::Vector2d(r.x_m + c * p.x() - s * p.y(), r.y_m + s * p.x() + c * p.y());
   };
-  const Line l = landmark(i);
   const Eigen::Vector2d n(std::cos(l.alpha_rad), std::sin(l.alpha_rad)), t(-n.y(), n.x());
   const Eigen::Vector2d foot = l.rho_m * n;
-  Landmark& lm = landmarks_[i];
+  Landmark& lm = *lm_out;
   std::vector<double> u{t.dot(to_map(obs.start_m) - foot), t.dot(to_map(obs.end_m) - foot)};
   if (lm.sightings > 0) {
     u.push_back(t.dot(lm.start_m - foot));
@@ -223,6 +353,57 @@ void LineEkfSlam::removeLandmark(int i) {
   landmarks_.erase(landmarks_.begin() + i);
 }
 
+void LineEkfSlam::fixLandmark(int i, bool anchor) {
+  FixedLandmark f;
+  f.info = landmarks_[i];
+  f.line = landmark(i);
+  f.anchor = anchor;
+  const int k = landmarkIndex(i);
+  if (anchor) {
+    // Condition the state on the landmark being exactly at its estimate: the map frame is now
+    // defined by it. The mean is unchanged; P -= P_*l P_ll^-1 P_l*.
+    const Eigen::MatrixXd pl = p_.middleCols(k, 2);
+    const Eigen::LDLT<Eigen::Matrix2d> ldlt(p_.block<2, 2>(k, k));
+    p_ -= pl * ldlt.solve(pl.transpose());
+    p_ = 0.5 * (p_ + p_.transpose());
+  } else {
+    f.cov = p_.block<2, 2>(k, k);  // marginalised: its own uncertainty goes with it
+  }
+  fixed_.push_back(f);
+  removeLandmark(i);
+}
+
+void LineEkfSlam::anchorOrRetire(UpdateResult* res) {
+  if (config_.variant == Variant::kAnchor) {
+    int anchors = 0;
+    double first_alpha = 0.0;
+    for (const auto& f : fixed_)
+      if (f.anchor && anchors++ == 0) first_alpha = f.line.alpha_rad;
+    for (int j = 0; j < numLandmarks() && anchors < 2;) {
+      // Lines are undirected: directions compare modulo pi.
+      const bool usable =
+          landmarks_[j].confirmed() &&
+          (anchors == 0 ||
+           std::fabs(math::wrapAngle(2.0 * (landmark(j).alpha_rad - first_alpha))) / 2.0 >=
+               config_.anchor_min_angle_rad);
+      if (!usable) {
+        ++j;
+        continue;
+      }
+      if (anchors == 0) first_alpha = landmark(j).alpha_rad;
+      fixLandmark(j, true);  // j now names the next landmark
+      ++res->anchored;
+      ++anchors;
+    }
+  }
+  if (config_.retire_after_updates > 0)
+    for (int j = numLandmarks() - 1; j >= 0; --j)
+      if (landmarks_[j].sightings > config_.retire_after_updates) {
+        fixLandmark(j, false);
+        ++res->retired;
+      }
+}
+
 LineEkfSlam::UpdateResult LineEkfSlam::update(const std::vector<LineObservation>& obs) {
   ++scan_;
   UpdateResult res;
@@ -231,35 +412,10 @@ LineEkfSlam::UpdateResult LineEkfSlam::update(const std::vector<LineObservation>
   for (size_t i = 0; i < obs.size(); ++i)
     if (res.association[i] >= 0) pairs.push_back({static_cast<int>(i), res.association[i]});
   if (!pairs.empty()) {
-    Eigen::VectorXd nu;
-    Eigen::MatrixXd h, r;
-    stack(obs, pairs, &nu, &h, &r);
-    const Eigen::MatrixXd pht = p_ * h.transpose();  // n x 2m
-    const Eigen::MatrixXd s = h * pht + r;
-    const Eigen::LLT<Eigen::MatrixXd> llt(s);
-    if (llt.info() != Eigen::Success)
-      throw std::runtime_error("LineEkfSlam: innovation covariance not positive definite");
-    const Eigen::MatrixXd k = llt.solve(pht.transpose()).transpose();  // eq. 7: P H^T S^-1
-    x_ += k * nu;                                                      // eq. 8
-    // Eq. 9, Joseph form (I - K H) P (I - K H)^T + K R K^T, expanded so it costs O(n^2 m):
-    // P - K (H P) - (P H^T) K^T + K (H P H^T + R) K^T.
-    const Eigen::MatrixXd khp = k * pht.transpose();
-    p_ = p_ - khp - khp.transpose() + k * s * k.transpose();
-    p_ = 0.5 * (p_ + p_.transpose());
-    x_[2] = math::wrapAngle(x_[2]);
-    for (int j = 0; j < numLandmarks(); ++j) {
-      double& rho = x_[landmarkIndex(j)];
-      double& alpha = x_[landmarkIndex(j) + 1];
-      if (rho < 0.0) {  // keep rho >= 0 (flip the sign of the row/column of rho)
-        rho = -rho;
-        alpha += math::kPi;
-        p_.row(landmarkIndex(j)) *= -1.0;
-        p_.col(landmarkIndex(j)) *= -1.0;
-      }
-      alpha = math::wrapAngle(alpha);
-    }
+    applyUpdate(blocks(obs, pairs));
     for (const auto& pr : pairs) {
-      Landmark& lm = landmarks_[pr.lm];
+      Landmark& lm =
+          pr.lm < numLandmarks() ? landmarks_[pr.lm] : fixed_[pr.lm - numLandmarks()].info;
       ++lm.sightings;
       lm.last_seen_scan = scan_;
       lm.confirmed_flag = lm.confirmed_flag || lm.sightings >= config_.confirm_sightings;
@@ -279,6 +435,7 @@ LineEkfSlam::UpdateResult LineEkfSlam::update(const std::vector<LineObservation>
       removeLandmark(j);
       ++res.removed;
     }
+  anchorOrRetire(&res);
   return res;
 }
 

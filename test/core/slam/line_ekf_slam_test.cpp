@@ -200,3 +200,115 @@ TEST(LineEkfSlam, BadConfigurationIsRejectedWithItsName) {
 }
 
 }  // namespace
+
+// Anchoring conditions the joint Gaussian on the landmark's estimate: the remaining covariance is
+// the Schur complement P_aa - P_al P_ll^-1 P_la (computed here directly), and the mean is
+// unchanged.
+TEST(LineEkfSlam, AnchorConditionsTheStateOnTheAnchoredLandmarks) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.confirm_sightings = 2;
+  cfg.variant = slam::Variant::kAnchor;
+  slam::LineEkfSlam ekf(cfg, math::SE2(), Eigen::Vector3d(0.04, 0.04, 0.01).asDiagonal());
+  // Three walls: 0 and 1 parallel (x = 2, x = -1.5), 2 perpendicular (y = 1).
+  const std::vector<slam::LineObservation> walls{obsOf(Line{2.0, 0.0}), obsOf(Line{1.5, M_PI}),
+                                                 obsOf(Line{1.0, M_PI / 2})};
+  ekf.update(walls);
+  ekf.predict(math::SE2(0.1, 0.0, 0.0));
+  const std::vector<slam::LineObservation> seen{obsOf(Line{1.9, 0.0}), obsOf(Line{1.6, M_PI}),
+                                                obsOf(Line{1.0, M_PI / 2})};
+  // The reference: the same update without anchoring, then conditioning by hand.
+  slam::LineEkfSlamConfig plain_cfg = cfg;
+  plain_cfg.variant = slam::Variant::kStandard;
+  slam::LineEkfSlam plain(plain_cfg, math::SE2(), Eigen::Vector3d(0.04, 0.04, 0.01).asDiagonal());
+  plain.update(walls);
+  plain.predict(math::SE2(0.1, 0.0, 0.0));
+  plain.update(seen);
+  const auto res = ekf.update(seen);
+  // Wall 0 is the first anchor; wall 1 is parallel to it, wall 2 is the second anchor.
+  EXPECT_EQ(res.anchored, 2);
+  ASSERT_EQ(ekf.numLandmarks(), 1);
+  ASSERT_EQ(ekf.numFixedLandmarks(), 2);
+  EXPECT_NEAR(ekf.fixedLandmark(0).line.rho_m, plain.landmark(0).rho_m, 1e-12);
+  EXPECT_NEAR(ekf.fixedLandmark(1).line.alpha_rad, plain.landmark(2).alpha_rad, 1e-12);
+  const std::vector<int> keep{0, 1, 2, slam::LineEkfSlam::landmarkIndex(1),
+                              slam::LineEkfSlam::landmarkIndex(1) + 1};
+  const std::vector<int> cond{
+      slam::LineEkfSlam::landmarkIndex(0), slam::LineEkfSlam::landmarkIndex(0) + 1,
+      slam::LineEkfSlam::landmarkIndex(2), slam::LineEkfSlam::landmarkIndex(2) + 1};
+  const Eigen::MatrixXd& p = plain.covariance();
+  Eigen::MatrixXd paa(5, 5), pal(5, 4), pll(4, 4);
+  for (int a = 0; a < 5; ++a)
+    for (int b = 0; b < 5; ++b) paa(a, b) = p(keep[a], keep[b]);
+  for (int a = 0; a < 5; ++a)
+    for (int b = 0; b < 4; ++b) pal(a, b) = p(keep[a], cond[b]);
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) pll(a, b) = p(cond[a], cond[b]);
+  const Eigen::MatrixXd expected = paa - pal * pll.inverse() * pal.transpose();
+  EXPECT_TRUE(ekf.covariance().isApprox(expected, 1e-6)) << ekf.covariance() << "\n---\n"
+                                                         << expected;
+  for (int a = 0; a < 5; ++a) EXPECT_NEAR(ekf.state()[a], plain.state()[keep[a]], 1e-12);
+  // With both anchors fixed, the pose is observable: seeing them again shrinks the pose covariance
+  // in every direction, and their index continues after the state landmarks.
+  ekf.predict(math::SE2(0.0, 0.0, 0.0), Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
+  const Eigen::Matrix3d before = ekf.poseCovariance();
+  const std::vector<slam::LineObservation> anchors_only{obsOf(Line{1.9, 0.0}),
+                                                        obsOf(Line{1.0, M_PI / 2})};
+  EXPECT_EQ(ekf.associate(anchors_only), (std::vector<int>{1, 2}));
+  ekf.update(anchors_only);
+  EXPECT_LT(ekf.poseCovariance()(0, 0), 0.5 * before(0, 0));
+  EXPECT_LT(ekf.poseCovariance()(1, 1), 0.5 * before(1, 1));
+  EXPECT_LT(ekf.poseCovariance()(2, 2), 0.5 * before(2, 2));
+}
+
+// A retired landmark leaves the state with its marginal covariance and still corrects the pose:
+// the update then equals a Kalman update on the pose with R + H_l Sigma H_l^T.
+TEST(LineEkfSlam, RetiredLandmarksLeaveTheStateAndStillCorrectThePose) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.confirm_sightings = 1;
+  cfg.retire_after_updates = 2;
+  slam::LineEkfSlam ekf(cfg, math::SE2(), Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
+  for (int i = 0; i < 3; ++i) ekf.update({obsOf(Line{2.0, 0.1})});
+  ASSERT_EQ(ekf.numLandmarks(), 0);
+  ASSERT_EQ(ekf.numFixedLandmarks(), 1);
+  const slam::FixedLandmark f = ekf.fixedLandmark(0);
+  EXPECT_FALSE(f.anchor);
+  EXPECT_GT(f.cov.determinant(), 0.0);
+  ekf.predict(math::SE2(0.1, 0.0, 0.0));
+  const Eigen::Vector3d x0 = ekf.state();
+  const Eigen::Matrix3d p0 = ekf.covariance();
+  const slam::LineObservation o = obsOf(Line{1.85, 0.1});
+  Eigen::Matrix<double, 2, 3> hr;
+  Eigen::Matrix2d hl;
+  const Line pred = slam::observeLine(ekf.pose(), f.line, &hr, &hl);
+  math::KalmanFilter ref(x0, p0);
+  ref.update(hr, slam::lineInnovation(o.line, pred) + hr * x0, o.cov + hl * f.cov * hl.transpose());
+  ASSERT_EQ(ekf.associate({o}), (std::vector<int>{0}));
+  ekf.update({o});
+  EXPECT_TRUE(ekf.state().isApprox(ref.mean(), 1e-9));
+  EXPECT_TRUE(ekf.covariance().isApprox(ref.cov(), 1e-9));
+  EXPECT_EQ(ekf.fixedLandmark(0).info.sightings, 4);
+}
+
+// The external sensor (eqs. 26-27) is a Kalman update with H = [I 0]: compare with
+// math::KalmanFilter, landmarks included through their cross-covariance.
+TEST(LineEkfSlam, ExternalPositionUpdateEqualsKalmanUpdateWithIdentityRows) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.confirm_sightings = 1;
+  cfg.variant = slam::Variant::kExternal;
+  slam::LineEkfSlam ekf(cfg, math::SE2(), Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
+  ekf.update({obsOf(Line{2.0, 0.1})});
+  ekf.predict(math::SE2(0.3, 0.1, 0.05));
+  const Eigen::VectorXd x0 = ekf.state();
+  const Eigen::MatrixXd p0 = ekf.covariance();
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, x0.size());
+  h(0, 0) = h(1, 1) = 1.0;
+  const Eigen::Vector2d z(0.35, 0.05);
+  const Eigen::Matrix2d r = Eigen::Vector2d(0.0025, 0.0025).asDiagonal();
+  math::KalmanFilter ref(x0, p0);
+  ref.update(h, z, r);
+  ekf.updateExternalPosition(z, r);
+  EXPECT_TRUE(ekf.state().isApprox(ref.mean(), 1e-9));
+  EXPECT_TRUE(ekf.covariance().isApprox(ref.cov(), 1e-9));
+  EXPECT_THROW(slam::parseVariant("anchored"), std::invalid_argument);
+  EXPECT_EQ(slam::variantName(slam::parseVariant("external")), "external");
+}
