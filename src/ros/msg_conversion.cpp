@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/world/camera_model.h"
 #include "adaptive_perception/world/color_class.h"
 
 namespace adaptive_perception::ros_conv {
@@ -233,6 +234,32 @@ ColorModel toColorModel(const color::SwitchingColorFilter& f, const std_msgs::He
   model.mode_probabilities = f.modeProbabilities();
   model.active_mode = static_cast<std::uint8_t>(f.activeMode());
   return model;
+}
+
+geometry_msgs::PoseWithCovarianceStamped toPoseWithCovariance(const math::SE2& pose,
+                                                              const Eigen::Matrix3d& cov,
+                                                              const std_msgs::Header& header) {
+  geometry_msgs::PoseWithCovarianceStamped out;
+  out.header = header;
+  out.pose.pose = toPose(pose);
+  const int idx[3] = {0, 1, 5};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out.pose.covariance[idx[i] * 6 + idx[j]] = cov(i, j);
+  return out;
+}
+
+Eigen::Matrix3d planarCovariance(const geometry_msgs::PoseWithCovariance& msg) {
+  Eigen::Matrix3d cov;
+  const int idx[3] = {0, 1, 5};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) cov(i, j) = msg.covariance[idx[i] * 6 + idx[j]];
+  return cov;
+}
+
+Eigen::Isometry3d mapToOdom(const math::SE2& map_to_base, const Eigen::Isometry3d& odom_to_base) {
+  const Eigen::Isometry3d odom_planar =
+      world::planarToIsometry(world::isometryToPlanar(odom_to_base));
+  return world::planarToIsometry(map_to_base) * odom_planar.inverse();
 }
 
 }  // namespace adaptive_perception::ros_conv

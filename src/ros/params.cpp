@@ -48,4 +48,31 @@ std::vector<color::LightingPrior> loadLightingPriors(const ros::NodeHandle& pnh,
   return priors;
 }
 
+void loadMotionModel(const ros::NodeHandle& pnh, localization::MotionModelConfig* m) {
+  m->alpha1 = getInRange(pnh, "odom_alpha1", m->alpha1, 0.0, 10.0);
+  m->alpha2 = getInRange(pnh, "odom_alpha2", m->alpha2, 0.0, 10.0);
+  m->alpha3 = getInRange(pnh, "odom_alpha3", m->alpha3, 0.0, 10.0);
+  m->alpha4 = getInRange(pnh, "odom_alpha4", m->alpha4, 0.0, 10.0);
+  m->min_translation_std_m =
+      getInRange(pnh, "odom_min_translation_std_m", m->min_translation_std_m, 0.0, 1.0);
+  m->min_rotation_std_rad =
+      getInRange(pnh, "odom_min_rotation_std_rad", m->min_rotation_std_rad, 0.0, 1.0);
+}
+
+bool loadInitialPose(const ros::NodeHandle& pnh, const std::vector<double>& default_std,
+                     math::SE2* pose, Eigen::Matrix3d* cov) {
+  const auto initial = get<std::vector<double>>(pnh, "initial_pose", {});
+  const auto sd = get<std::vector<double>>(pnh, "initial_pose_std", default_std);
+  if (!initial.empty() && initial.size() != 3)
+    throw ParamError("parameter " + pnh.resolveName("initial_pose") +
+                     " must be [x_m, y_m, yaw_rad] or empty");
+  if (sd.size() != 3 || !(sd[0] > 0) || !(sd[1] > 0) || !(sd[2] > 0))
+    throw ParamError("parameter " + pnh.resolveName("initial_pose_std") +
+                     " must be three positive standard deviations [x_m, y_m, yaw_rad]");
+  *cov = Eigen::Vector3d(sd[0] * sd[0], sd[1] * sd[1], sd[2] * sd[2]).asDiagonal();
+  if (initial.size() != 3) return false;
+  *pose = math::SE2(initial[0], initial[1], initial[2]);
+  return true;
+}
+
 }  // namespace adaptive_perception::ros_params

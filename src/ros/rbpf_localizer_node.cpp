@@ -17,12 +17,6 @@ namespace adaptive_perception {
 namespace fs = std::filesystem;
 using ros_params::ParamError;
 
-namespace {
-Eigen::Matrix3d diag3(const std::vector<double>& v) {
-  return Eigen::Vector3d(v[0] * v[0], v[1] * v[1], v[2] * v[2]).asDiagonal();
-}
-}  // namespace
-
 RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
   namespace P = ros_params;
@@ -49,15 +43,7 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       P::getInRange(pnh, "recovery_gain_per_nat", c.recovery_gain_per_nat, 0.0, 100.0);
   c.recovery_max_fraction =
       P::getInRange(pnh, "recovery_max_fraction", c.recovery_max_fraction, 0.0, 1.0);
-  localization::MotionModelConfig& m = c.motion;
-  m.alpha1 = P::getInRange(pnh, "odom_alpha1", m.alpha1, 0.0, 10.0);
-  m.alpha2 = P::getInRange(pnh, "odom_alpha2", m.alpha2, 0.0, 10.0);
-  m.alpha3 = P::getInRange(pnh, "odom_alpha3", m.alpha3, 0.0, 10.0);
-  m.alpha4 = P::getInRange(pnh, "odom_alpha4", m.alpha4, 0.0, 10.0);
-  m.min_translation_std_m =
-      P::getInRange(pnh, "odom_min_translation_std_m", m.min_translation_std_m, 0.0, 1.0);
-  m.min_rotation_std_rad =
-      P::getInRange(pnh, "odom_min_rotation_std_rad", m.min_rotation_std_rad, 0.0, 1.0);
+  P::loadMotionModel(pnh, &c.motion);
   c.model.drift_std_per_sqrt_s =
       P::getInRange(pnh, "drift_std_per_sqrt_s", c.model.drift_std_per_sqrt_s, 0.0, 100.0);
   c.switching.mode_stay_probability =
@@ -68,17 +54,10 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   map_ = world::FieldMap::loadYaml(
       P::resolvePackagePath(P::getName(pnh, "field_file", "config/field_4legged.yaml")));
 
-  const auto initial = P::get<std::vector<double>>(pnh, "initial_pose", {});
-  const auto initial_std = P::get<std::vector<double>>(pnh, "initial_pose_std", {0.2, 0.2, 0.17});
-  if (!initial.empty() && initial.size() != 3)
-    throw ParamError("parameter " + pnh.resolveName("initial_pose") +
-                     " must be [x_m, y_m, yaw_rad] or empty (global localization)");
-  if (initial_std.size() != 3 || initial_std[0] <= 0 || initial_std[1] <= 0 || initial_std[2] <= 0)
-    throw ParamError("parameter " + pnh.resolveName("initial_pose_std") +
-                     " must be three positive standard deviations [x_m, y_m, yaw_rad]");
-  if (initial.size() == 3)
-    pending_pose_ =
-        std::make_pair(math::SE2(initial[0], initial[1], initial[2]), diag3(initial_std));
+  math::SE2 initial;
+  Eigen::Matrix3d initial_cov;
+  if (P::loadInitialPose(pnh, {0.2, 0.2, 0.17}, &initial, &initial_cov))
+    pending_pose_ = std::make_pair(initial, initial_cov);
 
   map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
@@ -201,14 +180,7 @@ void RbpfLocalizerNode::publish(const std_msgs::Header& image_header,
   const auto e = rbpf_->estimate();
   std_msgs::Header h = image_header;
   h.frame_id = map_frame_;
-  geometry_msgs::PoseWithCovarianceStamped pose;
-  pose.header = h;
-  pose.pose.pose = ros_conv::toPose(e.pose);
-  // Row-major 6x6 over (x, y, z, roll, pitch, yaw).
-  const int idx[3] = {0, 1, 5};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) pose.pose.covariance[idx[i] * 6 + idx[j]] = e.covariance(i, j);
-  pose_pub_.publish(pose);
+  pose_pub_.publish(ros_conv::toPoseWithCovariance(e.pose, e.covariance, h));
   if (particles_pub_.getNumSubscribers() > 0) {
     geometry_msgs::PoseArray pa;
     pa.header = h;
@@ -217,11 +189,8 @@ void RbpfLocalizerNode::publish(const std_msgs::Header& image_header,
   }
   if (publish_tf_) {
     // map -> odom = (map -> base) * (odom -> base)^-1, future-dated by the tolerance as amcl does.
-    const Eigen::Isometry3d map_to_base = world::planarToIsometry(e.pose);
-    const Eigen::Isometry3d odom_planar =
-        world::planarToIsometry(world::isometryToPlanar(odom_to_base));
     tf_broadcaster_.sendTransform(
-        ros_conv::toTransform(map_to_base * odom_planar.inverse(), map_frame_, odom_frame_,
+        ros_conv::toTransform(ros_conv::mapToOdom(e.pose, odom_to_base), map_frame_, odom_frame_,
                               image_header.stamp + ros::Duration(transform_tolerance_s_)));
   }
   const color::SwitchingColorFilter& lighting = rbpf_->best().lighting;
@@ -252,14 +221,11 @@ void RbpfLocalizerNode::onInitialPose(const geometry_msgs::PoseWithCovarianceSta
       return;
     }
   }
-  Eigen::Matrix3d cov;
-  const int idx[3] = {0, 1, 5};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) cov(i, j) = msg->pose.covariance[idx[i] * 6 + idx[j]];
+  Eigen::Matrix3d cov = ros_conv::planarCovariance(msg->pose);
   // rviz sends x, y variance 0.25 and yaw 0.068; a zero or broken covariance gets the defaults.
   if (!cov.allFinite() || cov(0, 0) <= 0 || cov(1, 1) <= 0 || cov(2, 2) <= 0 ||
       Eigen::LLT<Eigen::Matrix3d>(cov).info() != Eigen::Success)
-    cov = diag3({0.2, 0.2, 0.17});
+    cov = Eigen::Vector3d(0.2 * 0.2, 0.2 * 0.2, 0.17 * 0.17).asDiagonal();
   const math::SE2 p = world::isometryToPlanar(pose);
   std::lock_guard<std::mutex> lock(mutex_);
   ROS_INFO("rbpf_localizer: initial pose (%.2f m, %.2f m, %.1f deg)", p.x_m, p.y_m,

@@ -1,16 +1,28 @@
 // evaluate_slam: line extraction + line-landmark EKF SLAM offline over a laser bag (simulator or a
 // converted CARMEN log), against ground_truth/pose when the bag has it.
 //
-//   evaluate_slam --bag FILE [--association jcbb|nn] [--gate_probability 0.99] [--output DIR]
+//   evaluate_slam --bag FILE [--variant standard|anchor|external] [--retire_after N]
+//                 [--association jcbb|nn] [--gate_probability 0.99] [--relations FILE]
+//                 [--make_relations FILE] [--external_std_m 0.1] [--seed N] [--max_scans N]
+//                 [--range_noise_std_m 0.01] [--odom_noise_scale 1] [--output DIR]
+//                 [--name TITLE]
 //
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
-// /tf_static (identity when absent). Summary keys (last line):
-//   evaluate_slam: ate_m=.. final_position_error_m=.. odometry_final_position_error_m=..
-//       nees_in_bounds=.. landmarks=.. scans=.. realtime_factor=..
+// /tf_static (identity when absent). The external variant simulates an absolute position sensor
+// from ground_truth/pose with --external_std_m noise on every scan (the bag must have ground
+// truth). Summary keys (last line):
+//   evaluate_slam: variant=.. ate_m=.. final_position_error_m=.. odometry_final_position_error_m=..
+//       nees_in_bounds=.. relation_trans_error_m=.. relation_trans_error_m_std=..
+//       relation_rot_error_deg=.. relation_rot_error_deg_std=.. landmarks=.. fixed_landmarks=..
+//       scans=.. update_ms_mean=.. update_ms_max=.. realtime_factor=..
 // ate_m: RMS position error over the scans (no alignment: the map frame starts at the first true
 // pose). nees_in_bounds: share of scans whose pose NEES lies inside the 95% chi-square interval of
-// 3 degrees of freedom. Both -1 without ground truth. Writes OUTPUT/estimate.tum, truth.tum,
-// landmarks.csv (rho, alpha, endpoints, sightings).
+// 3 degrees of freedom; for the anchor variant the truth is first expressed in the frame the
+// anchored lines define (matched to the true walls of ground_truth/walls). Relation keys: the
+// Kuemmerle et al. metric against --relations (Freiburg format, bag stamps). -1 where not
+// available. --make_relations writes reference relations from ground_truth/pose (1 s chain + 200
+// random pairs). Writes OUTPUT/estimate.tum, truth.tum, odometry.tum, pose_covariance.csv,
+// landmarks.csv and map.png.
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
@@ -25,13 +37,18 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <opencv2/imgcodecs.hpp>
 
+#include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/math/chi_square.h"
+#include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/slam/line_ekf_slam.h"
+#include "adaptive_perception/slam/map_drawing.h"
+#include "adaptive_perception/slam/relations.h"
 #include "adaptive_perception/world/camera_model.h"
 #include "tool_args.h"
 
@@ -51,25 +68,104 @@ void tum(std::ofstream& f, double t, const math::SE2& p) {
   f << std::fixed << t << " " << p.x_m << " " << p.y_m << " 0 0 0 " << std::sin(0.5 * p.yaw_rad)
     << " " << std::cos(0.5 * p.yaw_rad) << "\n";
 }
+
+bool isTopic(const rosbag::MessageInstance& m, const std::string& name) {
+  return m.getTopic() == name || m.getTopic() == "/" + name;
+}
+
+/// The true wall lines in map (from ground_truth/walls pieces in the laser frame and the true
+/// pose).
+std::vector<slam::Line> trueLines(
+    const std::vector<std::pair<ros::Time, std::vector<laser::TrueWallPiece>>>& walls,
+    const std::map<ros::Time, math::SE2>& truth, const math::SE2& mount) {
+  std::vector<slam::Line> out;
+  for (const auto& [stamp, pieces] : walls) {
+    const math::SE2* g = nearest(truth, stamp);
+    if (!g) continue;
+    const math::SE2 sensor = *g * mount;
+    for (const auto& piece : pieces) {
+      const slam::Line l =
+          slam::lineToMap(sensor, slam::lineThrough(piece.start_m, piece.end_m), nullptr, nullptr);
+      bool seen = false;
+      for (const auto& o : out)
+        seen |= std::fabs(o.rho_m - l.rho_m) < 0.05 &&
+                std::fabs(math::angleDiff(o.alpha_rad, l.alpha_rad)) < 0.02;
+      if (!seen) out.push_back(l);
+    }
+  }
+  return out;
+}
+
+/// Ground truth -> the frame the anchored lines define (identity when there are not two anchors).
+math::SE2 anchorFrame(const slam::LineEkfSlam& ekf, const std::vector<slam::Line>& truth_lines) {
+  std::vector<slam::Line> est, tru;
+  for (int k = 0; k < ekf.numFixedLandmarks() && est.size() < 2; ++k) {
+    const auto& f = ekf.fixedLandmark(k);
+    if (!f.anchor) continue;
+    double best = 1e300;
+    slam::Line match;
+    for (const auto& t : truth_lines) {
+      const double d = std::fabs(t.rho_m - f.line.rho_m) +
+                       2.0 * std::fabs(math::angleDiff(t.alpha_rad, f.line.alpha_rad));
+      if (d < best) {
+        best = d;
+        match = t;
+      }
+    }
+    if (best > 1.0) continue;
+    est.push_back(f.line);
+    tru.push_back(match);
+  }
+  math::SE2 t;
+  if (est.size() == 2 && slam::transformBetweenLinePairs(tru.data(), est.data(), &t)) return t;
+  return math::SE2();
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
-                   "evaluate_slam --bag FILE [--association jcbb|nn] [--gate_probability P] "
-                   "[--output DIR]");
+                   "evaluate_slam --bag FILE [--variant standard|anchor|external] "
+                   "[--retire_after N] [--association jcbb|nn] [--gate_probability P] "
+                   "[--relations FILE] [--make_relations FILE] [--external_std_m S] [--seed N] "
+                   "[--max_scans N] [--range_noise_std_m S] [--odom_noise_scale K] [--output DIR] "
+                   "[--name TITLE]");
   const std::string bag_path = args.get("bag", "");
   slam::LineEkfSlamConfig cfg;
   const std::string association = args.get("association", "jcbb");
+  const std::string variant = args.get("variant", "standard");
+  cfg.retire_after_updates = static_cast<int>(args.getInt("retire_after", 0));
   cfg.gate_probability = args.getDouble("gate_probability", cfg.gate_probability);
+  const std::string relations_path = args.get("relations", "");
+  const std::string make_relations = args.get("make_relations", "");
+  const double external_std = args.getDouble("external_std_m", 0.1);
+  math::Rng rng(static_cast<std::uint64_t>(args.getInt("seed", 1)));
+  const long long max_scans = args.getInt("max_scans", 0);
   const std::string output = args.get("output", "results/evaluate_slam");
+  const std::string name = args.get("name", fs::path(bag_path).stem().string());
+  cfg.line_model_rho_std_m = args.getDouble("line_model_rho_std_m", cfg.line_model_rho_std_m);
+  cfg.line_model_alpha_std_rad =
+      args.getDouble("line_model_alpha_std_rad", cfg.line_model_alpha_std_rad);
+  const double odom_scale = args.getDouble("odom_noise_scale", 1.0);
+  localization::MotionModelConfig& m = cfg.motion;
+  for (double* a : {&m.alpha1, &m.alpha2, &m.alpha3, &m.alpha4, &m.min_translation_std_m,
+                    &m.min_rotation_std_rad})
+    *a *= odom_scale;
+  laser::LineExtractionConfig lines;
+  lines.range_noise_std_m = args.getDouble("range_noise_std_m", lines.range_noise_std_m);
   args.finish();
   if (bag_path.empty()) args.fail("--bag FILE is required");
   try {
     cfg.association = slam::parseAssociation(association);
+    cfg.variant = slam::parseVariant(variant);
     cfg.validate();
+    if (external_std <= 0.0) throw std::invalid_argument("--external_std_m must be > 0");
+    const std::vector<slam::Relation> relations = relations_path.empty()
+                                                      ? std::vector<slam::Relation>()
+                                                      : slam::readRelations(relations_path);
     rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
     std::vector<sensor_msgs::LaserScanConstPtr> scans;
     std::map<ros::Time, math::SE2> odom, truth;
+    std::vector<std::pair<ros::Time, std::vector<laser::TrueWallPiece>>> walls;
     math::SE2 mount;
     for (const auto& m : rosbag::View(bag)) {
       if (auto s = m.instantiate<sensor_msgs::LaserScan>()) {
@@ -77,9 +173,11 @@ int main(int argc, char** argv) {
       } else if (auto o = m.instantiate<nav_msgs::Odometry>()) {
         odom[o->header.stamp] = ros_conv::toSE2(o->pose.pose);
       } else if (auto g = m.instantiate<geometry_msgs::PoseStamped>()) {
-        if (m.getTopic() == ros_topics::kGroundTruthPose ||
-            m.getTopic() == std::string("/") + ros_topics::kGroundTruthPose)
+        if (isTopic(m, ros_topics::kGroundTruthPose))
           truth[g->header.stamp] = ros_conv::toSE2(g->pose);
+      } else if (auto w = m.instantiate<adaptive_perception::LineSegmentArray>()) {
+        if (cfg.variant == slam::Variant::kAnchor && isTopic(m, "ground_truth/walls"))
+          walls.emplace_back(w->header.stamp, ros_conv::wallPieces(*w));
       } else if (auto tf = m.instantiate<tf2_msgs::TFMessage>()) {
         if (m.getTopic() == "/tf_static")
           for (const auto& t : tf->transforms)
@@ -89,73 +187,131 @@ int main(int argc, char** argv) {
     }
     if (scans.empty()) throw std::runtime_error(bag_path + ": no sensor_msgs/LaserScan messages");
     if (odom.empty()) throw std::runtime_error(bag_path + ": no nav_msgs/Odometry on odom");
+    if (max_scans > 0 && static_cast<long long>(scans.size()) > max_scans) scans.resize(max_scans);
+    if (cfg.variant == slam::Variant::kExternal && truth.empty())
+      throw std::runtime_error(
+          bag_path +
+          ": the external variant simulates its sensor from ground_truth/pose, "
+          "which this bag lacks");
+    if (!make_relations.empty()) {
+      if (truth.empty())
+        throw std::runtime_error(bag_path + ": --make_relations needs ground_truth/pose");
+      std::map<double, math::SE2> t;
+      for (const auto& [stamp, p] : truth) t[stamp.toSec()] = p;
+      slam::writeRelations(make_relations, slam::relationsFromTrajectory(t, 1.0, 200));
+    }
     const math::SE2* t0 = nearest(truth, scans.front()->header.stamp);
     slam::LineEkfSlam ekf(cfg, t0 ? *t0 : math::SE2());
-    laser::LineExtractor extractor;
+    laser::LineExtractor extractor(lines);
     fs::create_directories(output);
     std::ofstream est_tum(fs::path(output) / "estimate.tum"),
-        truth_tum(fs::path(output) / "truth.tum");
+        truth_tum(fs::path(output) / "truth.tum"), odom_tum(fs::path(output) / "odometry.tum");
+    std::ofstream cov_csv(fs::path(output) / "pose_covariance.csv");
+    cov_csv << "t,xx,xy,yy,yawyaw\n";
     const double nees_lo = math::chiSquareQuantile(0.025, 3),
                  nees_hi = math::chiSquareQuantile(0.975, 3);
-    double sq = 0.0, final_err = -1.0, compute_s = 0.0, odom_final_err = -1.0;
+    double sq = 0.0, final_err = -1.0, compute_s = 0.0, odom_final_err = -1.0, max_update_s = 0.0;
     math::SE2 dead_reckoning = ekf.pose();  // odometry alone, from the same start
-    long with_truth = 0, in_bounds = 0;
+    long with_truth = 0;
     const math::SE2* prev_odom = nullptr;
+    std::map<double, math::SE2> estimate;
+    std::vector<std::pair<math::SE2, Eigen::Matrix3d>> est_cov;
+    std::vector<math::SE2> truth_at_scan;
+    slam::MapTrajectory est_path{"estimate", cv::Scalar(0, 0, 220), {}},
+        truth_path{"ground truth", cv::Scalar(0, 160, 0), {}},
+        odom_path{"odometry", cv::Scalar(160, 160, 160), {}};
     for (const auto& s : scans) {
       const math::SE2* o = nearest(odom, s->header.stamp);
-      const auto c0 = std::chrono::steady_clock::now();
-      if (prev_odom) {
-        ekf.predict(math::between(*prev_odom, *o));
-        dead_reckoning = dead_reckoning * math::between(*prev_odom, *o);
-      }
+      const math::SE2* g = nearest(truth, s->header.stamp);
+      if (prev_odom) dead_reckoning = dead_reckoning * math::between(*prev_odom, *o);
       prev_odom = o;
-      std::vector<slam::LineObservation> obs;
-      for (const auto& seg : extractor.extract(ros_conv::fromLaserScan(*s))) {
-        Eigen::Matrix2d gz;
-        slam::LineObservation ob;
-        ob.line =
-            slam::lineToMap(mount, slam::Line{seg.line.rho_m, seg.line.alpha_rad}, nullptr, &gz);
-        ob.cov = gz * seg.line.cov * gz.transpose();
-        const double c = std::cos(mount.yaw_rad), sn = std::sin(mount.yaw_rad);
-        auto to_base = [&](const Eigen::Vector2d& p) {
-          return Eigen::Vector2d(mount.x_m + c * p.x() - sn * p.y(),
-                                 mount.y_m + sn * p.x() + c * p.y());
-        };
-        ob.start_m = to_base(seg.start_m);
-        ob.end_m = to_base(seg.end_m);
-        obs.push_back(ob);
-      }
-      ekf.update(obs);
-      compute_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+      const auto c0 = std::chrono::steady_clock::now();
+      ekf.predictFromOdometry(*o);
+      ekf.update(slam::toObservations(extractor.extract(ros_conv::fromLaserScan(*s)), mount));
+      if (cfg.variant == slam::Variant::kExternal && g)
+        ekf.updateExternalPosition(Eigen::Vector2d(g->x_m + rng.gaussian(0.0, external_std),
+                                                   g->y_m + rng.gaussian(0.0, external_std)),
+                                   Eigen::Matrix2d::Identity() * external_std * external_std);
+      const double dt =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+      compute_s += dt;
+      max_update_s = std::max(max_update_s, dt);
       const double t = s->header.stamp.toSec();
+      estimate[t] = ekf.pose();
       tum(est_tum, t, ekf.pose());
-      if (const math::SE2* g = nearest(truth, s->header.stamp)) {
+      const Eigen::Matrix3d pc = ekf.poseCovariance();
+      cov_csv << std::fixed << t << "," << pc(0, 0) << "," << pc(0, 1) << "," << pc(1, 1) << ","
+              << pc(2, 2) << "\n";
+      tum(odom_tum, t, dead_reckoning);
+      est_path.points_m.emplace_back(ekf.pose().x_m, ekf.pose().y_m);
+      odom_path.points_m.emplace_back(dead_reckoning.x_m, dead_reckoning.y_m);
+      if (g) {
         tum(truth_tum, t, *g);
-        const Eigen::Vector3d e(ekf.pose().x_m - g->x_m, ekf.pose().y_m - g->y_m,
-                                math::angleDiff(ekf.pose().yaw_rad, g->yaw_rad));
-        sq += e.head<2>().squaredNorm();
-        final_err = e.head<2>().norm();
+        truth_path.points_m.emplace_back(g->x_m, g->y_m);
+        sq += std::pow(ekf.pose().x_m - g->x_m, 2) + std::pow(ekf.pose().y_m - g->y_m, 2);
+        final_err = std::hypot(ekf.pose().x_m - g->x_m, ekf.pose().y_m - g->y_m);
         odom_final_err = std::hypot(dead_reckoning.x_m - g->x_m, dead_reckoning.y_m - g->y_m);
-        const double nees = e.dot(ekf.poseCovariance().ldlt().solve(e));
+        est_cov.emplace_back(ekf.pose(), ekf.poseCovariance());
+        truth_at_scan.push_back(*g);
         ++with_truth;
-        in_bounds += nees >= nees_lo && nees <= nees_hi;
       }
+    }
+    // NEES, in the anchored frame for the anchor variant (known only once both anchors are fixed;
+    // the frame is the same from the moment they are, and before that the map is the start frame).
+    const math::SE2 frame = cfg.variant == slam::Variant::kAnchor
+                                ? anchorFrame(ekf, trueLines(walls, truth, mount))
+                                : math::SE2();
+    long in_bounds = 0;
+    double nees_sum = 0.0;
+    for (size_t i = 0; i < est_cov.size(); ++i) {
+      const math::SE2 g = frame * truth_at_scan[i];
+      const math::SE2& e = est_cov[i].first;
+      const Eigen::Vector3d err(e.x_m - g.x_m, e.y_m - g.y_m,
+                                math::angleDiff(e.yaw_rad, g.yaw_rad));
+      const double nees = err.dot(est_cov[i].second.ldlt().solve(err));
+      in_bounds += nees >= nees_lo && nees <= nees_hi;
+      nees_sum += nees;
     }
     std::ofstream lm(fs::path(output) / "landmarks.csv");
-    lm << "rho_m,alpha_rad,x0,y0,x1,y1,sightings\n";
-    for (int i = 0; i < ekf.numLandmarks(); ++i) {
-      const auto& info = ekf.landmarkInfo(i);
-      lm << ekf.landmark(i).rho_m << "," << ekf.landmark(i).alpha_rad << "," << info.start_m.x()
-         << "," << info.start_m.y() << "," << info.end_m.x() << "," << info.end_m.y() << ","
-         << info.sightings << "\n";
+    lm << "rho_m,alpha_rad,x0,y0,x1,y1,sightings,fixed\n";
+    std::vector<slam::MapSegment> segments;
+    auto write = [&](const slam::Line& l, const slam::Landmark& info, bool fixed) {
+      lm << l.rho_m << "," << l.alpha_rad << "," << info.start_m.x() << "," << info.start_m.y()
+         << "," << info.end_m.x() << "," << info.end_m.y() << "," << info.sightings << ","
+         << (fixed ? 1 : 0) << "\n";
+      if (info.confirmed())
+        for (const auto& pc : info.pieces) segments.push_back({pc.first, pc.second, fixed});
+    };
+    for (int i = 0; i < ekf.numLandmarks(); ++i) write(ekf.landmark(i), ekf.landmarkInfo(i), false);
+    for (int k = 0; k < ekf.numFixedLandmarks(); ++k)
+      write(ekf.fixedLandmark(k).line, ekf.fixedLandmark(k).info, true);
+    std::vector<slam::MapTrajectory> paths{odom_path, est_path};
+    if (!truth_path.points_m.empty()) paths.insert(paths.begin() + 1, truth_path);
+    cv::imwrite((fs::path(output) / "map.png").string(),
+                slam::drawLineMap(segments, paths, name + " (" + variant + ")"));
+    slam::RelationErrors rel;
+    if (!relations.empty()) {
+      rel = slam::evaluateRelations(relations, estimate, 0.01);
+      if (rel.used == 0)
+        throw std::runtime_error(relations_path + ": no relation matches the bag's scan stamps");
     }
+    int confirmed = 0;  // tentative landmarks are not part of the map
+    for (int i = 0; i < ekf.numLandmarks(); ++i) confirmed += ekf.landmarkInfo(i).confirmed();
     const double duration = (scans.back()->header.stamp - scans.front()->header.stamp).toSec();
+    const bool has_rel = !relations.empty();
     std::printf(
-        "evaluate_slam: ate_m=%.3f final_position_error_m=%.3f "
-        "odometry_final_position_error_m=%.3f "
-        "nees_in_bounds=%.3f landmarks=%d scans=%zu realtime_factor=%.1f\n",
-        with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
-        with_truth ? double(in_bounds) / with_truth : -1.0, ekf.numLandmarks(), scans.size(),
+        "evaluate_slam: variant=%s ate_m=%.3f final_position_error_m=%.3f "
+        "odometry_final_position_error_m=%.3f nees_in_bounds=%.3f nees_mean=%.2f "
+        "relation_trans_error_m=%.4f "
+        "relation_trans_error_m_std=%.4f relation_rot_error_deg=%.3f "
+        "relation_rot_error_deg_std=%.3f relations_used=%d landmarks=%d fixed_landmarks=%d "
+        "scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f\n",
+        variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
+        with_truth ? double(in_bounds) / with_truth : -1.0,
+        with_truth ? nees_sum / with_truth : -1.0, has_rel ? rel.trans_mean_m : -1.0,
+        has_rel ? rel.trans_std_m : -1.0, has_rel ? math::radToDeg(rel.rot_mean_rad) : -1.0,
+        has_rel ? math::radToDeg(rel.rot_std_rad) : -1.0, rel.used, confirmed,
+        ekf.numFixedLandmarks(), scans.size(), 1e3 * compute_s / scans.size(), 1e3 * max_update_s,
         duration / std::max(compute_s, 1e-9));
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";

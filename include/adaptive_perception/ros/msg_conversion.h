@@ -2,6 +2,7 @@
 // Message <-> core conversion. The ONLY place that touches cv_bridge and message layouts of images.
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/time.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -57,6 +58,17 @@ Eigen::Isometry3d toIsometry(const geometry_msgs::Transform& t);
 geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& parent_to_child,
                                             const std::string& parent, const std::string& child,
                                             const ros::Time& stamp);
+
+/// A planar pose and its (x, y, yaw) covariance as PoseWithCovarianceStamped (the 6x6 row-major
+/// covariance over x, y, z, roll, pitch, yaw; the rest zero).
+geometry_msgs::PoseWithCovarianceStamped toPoseWithCovariance(const math::SE2& pose,
+                                                              const Eigen::Matrix3d& cov,
+                                                              const std_msgs::Header& header);
+/// The (x, y, yaw) block of a PoseWithCovariance's covariance.
+Eigen::Matrix3d planarCovariance(const geometry_msgs::PoseWithCovariance& msg);
+/// map -> odom from the estimated map -> base and the odometry odom -> base (flattened to the
+/// plane), as a localizer publishes it.
+Eigen::Isometry3d mapToOdom(const math::SE2& map_to_base, const Eigen::Isometry3d& odom_to_base);
 
 /// The ColorModel message of a switching filter: the active mode's estimate and every mode's
 /// probability.

@@ -3,11 +3,14 @@
 // ParamError names the parameter, the value and the allowed range.
 #include <ros/node_handle.h>
 
+#include <Eigen/Core>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "adaptive_perception/color/color_model.h"
+#include "adaptive_perception/localization/motion_model.h"
+#include "adaptive_perception/math/se2.h"
 
 namespace adaptive_perception::ros_params {
 
@@ -51,5 +54,15 @@ std::string resolvePackagePath(const std::string& value);
 /// *dir; throws ParamError on a bad ~filter or empty list, std::runtime_error on a bad prior file.
 std::vector<color::LightingPrior> loadLightingPriors(const ros::NodeHandle& pnh,
                                                      std::string* filter, std::string* dir);
+
+/// The odometry motion noise from ~odom_alpha1..4, ~odom_min_translation_std_m and
+/// ~odom_min_rotation_std_rad, each defaulting to *motion's value (ranges 0..10 and 0..1).
+void loadMotionModel(const ros::NodeHandle& pnh, localization::MotionModelConfig* motion);
+
+/// The planar pose ~initial_pose ([x_m, y_m, yaw_rad]) and ~initial_pose_std (three positive
+/// standard deviations). Returns false when ~initial_pose is empty or unset (then *pose is left);
+/// throws ParamError on a wrong length or a non-positive deviation.
+bool loadInitialPose(const ros::NodeHandle& pnh, const std::vector<double>& default_std,
+                     math::SE2* pose, Eigen::Matrix3d* cov);
 
 }  // namespace adaptive_perception::ros_params

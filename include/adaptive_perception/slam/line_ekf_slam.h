@@ -36,6 +36,8 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/laser/line_extraction.h"
+#include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/slam/line_landmark_model.h"
 
@@ -56,13 +58,21 @@ struct LineEkfSlamConfig {
   int confirm_sightings = 3;           // a landmark is confirmed after this many sightings
   int tentative_timeout_scans = 10;    // unconfirmed landmarks unseen this long are dropped
   double min_new_line_length_m = 0.5;  // shorter segments update but never start a landmark
-  // Odometry noise per step (amcl-style): sd(dx, dy) = a3 |t| + a4 |r| + min_t,
-  // sd(dtheta) = a1 |r| + a2 |t| + min_r.
-  double alpha1 = 0.1, alpha2 = 0.05, alpha3 = 0.05, alpha4 = 0.01;
-  double min_translation_std_m = 0.001, min_rotation_std_rad = 0.001;
+  // Model error added to each line's fit covariance: the fit covariance only knows range noise,
+  // not segmentation, corners, beam divergence or scans taken on the move, and successive scans'
+  // errors are not independent. Without it the filter becomes over-confident (NEES far above 3).
+  double line_model_rho_std_m = 0.01;
+  double line_model_alpha_std_rad = 0.005;
+  // Odometry noise per step, amcl-style (localization/motion_model.h): sd(dx, dy) = a3 |t| +
+  // a4 |r| + min_t, sd(dtheta) = a1 |r| + a2 |t| + min_r. Lower than a particle filter's defaults:
+  // the EKF wants the real noise, not the spread that keeps a particle set diverse.
+  localization::MotionModelConfig motion{0.1, 0.05, 0.08, 0.01, 0.001, 0.001};
   Variant variant = Variant::kStandard;
   double anchor_min_angle_rad = 0.5;  // direction difference of the second anchor to the first
   int retire_after_updates = 0;       // 0: retirement off; the paper used 50
+  // Two landmarks whose difference is compatible with zero at gate_probability are merged (the
+  // same wall initialised twice before a loop closed); checked for the landmarks seen each scan.
+  bool merge_landmarks = true;
   void validate() const;
 };
 
@@ -70,8 +80,12 @@ struct Landmark {
   std::uint64_t id = 0;
   int sightings = 0;
   int last_seen_scan = 0;
-  // Extent along the line for display: endpoints in map, the union of every matched segment.
+  // Extent along the line for display: endpoints in map, the union of every matched segment, and
+  // the pieces of wall actually seen (segments closer than kPieceGapM are joined): collinear walls
+  // are one landmark in the line model but several pieces on screen.
   Eigen::Vector2d start_m = Eigen::Vector2d::Zero(), end_m = Eigen::Vector2d::Zero();
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pieces;
+  static constexpr double kPieceGapM = 0.5;
   bool confirmed() const { return confirmed_flag; }
   bool confirmed_flag = false;
 };
@@ -91,6 +105,11 @@ struct LineObservation {
   Eigen::Vector2d start_m, end_m;  // segment endpoints in the robot frame
 };
 
+/// Segments extracted in the laser frame as observations in the robot (base) frame, with the
+/// covariance carried through the mount transform.
+std::vector<LineObservation> toObservations(const std::vector<laser::LineSegment>& segments,
+                                            const math::SE2& laser_in_base);
+
 class LineEkfSlam {
  public:
   static constexpr int kPoseDim = 3;
@@ -102,12 +121,15 @@ class LineEkfSlam {
                        const math::SE2& start = math::SE2(),
                        const Eigen::Matrix3d& start_cov = Eigen::Matrix3d::Zero());
 
+  /// Prediction from an odometry pose (odom -> base): the delta since the previous call; the first
+  /// call only records it. Returns false (and predicts nothing) on that first call.
+  bool predictFromOdometry(const math::SE2& odom_pose);
   /// Odometry delta in the previous robot frame.
   void predict(const math::SE2& odom_delta);
   void predict(const math::SE2& odom_delta, const Eigen::Matrix3d& delta_cov);
 
   struct UpdateResult {
-    int matched = 0, added = 0, removed = 0, anchored = 0, retired = 0;
+    int matched = 0, added = 0, removed = 0, anchored = 0, retired = 0, merged = 0;
     std::vector<int> association;  // per observation: landmark index or -1
   };
   UpdateResult update(const std::vector<LineObservation>& observations);
@@ -146,7 +168,10 @@ class LineEkfSlam {
     Eigen::VectorXd nu;
     Eigen::MatrixXd hr, hl, r;
     int col = -1;
+    Eigen::MatrixXd hl2;  // a second landmark (merging), at col2 when col2 >= 0
+    int col2 = -1;
   };
+  Eigen::Matrix2d modelNoise() const;
   Block pairingBlock(const LineObservation& obs, int lm) const;
   std::vector<Block> blocks(const std::vector<LineObservation>& obs,
                             const std::vector<Pairing>& pairs) const;
@@ -156,6 +181,8 @@ class LineEkfSlam {
   double applyUpdate(const std::vector<Block>& b);
   void normaliseLandmarks();
   void anchorOrRetire(UpdateResult* res);
+  /// Merges landmarks compatible with one of `seen` (state indices); returns how many merged.
+  int mergeCompatible(std::vector<int> seen);
   /// Moves landmark i out of the state: conditioned on its estimate (anchor) or marginalised.
   void fixLandmark(int i, bool anchor);
   void extendExtent(const Line& l, const LineObservation& obs, Landmark* lm);
@@ -175,6 +202,8 @@ class LineEkfSlam {
   std::vector<Landmark> landmarks_;
   std::vector<FixedLandmark> fixed_;
   std::uint64_t next_id_ = 0;
+  bool have_odom_ = false;
+  math::SE2 last_odom_;
   int scan_ = 0;
 };
 

@@ -30,6 +30,17 @@ Line observeLine(const math::SE2& pose, const Line& map_line, Eigen::Matrix<doub
 Line lineToMap(const math::SE2& pose, const Line& observed, Eigen::Matrix<double, 2, 3>* g_r,
                Eigen::Matrix2d* g_z);
 
+/// The line through two points (rho >= 0).
+Line lineThrough(const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+
+/// The frame transform T that carries two non-parallel reference lines onto two others:
+/// to[k] = lineToMap(T, from[k]) for k = 0, 1. Two undirected lines cannot tell a rotation th from
+/// th + pi (about their intersection), so the rotation is the one nearer yaw_hint_rad. Used to
+/// express ground truth in the frame an anchored map defines. Returns false when the lines are
+/// (nearly) parallel.
+bool transformBetweenLinePairs(const Line from[2], const Line to[2], math::SE2* t,
+                               double yaw_hint_rad = 0.0);
+
 /// The innovation z - h with the angle wrapped.
 Eigen::Vector2d lineInnovation(const Line& z, const Line& predicted);
 

@@ -48,13 +48,14 @@ void LineEkfSlamConfig::validate() const {
       tentative_timeout_scans >= 1,
       "tentative_timeout_scans = " + std::to_string(tentative_timeout_scans) + " (allowed: >= 1)");
   check(min_new_line_length_m >= 0.0, "min_new_line_length_m must be >= 0");
+  check(line_model_rho_std_m >= 0.0 && line_model_alpha_std_rad >= 0.0,
+        "line_model_rho_std_m and line_model_alpha_std_rad must be >= 0");
   check(anchor_min_angle_rad >= 0.0 && anchor_min_angle_rad <= math::kPi / 2.0,
         "anchor_min_angle_rad = " + std::to_string(anchor_min_angle_rad) + " (allowed: 0 .. pi/2)");
   check(retire_after_updates >= 0,
         "retire_after_updates = " + std::to_string(retire_after_updates) +
             " (allowed: 0 = off, or >= 1)");
-  for (double a : {alpha1, alpha2, alpha3, alpha4, min_translation_std_m, min_rotation_std_rad})
-    check(a >= 0.0 && std::isfinite(a), "odometry noise parameters must be finite and >= 0");
+  motion.validate();
 }
 
 LineEkfSlam::LineEkfSlam(const LineEkfSlamConfig& config, const math::SE2& start,
@@ -65,10 +66,43 @@ LineEkfSlam::LineEkfSlam(const LineEkfSlamConfig& config, const math::SE2& start
 }
 
 Eigen::Matrix3d LineEkfSlam::odometryNoise(const math::SE2& d) const {
-  const double t = std::hypot(d.x_m, d.y_m), r = std::fabs(d.yaw_rad);
-  const double st = config_.alpha3 * t + config_.alpha4 * r + config_.min_translation_std_m;
-  const double sr = config_.alpha1 * r + config_.alpha2 * t + config_.min_rotation_std_rad;
+  const Eigen::Vector2d sd = localization::motionNoiseStd(d, config_.motion);
+  const double st = sd[0], sr = sd[1];
   return Eigen::Vector3d(st * st, st * st, sr * sr).asDiagonal();
+}
+
+std::vector<LineObservation> toObservations(const std::vector<laser::LineSegment>& segments,
+                                            const math::SE2& mount) {
+  std::vector<LineObservation> out;
+  out.reserve(segments.size());
+  const double c = std::cos(mount.yaw_rad), sn = std::sin(mount.yaw_rad);
+  auto to_base = [&](const Eigen::Vector2d& p) {
+    return Eigen::Vector2d(mount.x_m + c * p.x() - sn * p.y(), mount.y_m + sn * p.x() + c * p.y());
+  };
+  for (const auto& seg : segments) {
+    Eigen::Matrix2d gz;
+    LineObservation ob;
+    ob.line = lineToMap(mount, Line{seg.line.rho_m, seg.line.alpha_rad}, nullptr, &gz);
+    ob.cov = gz * seg.line.cov * gz.transpose();
+    ob.start_m = to_base(seg.start_m);
+    ob.end_m = to_base(seg.end_m);
+    out.push_back(ob);
+  }
+  return out;
+}
+
+Eigen::Matrix2d LineEkfSlam::modelNoise() const {
+  return Eigen::Vector2d(config_.line_model_rho_std_m * config_.line_model_rho_std_m,
+                         config_.line_model_alpha_std_rad * config_.line_model_alpha_std_rad)
+      .asDiagonal();
+}
+
+bool LineEkfSlam::predictFromOdometry(const math::SE2& odom) {
+  const bool had = have_odom_;
+  if (had) predict(math::between(last_odom_, odom));
+  last_odom_ = odom;
+  have_odom_ = true;
+  return had;
 }
 
 void LineEkfSlam::predict(const math::SE2& d) { predict(d, odometryNoise(d)); }
@@ -96,7 +130,7 @@ LineEkfSlam::Block LineEkfSlam::pairingBlock(const LineObservation& obs, int lm)
   const Line pred = observeLine(pose(), fixed ? f->line : landmark(lm), &hr, &hl);
   b.nu = lineInnovation(obs.line, pred);
   b.hr = hr;
-  b.r = obs.cov;
+  b.r = obs.cov + modelNoise();
   if (fixed) {
     b.r += hl * f->cov * hl.transpose();  // a retired landmark's own uncertainty
   } else {
@@ -148,6 +182,7 @@ double LineEkfSlam::applyUpdate(const std::vector<Block>& b) {
     nu.segment(o, dk) = b[k].nu;
     pht.middleCols(o, dk) = p_.leftCols(3) * b[k].hr.transpose();
     if (b[k].col >= 0) pht.middleCols(o, dk) += p_.middleCols(b[k].col, 2) * b[k].hl.transpose();
+    if (b[k].col2 >= 0) pht.middleCols(o, dk) += p_.middleCols(b[k].col2, 2) * b[k].hl2.transpose();
   }
   // S = H (P H^T) + R from the same P H^T the covariance update uses, so that the expanded Joseph
   // form below stays consistent to round-off.
@@ -156,6 +191,7 @@ double LineEkfSlam::applyUpdate(const std::vector<Block>& b) {
     const int dk = static_cast<int>(b[k].nu.size());
     s.middleRows(o, dk) = b[k].hr * pht.topRows(3);
     if (b[k].col >= 0) s.middleRows(o, dk) += b[k].hl * pht.middleRows(b[k].col, 2);
+    if (b[k].col2 >= 0) s.middleRows(o, dk) += b[k].hl2 * pht.middleRows(b[k].col2, 2);
     s.block(o, o, dk, dk) += b[k].r;
   }
   const Eigen::LLT<Eigen::MatrixXd> llt(s);
@@ -303,14 +339,26 @@ void LineEkfSlam::extendExtent(const Line& l, const LineObservation& obs, Landma
   const Eigen::Vector2d n(std::cos(l.alpha_rad), std::sin(l.alpha_rad)), t(-n.y(), n.x());
   const Eigen::Vector2d foot = l.rho_m * n;
   Landmark& lm = *lm_out;
-  std::vector<double> u{t.dot(to_map(obs.start_m) - foot), t.dot(to_map(obs.end_m) - foot)};
-  if (lm.sightings > 0) {
-    u.push_back(t.dot(lm.start_m - foot));
-    u.push_back(t.dot(lm.end_m - foot));
+  // Intervals along the line: the known pieces and the new segment, sorted and joined.
+  std::vector<std::pair<double, double>> iv;
+  auto interval = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    const double ua = t.dot(a - foot), ub = t.dot(b - foot);
+    iv.emplace_back(std::min(ua, ub), std::max(ua, ub));
+  };
+  interval(to_map(obs.start_m), to_map(obs.end_m));
+  for (const auto& pc : lm.pieces) interval(pc.first, pc.second);
+  std::sort(iv.begin(), iv.end());
+  std::vector<std::pair<double, double>> joined;
+  for (const auto& x : iv) {
+    if (!joined.empty() && x.first <= joined.back().second + Landmark::kPieceGapM)
+      joined.back().second = std::max(joined.back().second, x.second);
+    else
+      joined.push_back(x);
   }
-  const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
-  lm.start_m = foot + *lo * t;
-  lm.end_m = foot + *hi * t;
+  lm.pieces.clear();
+  for (const auto& x : joined) lm.pieces.emplace_back(foot + x.first * t, foot + x.second * t);
+  lm.start_m = lm.pieces.front().first;
+  lm.end_m = lm.pieces.back().second;
 }
 
 void LineEkfSlam::addLandmark(const LineObservation& obs, int scan) {
@@ -325,8 +373,8 @@ void LineEkfSlam::addLandmark(const LineObservation& obs, int scan) {
   // Cross-covariance with everything: G_r P_r*.
   p.block(n, 0, 2, n) = gr * p_.topRows(3);
   p.block(0, n, n, 2) = p.block(n, 0, 2, n).transpose();
-  p.block<2, 2>(n, n) =
-      gr * p_.topLeftCorner<3, 3>() * gr.transpose() + gz * obs.cov * gz.transpose();
+  p.block<2, 2>(n, n) = gr * p_.topLeftCorner<3, 3>() * gr.transpose() +
+                        gz * (obs.cov + modelNoise()) * gz.transpose();
   p_ = std::move(p);
   Landmark lm;
   lm.id = next_id_++;
@@ -404,6 +452,70 @@ void LineEkfSlam::anchorOrRetire(UpdateResult* res) {
       }
 }
 
+int LineEkfSlam::mergeCompatible(std::vector<int> seen) {
+  const double gate2 = math::chiSquareQuantile(config_.gate_probability, 2);
+  int merged = 0;
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  while (!seen.empty()) {
+    const int i = seen.back();
+    seen.pop_back();
+    if (!landmarks_[i].confirmed()) continue;
+    for (int j = 0; j < numLandmarks(); ++j) {
+      if (j == i || !landmarks_[j].confirmed()) continue;
+      // Difference d = l_i - F l_j, with F the flip (-rho, alpha + pi) when the normals oppose.
+      const Line li = landmark(i), lj = landmark(j);
+      const bool flip = std::cos(li.alpha_rad - lj.alpha_rad) < 0.0;
+      const Eigen::Matrix2d f = flip ? Eigen::Vector2d(-1.0, 1.0).asDiagonal().toDenseMatrix()
+                                     : Eigen::Matrix2d::Identity();
+      const Eigen::Vector2d d(
+          li.rho_m - (flip ? -lj.rho_m : lj.rho_m),
+          math::angleDiff(li.alpha_rad, lj.alpha_rad + (flip ? math::kPi : 0.0)));
+      const int ci = landmarkIndex(i), cj = landmarkIndex(j);
+      const Eigen::Matrix2d s = p_.block<2, 2>(ci, ci) - p_.block<2, 2>(ci, cj) * f.transpose() -
+                                f * p_.block<2, 2>(cj, ci) +
+                                f * p_.block<2, 2>(cj, cj) * f.transpose();
+      const Eigen::LDLT<Eigen::Matrix2d> ldlt(s);
+      if (ldlt.info() != Eigen::Success || !(d.dot(ldlt.solve(d)) <= gate2)) continue;
+      // Constrain l_i = F l_j exactly (a pseudo-observation 0 = l_i - F l_j with tiny noise), then
+      // drop j: its information already lives in i through the correlation.
+      Block b;
+      b.nu = -d;
+      b.hr = Eigen::Matrix<double, 2, 3>::Zero();
+      b.hl = Eigen::Matrix2d::Identity();
+      b.col = ci;
+      b.hl2 = -f;
+      b.col2 = cj;
+      b.r = Eigen::Matrix2d::Identity() * 1e-10;
+      try {
+        applyUpdate({b});
+      } catch (const std::runtime_error&) {
+        continue;  // numerically degenerate pair: keep both
+      }
+      Landmark& keep = landmarks_[i];
+      const Landmark& gone = landmarks_[j];
+      keep.sightings += gone.sightings;
+      keep.last_seen_scan = std::max(keep.last_seen_scan, gone.last_seen_scan);
+      keep.confirmed_flag = keep.confirmed_flag || gone.confirmed_flag;
+      for (const auto& pc : gone.pieces) {
+        LineObservation o;  // pieces are in map: pass them through the robot frame
+        const math::SE2 inv = pose().inverse();
+        o.start_m = Eigen::Vector2d((inv * math::SE2(pc.first.x(), pc.first.y(), 0.0)).x_m,
+                                    (inv * math::SE2(pc.first.x(), pc.first.y(), 0.0)).y_m);
+        o.end_m = Eigen::Vector2d((inv * math::SE2(pc.second.x(), pc.second.y(), 0.0)).x_m,
+                                  (inv * math::SE2(pc.second.x(), pc.second.y(), 0.0)).y_m);
+        extendExtent(i, o);
+      }
+      removeLandmark(j);
+      for (int& k : seen)
+        if (k > j) --k;
+      ++merged;
+      return merged + mergeCompatible(seen);  // indices moved: restart on the rest
+    }
+  }
+  return merged;
+}
+
 LineEkfSlam::UpdateResult LineEkfSlam::update(const std::vector<LineObservation>& obs) {
   ++scan_;
   UpdateResult res;
@@ -435,6 +547,13 @@ LineEkfSlam::UpdateResult LineEkfSlam::update(const std::vector<LineObservation>
       removeLandmark(j);
       ++res.removed;
     }
+  if (config_.merge_landmarks) {
+    // The landmarks matched this scan, by id (removals above shifted the indices).
+    std::vector<int> seen;
+    for (int j = 0; j < numLandmarks(); ++j)
+      if (landmarks_[j].last_seen_scan == scan_) seen.push_back(j);
+    res.merged = mergeCompatible(seen);
+  }
   anchorOrRetire(&res);
   return res;
 }

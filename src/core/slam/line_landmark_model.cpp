@@ -1,5 +1,6 @@
 #include "adaptive_perception/slam/line_landmark_model.h"
 
+#include <Eigen/LU>
 #include <cmath>
 
 #include "adaptive_perception/math/angles.h"
@@ -71,6 +72,43 @@ Line lineToMap(const math::SE2& p, const Line& z, Eigen::Matrix<double, 2, 3>* g
 
 Eigen::Vector2d lineInnovation(const Line& z, const Line& h) {
   return Eigen::Vector2d(z.rho_m - h.rho_m, math::angleDiff(z.alpha_rad, h.alpha_rad));
+}
+
+Line lineThrough(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = (b - a).normalized();
+  Line l{a.x() * d.y() - a.y() * d.x(), std::atan2(-d.x(), d.y())};  // normal (d.y, -d.x)
+  if (l.rho_m < 0.0) {
+    l.rho_m = -l.rho_m;
+    l.alpha_rad = math::wrapAngle(l.alpha_rad + math::kPi);
+  }
+  return l;
+}
+
+bool transformBetweenLinePairs(const Line from[2], const Line to[2], math::SE2* t,
+                               double yaw_hint_rad) {
+  // Rotation: the normals turn by th or th + pi (a representation may flip to keep rho >= 0).
+  double th = math::wrapAngle(to[0].alpha_rad - from[0].alpha_rad);
+  if (std::cos(th - yaw_hint_rad) < 0.0) th = math::wrapAngle(th + math::kPi);
+  Eigen::Matrix2d a;
+  Eigen::Vector2d b;
+  for (int k = 0; k < 2; ++k) {
+    // The signed normal of from[k] after rotation, aligned with to[k]'s normal.
+    double sign = 1.0;
+    double rot_alpha = from[k].alpha_rad + th;
+    if (std::cos(math::wrapAngle(rot_alpha - to[k].alpha_rad)) < 0.0) {
+      sign = -1.0;
+      rot_alpha += math::kPi;
+    }
+    // Line n.x = sign rho in the new frame after translation t: n.(x - t) ... so
+    // to.rho = sign from.rho + n . t with n the normal of to[k].
+    const Eigen::Vector2d n(std::cos(rot_alpha), std::sin(rot_alpha));
+    a.row(k) = n.transpose();
+    b[k] = to[k].rho_m - sign * from[k].rho_m;
+  }
+  if (std::fabs(a.determinant()) < 1e-3) return false;
+  const Eigen::Vector2d tr = a.inverse() * b;
+  *t = math::SE2(tr.x(), tr.y(), th);
+  return true;
 }
 
 }  // namespace adaptive_perception::slam

@@ -3,12 +3,15 @@
 #include "adaptive_perception/slam/line_ekf_slam.h"
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdio>
 
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/math/kalman_filter.h"
+#include "adaptive_perception/slam/map_io.h"
 
 using namespace adaptive_perception;
 using slam::Line;
@@ -105,6 +108,7 @@ slam::LineObservation obsOf(const Line& l, double sd_rho = 0.01, double sd_alpha
 TEST(LineEkfSlam, JosephUpdateEqualsTextbookUpdate) {
   slam::LineEkfSlamConfig cfg;
   cfg.confirm_sightings = 1;
+  cfg.line_model_rho_std_m = cfg.line_model_alpha_std_rad = 0.0;  // the reference uses obs.cov
   slam::LineEkfSlam ekf(cfg, math::SE2(0, 0, 0), Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
   ekf.update({obsOf(Line{2.0, 0.1}), obsOf(Line{1.5, 1.7})});
   ASSERT_EQ(ekf.numLandmarks(), 2);
@@ -266,6 +270,7 @@ TEST(LineEkfSlam, RetiredLandmarksLeaveTheStateAndStillCorrectThePose) {
   slam::LineEkfSlamConfig cfg;
   cfg.confirm_sightings = 1;
   cfg.retire_after_updates = 2;
+  cfg.line_model_rho_std_m = cfg.line_model_alpha_std_rad = 0.0;  // the reference uses obs.cov
   slam::LineEkfSlam ekf(cfg, math::SE2(), Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
   for (int i = 0; i < 3; ++i) ekf.update({obsOf(Line{2.0, 0.1})});
   ASSERT_EQ(ekf.numLandmarks(), 0);
@@ -311,4 +316,41 @@ TEST(LineEkfSlam, ExternalPositionUpdateEqualsKalmanUpdateWithIdentityRows) {
   EXPECT_TRUE(ekf.covariance().isApprox(ref.cov(), 1e-9));
   EXPECT_THROW(slam::parseVariant("anchored"), std::invalid_argument);
   EXPECT_EQ(slam::variantName(slam::parseVariant("external")), "external");
+}
+
+// transformBetweenLinePairs inverts lineToMap for two non-parallel lines, including lines whose
+// representation flips to keep rho >= 0; lineThrough agrees with the Hessian form.
+TEST(LineModel, TransformBetweenLinePairsRecoversTheFrame) {
+  const math::SE2 t(1.3, -2.1, 2.5);
+  const Line from[2] = {slam::lineThrough({0.0, 1.0}, {4.0, 1.0}),
+                        slam::lineThrough({0.5, -3.0}, {0.5, 3.0})};
+  EXPECT_NEAR(from[0].rho_m, 1.0, 1e-12);
+  EXPECT_NEAR(from[0].alpha_rad, M_PI / 2, 1e-12);
+  const Line to[2] = {slam::lineToMap(t, from[0], nullptr, nullptr),
+                      slam::lineToMap(t, from[1], nullptr, nullptr)};
+  math::SE2 got;
+  ASSERT_TRUE(slam::transformBetweenLinePairs(from, to, &got, t.yaw_rad + 0.4));
+  EXPECT_NEAR(got.x_m, t.x_m, 1e-9);
+  EXPECT_NEAR(got.y_m, t.y_m, 1e-9);
+  EXPECT_NEAR(math::angleDiff(got.yaw_rad, t.yaw_rad), 0.0, 1e-9);
+  const Line parallel[2] = {from[0], slam::lineThrough({0.0, 2.0}, {4.0, 2.0})};
+  EXPECT_FALSE(slam::transformBetweenLinePairs(parallel, parallel, &got));
+}
+
+// The map YAML round-trips through yaml-cpp with the state's numbers, and a failed write leaves
+// the existing file untouched.
+TEST(LineMapYaml, WritesLandmarksAndCovarianceAtomically) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.confirm_sightings = 1;
+  slam::LineEkfSlam ekf(cfg, math::SE2(), Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
+  ekf.update({obsOf(Line{2.0, 0.1}), obsOf(Line{1.5, 1.7})});
+  const std::string path = testing::TempDir() + "/line_map_test.yaml";
+  slam::writeLineMapYaml(path, ekf);
+  const YAML::Node y = YAML::LoadFile(path);
+  ASSERT_EQ(y["landmarks"].size(), 2u);
+  EXPECT_NEAR(y["landmarks"][1]["rho_m"].as<double>(), ekf.landmark(1).rho_m, 1e-12);
+  EXPECT_EQ(y["state_covariance"]["dim"].as<int>(), 7);
+  EXPECT_NEAR(y["state_covariance"]["data"][7 * 3 + 3].as<double>(), ekf.covariance()(3, 3), 1e-15);
+  EXPECT_THROW(slam::writeLineMapYaml("/nonexistent_dir/map.yaml", ekf), std::runtime_error);
+  std::remove(path.c_str());
 }

@@ -1,0 +1,92 @@
+#pragma once
+// ekf_slam_mapper: line-landmark EKF SLAM (Garulli et al. 2005, section 2.2). The algorithm is
+// slam::LineEkfSlam; this node feeds it line_extractor's segments and the odometry from tf, and
+// publishes the robot pose, map -> odom and the map.
+//
+// Parameters (private; defaults and ranges in config/ekf_slam_mapper.yaml):
+//   ~variant (standard | anchor | external), ~retire_after_updates (int, 0 = off; the paper: 50),
+//   ~anchor_min_angle_rad.
+//   ~association (jcbb | nn), ~gate_probability, ~confirm_sightings, ~tentative_timeout_scans,
+//   ~min_new_line_length_m, ~line_model_rho_std_m, ~line_model_alpha_std_rad, ~merge_landmarks.
+//   ~odom_alpha1..4, ~odom_min_translation_std_m, ~odom_min_rotation_std_rad: motion noise.
+//   ~initial_pose ([x_m, y_m, yaw_rad], default the origin), ~initial_pose_std ([m, m, rad]).
+//   ~external_gate_probability: external poses whose innovation fails this chi-square gate are
+//   rejected (outliers).
+//   ~map_frame, ~odom_frame, ~base_frame, ~publish_tf (bool), ~transform_tolerance_s,
+//   ~tf_timeout_s, ~map_file (save_map's default path), ~path_max_poses.
+// Subscribed:
+//   lines (adaptive_perception/LineSegmentArray from line_extractor, in the laser frame),
+//   tf odom -> base_link and base_link -> the lines' frame at the scan stamp,
+//   external_pose (geometry_msgs/PoseWithCovarianceStamped in map; variant external only: x, y,
+//   and yaw too when its variance is finite and below 1e3 rad^2).
+// Published:
+//   ekf_slam_mapper/pose (geometry_msgs/PoseWithCovarianceStamped), tf map -> odom,
+//   ekf_slam_mapper/map (visualization_msgs/MarkerArray: confirmed segments black, anchored /
+//   retired blue, tentative grey; 2-sigma bands of each landmark's offset at its midpoint; the
+//   robot's 2-sigma position ellipse), ekf_slam_mapper/path (nav_msgs/Path),
+//   /diagnostics (landmarks, update time, scans, rejected inputs).
+// Services:
+//   ~save_map (adaptive_perception/SaveMap): the map and its covariance as YAML (slam/map_io.h),
+//   written to a temporary file and renamed.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <nav_msgs/Path.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <mutex>
+
+#include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/SaveMap.h"
+#include "adaptive_perception/slam/line_ekf_slam.h"
+
+namespace adaptive_perception {
+
+class EkfSlamMapperNode {
+ public:
+  /// Throws ros_params::ParamError with a clear message on a bad parameter.
+  EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+ private:
+  void onLines(const LineSegmentArrayConstPtr& msg);
+  void onExternalPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
+  bool onSaveMap(SaveMap::Request& req, SaveMap::Response& res);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  void reset(const char* why);
+  void publish(const std_msgs::Header& header, const Eigen::Isometry3d& odom_to_base);
+  visualization_msgs::MarkerArray mapMarkers(const std_msgs::Header& header) const;
+
+  std::mutex mutex_;
+  slam::LineEkfSlamConfig config_;
+  math::SE2 initial_pose_;
+  Eigen::Matrix3d initial_cov_ = Eigen::Matrix3d::Zero();
+  std::unique_ptr<slam::LineEkfSlam> slam_;
+  std::string map_frame_, odom_frame_, base_frame_, map_file_;
+  bool publish_tf_ = true;
+  double transform_tolerance_s_ = 0.1, tf_timeout_s_ = 0.2, external_gate_ = 0.999;
+  int path_max_poses_ = 20000;
+  ros::Time last_stamp_;
+  nav_msgs::Path path_;
+
+  long scans_ = 0, skipped_no_tf_ = 0, bad_segments_ = 0, resets_ = 0, external_used_ = 0,
+       external_rejected_ = 0, update_failures_ = 0;
+  double last_update_ms_ = 0.0, max_update_ms_ = 0.0;
+  double min_freq_ = 1.0, max_freq_ = 100.0;
+
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  ros::Subscriber lines_sub_, external_sub_;
+  ros::Publisher pose_pub_, map_pub_, path_pub_;
+  ros::ServiceServer save_srv_;
+  diagnostic_updater::Updater diagnostics_;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+};
+
+}  // namespace adaptive_perception

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Monte Carlo consistency of the line-landmark EKF SLAM on the simulator's loop world: for each seed,
+# simulate a 120 s loop bag, run evaluate_slam for each variant, and average the share of scans whose
+# pose NEES lies inside the 95% interval, the ATE and the real-time factor. Writes
+# results/slam/consistency.csv and prints one summary line per variant:
+#   slam_consistency: variant=V seeds=N nees_in_bounds_mean=.. ate_m_mean=.. realtime_factor_mean=..
+# Usage: scripts/evaluate_slam_consistency.sh [SEEDS=20] [VARIANTS="standard anchor external"]
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+BIN="$AP_WS/devel/lib/adaptive_perception"
+SEEDS="${1:-20}"
+VARIANTS="${2:-standard anchor external}"
+OUT="$AP_ROOT/results/slam"
+TMP="$(mktemp -d)"
+trap 'rm -rf "$TMP"' EXIT
+mkdir -p "$OUT"
+csv="$OUT/consistency.csv"
+echo "seed,variant,nees_in_bounds,nees_mean,ate_m,final_position_error_m,landmarks,realtime_factor" > "$csv"
+for seed in $(seq 1 "$SEEDS"); do
+  "$BIN/simulate_laser" --world "$AP_ROOT/config/worlds/loop.yaml" --duration_s 120 --seed "$seed" \
+    --output "$TMP/loop.bag" --overwrite > /dev/null
+  for v in $VARIANTS; do
+    line="$("$BIN/evaluate_slam" --bag "$TMP/loop.bag" --variant "$v" --seed "$seed" --output "$TMP/$v" | tail -n 1)"
+    get() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+    echo "$seed,$v,$(get nees_in_bounds),$(get nees_mean),$(get ate_m),$(get final_position_error_m),$(get landmarks),$(get realtime_factor)" >> "$csv"
+  done
+done
+for v in $VARIANTS; do
+  awk -F, -v v="$v" '$2 == v { n++; nb += $3; a += $5; rt += $8; if ($3 < 0.9) low++ }
+    END { printf "slam_consistency: variant=%s seeds=%d nees_in_bounds_mean=%.3f seeds_below_0.9=%d ate_m_mean=%.3f realtime_factor_mean=%.1f\n", v, n, nb / n, low, a / n, rt / n }' "$csv"
+done | tee "$OUT/consistency_summary.txt"

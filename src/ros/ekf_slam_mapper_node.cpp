@@ -1,0 +1,321 @@
+#include "adaptive_perception/ros/ekf_slam_mapper_node.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "adaptive_perception/math/chi_square.h"
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/slam/map_io.h"
+#include "adaptive_perception/world/camera_model.h"
+
+namespace adaptive_perception {
+
+namespace fs = std::filesystem;
+using ros_params::ParamError;
+
+EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : tf_listener_(tf_buffer_) {
+  namespace P = ros_params;
+  slam::LineEkfSlamConfig& c = config_;
+  try {
+    c.variant = slam::parseVariant(P::get<std::string>(pnh, "variant", "standard"));
+    c.association = slam::parseAssociation(P::get<std::string>(pnh, "association", "jcbb"));
+  } catch (const std::invalid_argument& e) {
+    throw ParamError(std::string("ekf_slam_mapper parameters: ") + e.what());
+  }
+  c.retire_after_updates =
+      P::getInRange(pnh, "retire_after_updates", c.retire_after_updates, 0, 1000000);
+  c.anchor_min_angle_rad =
+      P::getInRange(pnh, "anchor_min_angle_rad", c.anchor_min_angle_rad, 0.0, M_PI / 2);
+  c.gate_probability = P::getInRange(pnh, "gate_probability", c.gate_probability, 0.5, 0.999999);
+  c.confirm_sightings = P::getInRange(pnh, "confirm_sightings", c.confirm_sightings, 1, 1000);
+  c.tentative_timeout_scans =
+      P::getInRange(pnh, "tentative_timeout_scans", c.tentative_timeout_scans, 1, 100000);
+  c.min_new_line_length_m =
+      P::getInRange(pnh, "min_new_line_length_m", c.min_new_line_length_m, 0.0, 100.0);
+  c.line_model_rho_std_m =
+      P::getInRange(pnh, "line_model_rho_std_m", c.line_model_rho_std_m, 0.0, 10.0);
+  c.line_model_alpha_std_rad =
+      P::getInRange(pnh, "line_model_alpha_std_rad", c.line_model_alpha_std_rad, 0.0, 1.0);
+  c.merge_landmarks = P::get<bool>(pnh, "merge_landmarks", c.merge_landmarks);
+  P::loadMotionModel(pnh, &c.motion);
+  P::loadInitialPose(pnh, {1e-3, 1e-3, 1e-3}, &initial_pose_, &initial_cov_);
+  external_gate_ = P::getInRange(pnh, "external_gate_probability", external_gate_, 0.5, 0.999999);
+  map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
+  odom_frame_ = P::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
+  base_frame_ = P::getName(pnh, "base_frame", ros_topics::kBaseFrame);
+  publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
+  transform_tolerance_s_ =
+      P::getInRange(pnh, "transform_tolerance_s", transform_tolerance_s_, 0.0, 10.0);
+  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", tf_timeout_s_, 0.0, 5.0);
+  map_file_ = P::get<std::string>(pnh, "map_file", "line_map.yaml");
+  path_max_poses_ = P::getInRange(pnh, "path_max_poses", path_max_poses_, 1, 10000000);
+  try {
+    config_.validate();
+  } catch (const std::invalid_argument& e) {
+    throw ParamError(std::string("ekf_slam_mapper parameters: ") + e.what());
+  }
+  slam_ = std::make_unique<slam::LineEkfSlam>(config_, initial_pose_, initial_cov_);
+  path_.header.frame_id = map_frame_;
+
+  pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("ekf_slam_mapper/pose", 5);
+  map_pub_ = nh.advertise<visualization_msgs::MarkerArray>("ekf_slam_mapper/map", 1, true);
+  path_pub_ = nh.advertise<nav_msgs::Path>("ekf_slam_mapper/path", 1, true);
+  lines_sub_ = nh.subscribe("lines", 20, &EkfSlamMapperNode::onLines, this);
+  if (config_.variant == slam::Variant::kExternal)
+    external_sub_ = nh.subscribe("external_pose", 20, &EkfSlamMapperNode::onExternalPose, this);
+  save_srv_ = pnh.advertiseService("save_map", &EkfSlamMapperNode::onSaveMap, this);
+  diagnostics_.setHardwareID("ekf_slam_mapper");
+  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
+  diagnostics_.add(*freq_);
+  diagnostics_.add("slam", this, &EkfSlamMapperNode::diagnose);
+  ROS_INFO("ekf_slam_mapper: variant %s, association %s, retirement %s",
+           slam::variantName(config_.variant).c_str(),
+           config_.association == slam::Association::kJcbb ? "jcbb" : "nn",
+           config_.retire_after_updates > 0
+               ? ("after " + std::to_string(config_.retire_after_updates) + " updates").c_str()
+               : "off");
+}
+
+void EkfSlamMapperNode::reset(const char* why) {
+  ROS_WARN("ekf_slam_mapper: %s: the map starts again", why);
+  slam_ = std::make_unique<slam::LineEkfSlam>(config_, initial_pose_, initial_cov_);
+  path_.poses.clear();
+  ++resets_;
+}
+
+void EkfSlamMapperNode::onLines(const LineSegmentArrayConstPtr& msg) {
+  geometry_msgs::TransformStamped odom_base, base_laser;
+  try {
+    odom_base = tf_buffer_.lookupTransform(odom_frame_, base_frame_, msg->header.stamp,
+                                           ros::Duration(tf_timeout_s_));
+    base_laser = tf_buffer_.lookupTransform(base_frame_, msg->header.frame_id, msg->header.stamp,
+                                            ros::Duration(tf_timeout_s_));
+  } catch (const tf2::TransformException& e) {
+    ROS_WARN_THROTTLE(5.0, "ekf_slam_mapper: no odometry / laser mount for the scan (%s): skipped",
+                      e.what());
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++skipped_no_tf_;
+    return;
+  }
+  std::vector<laser::LineSegment> segments;
+  long bad = 0;
+  for (const auto& seg : ros_conv::fromLineSegmentArray(*msg)) {
+    const bool finite = std::isfinite(seg.line.rho_m) && std::isfinite(seg.line.alpha_rad) &&
+                        seg.line.cov.allFinite() && seg.start_m.allFinite() &&
+                        seg.end_m.allFinite();
+    if (finite && seg.line.cov(0, 0) >= 0.0 && seg.line.cov(1, 1) >= 0.0)
+      segments.push_back(seg);
+    else
+      ++bad;
+  }
+  if (bad > 0)
+    ROS_ERROR_THROTTLE(10.0,
+                       "ekf_slam_mapper: %ld segment(s) with non-finite or negative values "
+                       "dropped",
+                       bad);
+  std::lock_guard<std::mutex> lock(mutex_);
+  bad_segments_ += bad;
+  if (!last_stamp_.isZero() && msg->header.stamp < last_stamp_)
+    reset("time went backwards (bag looped?)");
+  last_stamp_ = msg->header.stamp;
+  const Eigen::Isometry3d odom = ros_conv::toIsometry(odom_base.transform);
+  const math::SE2 mount = world::isometryToPlanar(ros_conv::toIsometry(base_laser.transform));
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    slam_->predictFromOdometry(world::isometryToPlanar(odom));
+    slam_->update(slam::toObservations(segments, mount));
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(10.0, "ekf_slam_mapper: update failed (%s): scan skipped", e.what());
+    ++update_failures_;
+    return;
+  }
+  last_update_ms_ =
+      1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  max_update_ms_ = std::max(max_update_ms_, last_update_ms_);
+  ++scans_;
+  freq_->tick();
+  publish(msg->header, odom);
+  diagnostics_.update();
+}
+
+void EkfSlamMapperNode::onExternalPose(
+    const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg) {
+  if (!msg->header.frame_id.empty() && msg->header.frame_id != map_frame_) {
+    ROS_ERROR_THROTTLE(10.0, "ekf_slam_mapper: external_pose in frame '%s' (expected '%s') ignored",
+                       msg->header.frame_id.c_str(), map_frame_.c_str());
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++external_rejected_;
+    return;
+  }
+  const math::SE2 z = ros_conv::toSE2(msg->pose.pose);
+  const Eigen::Matrix3d cov = ros_conv::planarCovariance(msg->pose);
+  const Eigen::Matrix2d cxy = cov.topLeftCorner<2, 2>();
+  if (!std::isfinite(z.x_m) || !std::isfinite(z.y_m) || !cxy.allFinite() ||
+      cxy.determinant() <= 0.0 || cxy(0, 0) <= 0.0) {
+    ROS_ERROR_THROTTLE(10.0,
+                       "ekf_slam_mapper: external_pose with a non-finite pose or a position "
+                       "covariance that is not positive definite ignored");
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++external_rejected_;
+    return;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  const bool with_yaw =
+      std::isfinite(cov(2, 2)) && cov(2, 2) > 0.0 && cov(2, 2) < 1e3 && std::isfinite(z.yaw_rad);
+  // Gate: a copy takes the update; the real filter follows only when the innovation is plausible.
+  slam::LineEkfSlam trial = *slam_;
+  const double d2 = with_yaw ? trial.updateExternalPose(z, cov)
+                             : trial.updateExternalPosition(Eigen::Vector2d(z.x_m, z.y_m), cxy);
+  if (d2 > math::chiSquareQuantile(external_gate_, with_yaw ? 3 : 2)) {
+    ROS_WARN_THROTTLE(5.0, "ekf_slam_mapper: external pose rejected (Mahalanobis^2 %.1f)", d2);
+    ++external_rejected_;
+    return;
+  }
+  *slam_ = std::move(trial);
+  ++external_used_;
+}
+
+void EkfSlamMapperNode::publish(const std_msgs::Header& scan_header,
+                                const Eigen::Isometry3d& odom_to_base) {
+  std_msgs::Header h = scan_header;
+  h.frame_id = map_frame_;
+  const geometry_msgs::PoseWithCovarianceStamped pose =
+      ros_conv::toPoseWithCovariance(slam_->pose(), slam_->poseCovariance(), h);
+  pose_pub_.publish(pose);
+  if (publish_tf_)
+    tf_broadcaster_.sendTransform(ros_conv::toTransform(
+        ros_conv::mapToOdom(slam_->pose(), odom_to_base), map_frame_, odom_frame_,
+        scan_header.stamp + ros::Duration(transform_tolerance_s_)));
+  geometry_msgs::PoseStamped ps;
+  ps.header = h;
+  ps.pose = pose.pose.pose;
+  path_.header.stamp = h.stamp;
+  path_.poses.push_back(ps);
+  if (static_cast<int>(path_.poses.size()) > path_max_poses_)
+    path_.poses.erase(path_.poses.begin());
+  if (path_pub_.getNumSubscribers() > 0) path_pub_.publish(path_);
+  if (map_pub_.getNumSubscribers() > 0) map_pub_.publish(mapMarkers(h));
+}
+
+visualization_msgs::MarkerArray EkfSlamMapperNode::mapMarkers(const std_msgs::Header& h) const {
+  auto make = [&](const std::string& ns, int type, double width, float r, float g, float b) {
+    visualization_msgs::Marker m;
+    m.header = h;
+    m.ns = ns;
+    m.type = type;
+    m.action = visualization_msgs::Marker::ADD;
+    m.pose.orientation.w = 1.0;
+    m.scale.x = width;
+    m.color.r = r;
+    m.color.g = g;
+    m.color.b = b;
+    m.color.a = 1.0;
+    return m;
+  };
+  visualization_msgs::Marker confirmed =
+      make("landmarks", visualization_msgs::Marker::LINE_LIST, 0.06, 0.0f, 0.0f, 0.0f);
+  visualization_msgs::Marker fixed =
+      make("fixed landmarks", visualization_msgs::Marker::LINE_LIST, 0.08, 0.0f, 0.3f, 0.9f);
+  visualization_msgs::Marker tentative =
+      make("tentative landmarks", visualization_msgs::Marker::LINE_LIST, 0.03, 0.6f, 0.6f, 0.6f);
+  visualization_msgs::Marker bands =
+      make("2-sigma", visualization_msgs::Marker::LINE_LIST, 0.02, 0.9f, 0.2f, 0.2f);
+  auto point = [](const Eigen::Vector2d& p) {
+    geometry_msgs::Point q;
+    q.x = p.x();
+    q.y = p.y();
+    return q;
+  };
+  auto add = [&](visualization_msgs::Marker& m, const slam::Landmark& info) {
+    for (const auto& pc : info.pieces) {
+      m.points.push_back(point(pc.first));
+      m.points.push_back(point(pc.second));
+    }
+  };
+  for (int i = 0; i < slam_->numLandmarks(); ++i) {
+    const slam::Landmark& info = slam_->landmarkInfo(i);
+    add(info.confirmed() ? confirmed : tentative, info);
+    if (!info.confirmed()) continue;
+    // 2-sigma band of the line's normal offset at the midpoint: the offset of a point at distance
+    // u along the line from the foot is rho + u * (alpha error) to first order.
+    const slam::Line l = slam_->landmark(i);
+    const Eigen::Vector2d n(std::cos(l.alpha_rad), std::sin(l.alpha_rad));
+    const Eigen::Vector2d t(-n.y(), n.x()), mid = 0.5 * (info.start_m + info.end_m);
+    const double u = t.dot(mid - l.rho_m * n);
+    const Eigen::Matrix2d c = slam_->landmarkCovariance(i);
+    const double sd = std::sqrt(std::max(0.0, c(0, 0) + 2.0 * u * c(0, 1) + u * u * c(1, 1)));
+    bands.points.push_back(point(mid - 2.0 * sd * n));
+    bands.points.push_back(point(mid + 2.0 * sd * n));
+  }
+  for (int k = 0; k < slam_->numFixedLandmarks(); ++k) add(fixed, slam_->fixedLandmark(k).info);
+  // The robot's 2-sigma position ellipse.
+  visualization_msgs::Marker ellipse =
+      make("robot 2-sigma", visualization_msgs::Marker::LINE_STRIP, 0.02, 0.9f, 0.2f, 0.2f);
+  const Eigen::Matrix2d pc = slam_->poseCovariance().topLeftCorner<2, 2>();
+  const Eigen::LLT<Eigen::Matrix2d> llt(pc + 1e-12 * Eigen::Matrix2d::Identity());
+  const Eigen::Matrix2d lower = llt.matrixL();
+  for (int k = 0; k <= 36; ++k) {
+    const double a = 2.0 * M_PI * k / 36.0;
+    const Eigen::Vector2d p = Eigen::Vector2d(slam_->pose().x_m, slam_->pose().y_m) +
+                              2.0 * lower * Eigen::Vector2d(std::cos(a), std::sin(a));
+    ellipse.points.push_back(point(p));
+  }
+  visualization_msgs::MarkerArray out;
+  for (auto* m : {&confirmed, &fixed, &tentative, &bands, &ellipse})
+    if (!m->points.empty()) out.markers.push_back(*m);
+  // Clear namespaces that became empty (e.g. no tentative landmarks any more).
+  for (auto* m : {&confirmed, &fixed, &tentative, &bands, &ellipse})
+    if (m->points.empty()) {
+      m->action = visualization_msgs::Marker::DELETE;
+      out.markers.push_back(*m);
+    }
+  return out;
+}
+
+bool EkfSlamMapperNode::onSaveMap(SaveMap::Request& req, SaveMap::Response& res) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const std::string path = req.path.empty() ? map_file_ : req.path;
+  res.success = false;
+  if (fs::exists(path) && !req.overwrite) {
+    res.message = path + " exists; call again with overwrite: true to replace it";
+    return true;
+  }
+  try {
+    slam::writeLineMapYaml(path, *slam_);
+    res.success = true;
+    res.message = "saved " + std::to_string(slam_->numLandmarks()) + " landmarks and " +
+                  std::to_string(slam_->numFixedLandmarks()) + " fixed landmarks to " + path;
+  } catch (const std::exception& e) {
+    res.message = e.what();
+  }
+  return true;
+}
+
+void EkfSlamMapperNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  if (scans_ == 0)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no scan processed yet");
+  else
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "mapping");
+  int confirmed = 0;
+  for (int i = 0; i < slam_->numLandmarks(); ++i) confirmed += slam_->landmarkInfo(i).confirmed();
+  stat.add("variant", slam::variantName(config_.variant));
+  stat.add("landmarks (confirmed)", confirmed);
+  stat.add("landmarks (in state)", slam_->numLandmarks());
+  stat.add("landmarks (anchored or retired)", slam_->numFixedLandmarks());
+  stat.add("update time last (ms)", last_update_ms_);
+  stat.add("update time max (ms)", max_update_ms_);
+  stat.add("scans", scans_);
+  stat.add("scans skipped (no tf)", skipped_no_tf_);
+  stat.add("scans skipped (update failed)", update_failures_);
+  stat.add("segments dropped (bad values)", bad_segments_);
+  stat.add("external poses used", external_used_);
+  stat.add("external poses rejected", external_rejected_);
+  stat.add("resets", resets_);
+}
+
+}  // namespace adaptive_perception
