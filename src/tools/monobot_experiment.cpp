@@ -7,8 +7,8 @@
 // bounds, measurement, Kalman gains) in DIR/<model>_run.csv (plot: scripts/plot_monobot.py), and
 // over --runs Monte Carlo runs the final landmark error's mean (bias) and spread, its correlation
 // with the initial (unobservable) robot error, the share of runs whose final landmark error lies in
-// the filter's 2-sigma bound, and the rank of the total Fisher information (eq. 14). DIR/summary.csv
-// holds one row per model. Last line:
+// the filter's 2-sigma bound, and the rank of the total Fisher information (eq. 14).
+// DIR/summary.csv holds one row per model. Last line:
 //   monobot_experiment: state_dim=.. standard_fisher_rank=.. anchor_fisher_rank=..
 //     external_fisher_rank=.. standard_final_error_spread_m=.. anchor_final_error_spread_m=..
 //     external_final_error_spread_m=.. standard_bias_m=.. anchor_bias_m=.. external_bias_m=..

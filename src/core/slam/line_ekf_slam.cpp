@@ -200,10 +200,12 @@ double LineEkfSlam::applyUpdate(const std::vector<Block>& b) {
   const Eigen::MatrixXd k = llt.solve(pht.transpose()).transpose();  // eq. 7: P H^T S^-1
   x_ += k * nu;                                                      // eq. 6 with innovation eq. 8
   // Eq. 9, Joseph form (I - K H) P (I - K H)^T + K R K^T, expanded so it costs O(n^2 d):
-  // P - K (H P) - (P H^T) K^T + K (H P H^T + R) K^T.
-  const Eigen::MatrixXd khp = k * pht.transpose();
-  p_ = p_ - khp - khp.transpose() + k * s * k.transpose();
-  p_ = 0.5 * (p_ + p_.transpose());
+  // P - K (H P) - (P H^T) K^T + K (H P H^T + R) K^T = P + K V^T + V K^T with V = K S / 2 - P H^T,
+  // evaluated on the lower triangle only (Eigen's triangular products), then mirrored.
+  const Eigen::MatrixXd v = 0.5 * (k * s) - pht;
+  p_.triangularView<Eigen::Lower>() += k * v.transpose();
+  p_.triangularView<Eigen::Lower>() += v * k.transpose();
+  p_.triangularView<Eigen::StrictlyUpper>() = p_.transpose();
   normaliseLandmarks();
   return nu.dot(llt.solve(nu));
 }
