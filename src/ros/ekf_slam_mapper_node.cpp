@@ -7,6 +7,7 @@
 #include "adaptive_perception/math/chi_square.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/tf_lookup.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/slam/map_io.h"
 #include "adaptive_perception/world/camera_model.h"
@@ -89,12 +90,10 @@ void EkfSlamMapperNode::reset(const char* why) {
 }
 
 void EkfSlamMapperNode::onLines(const LineSegmentArrayConstPtr& msg) {
-  geometry_msgs::TransformStamped odom_base, base_laser;
+  ros_conv::OdomAndMount tf;
   try {
-    odom_base = tf_buffer_.lookupTransform(odom_frame_, base_frame_, msg->header.stamp,
-                                           ros::Duration(tf_timeout_s_));
-    base_laser = tf_buffer_.lookupTransform(base_frame_, msg->header.frame_id, msg->header.stamp,
-                                            ros::Duration(tf_timeout_s_));
+    tf = ros_conv::lookupOdomAndMount(tf_buffer_, odom_frame_, base_frame_, msg->header.frame_id,
+                                      msg->header.stamp, tf_timeout_s_);
   } catch (const tf2::TransformException& e) {
     ROS_WARN_THROTTLE(5.0, "ekf_slam_mapper: no odometry / laser mount for the scan (%s): skipped",
                       e.what());
@@ -123,8 +122,8 @@ void EkfSlamMapperNode::onLines(const LineSegmentArrayConstPtr& msg) {
   if (!last_stamp_.isZero() && msg->header.stamp < last_stamp_)
     reset("time went backwards (bag looped?)");
   last_stamp_ = msg->header.stamp;
-  const Eigen::Isometry3d odom = ros_conv::toIsometry(odom_base.transform);
-  const math::SE2 mount = world::isometryToPlanar(ros_conv::toIsometry(base_laser.transform));
+  const Eigen::Isometry3d& odom = tf.odom_to_base;
+  const math::SE2 mount = world::isometryToPlanar(tf.base_to_sensor);
   const auto t0 = std::chrono::steady_clock::now();
   try {
     slam_->predictFromOdometry(world::isometryToPlanar(odom));

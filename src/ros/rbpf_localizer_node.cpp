@@ -10,6 +10,7 @@
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/tf_lookup.h"
 #include "adaptive_perception/ros/topics.h"
 
 namespace adaptive_perception {
@@ -126,12 +127,10 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     ++skipped_bad_image_;
     return;
   }
-  geometry_msgs::TransformStamped odom_base, base_cam;
+  ros_conv::OdomAndMount tf;
   try {
-    odom_base = tf_buffer_.lookupTransform(odom_frame_, base_frame_, msg->header.stamp,
-                                           ros::Duration(tf_timeout_s_));
-    base_cam = tf_buffer_.lookupTransform(base_frame_, msg->header.frame_id, msg->header.stamp,
-                                          ros::Duration(tf_timeout_s_));
+    tf = ros_conv::lookupOdomAndMount(tf_buffer_, odom_frame_, base_frame_, msg->header.frame_id,
+                                      msg->header.stamp, tf_timeout_s_);
   } catch (const tf2::TransformException& e) {
     ROS_WARN_THROTTLE(5.0, "rbpf_localizer: no odometry / head pose for the image (%s): skipped",
                       e.what());
@@ -141,7 +140,7 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   }
   std::lock_guard<std::mutex> lock(mutex_);
   if (!ensureLocalizer(yuv.cols, yuv.rows)) return;
-  const Eigen::Isometry3d odom = ros_conv::toIsometry(odom_base.transform);
+  const Eigen::Isometry3d odom = tf.odom_to_base;
   double dt_s = 0.0;
   math::SE2 delta;
   if (last_odom_) {
@@ -160,7 +159,7 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   }
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    last_ = rbpf_->step(delta, dt_s, yuv, ros_conv::toIsometry(base_cam.transform));
+    last_ = rbpf_->step(delta, dt_s, yuv, tf.base_to_sensor);
   } catch (const std::exception& e) {
     ROS_ERROR_THROTTLE(10.0, "rbpf_localizer: frame dropped: %s", e.what());
     ++skipped_bad_image_;

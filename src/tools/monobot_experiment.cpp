@@ -46,9 +46,9 @@ int main(int argc, char** argv) {
                "initial_error_correlation,in_2sigma_share,final_landmark_gain\n";
     std::map<std::string, double> spread, bias, corr;
     std::map<std::string, int> rank;
-    for (auto model : {slam::MonobotModel::kStandard, slam::MonobotModel::kAnchor,
-                       slam::MonobotModel::kExternal}) {
-      const std::string name = slam::monobotModelName(model);
+    for (auto model :
+         {slam::Variant::kStandard, slam::Variant::kAnchor, slam::Variant::kExternal}) {
+      const std::string name = slam::variantName(model);
       math::Rng rng(seed);
       std::vector<double> fin, init;
       int inside = 0;

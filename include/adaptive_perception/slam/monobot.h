@@ -1,7 +1,7 @@
 #pragma once
 // The monobot of Garulli et al. 2005 (section 2.2, Figs. 4-6): a robot on a line, x_{k+1} = x_k +
 // u_k + v_k (eq. 19), observing landmarks on the same line, z = x_f - x_r + w. Three measurement
-// models:
+// models (the variants of the line-landmark filter, slam::Variant):
 //   kStandard: z = [-1 I] x + w                          fully correlated, unobservable
 //   kAnchor:   z0 = anchor - x_r + w0 (eq. 20), z = ...   one known global reference
 //   kExternal: z0 = x_r + w0 (eq. 23), z = ...            an external sensor on the robot
@@ -13,12 +13,9 @@
 #include <vector>
 
 #include "adaptive_perception/math/rng.h"
+#include "adaptive_perception/slam/line_ekf_slam.h"  // Variant
 
 namespace adaptive_perception::slam {
-
-enum class MonobotModel { kStandard, kAnchor, kExternal };
-MonobotModel parseMonobotModel(const std::string& name);  // standard | anchor | external
-std::string monobotModelName(MonobotModel m);
 
 struct MonobotConfig {
   int steps = 100;            // iterations of the sinusoidal path (back at start_m)
@@ -51,6 +48,6 @@ struct MonobotRun {
 };
 
 /// One run; deterministic for the state of `rng`.
-MonobotRun runMonobot(const MonobotConfig& config, MonobotModel model, math::Rng& rng);
+MonobotRun runMonobot(const MonobotConfig& config, Variant model, math::Rng& rng);
 
 }  // namespace adaptive_perception::slam

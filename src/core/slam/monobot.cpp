@@ -9,25 +9,6 @@
 
 namespace adaptive_perception::slam {
 
-MonobotModel parseMonobotModel(const std::string& name) {
-  if (name == "standard") return MonobotModel::kStandard;
-  if (name == "anchor") return MonobotModel::kAnchor;
-  if (name == "external") return MonobotModel::kExternal;
-  throw std::invalid_argument("monobot model = '" + name +
-                              "' (allowed: standard, anchor, external)");
-}
-
-std::string monobotModelName(MonobotModel m) {
-  switch (m) {
-    case MonobotModel::kAnchor:
-      return "anchor";
-    case MonobotModel::kExternal:
-      return "external";
-    default:
-      return "standard";
-  }
-}
-
 void MonobotConfig::validate() const {
   auto check = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument("MonobotConfig: " + what);
@@ -41,10 +22,10 @@ void MonobotConfig::validate() const {
         "min_range_std_m and external_std_m must be > 0 (a noise-free sensor has no S^-1)");
 }
 
-MonobotRun runMonobot(const MonobotConfig& c, MonobotModel model, math::Rng& rng) {
+MonobotRun runMonobot(const MonobotConfig& c, Variant model, math::Rng& rng) {
   c.validate();
   const int n = c.landmarks, dim = 1 + n;
-  const bool extra = model != MonobotModel::kStandard;  // the z0 row
+  const bool extra = model != Variant::kStandard;  // the z0 row
   auto path = [&](int k) {
     return c.start_m + c.amplitude_m * (1.0 - std::cos(2.0 * M_PI * k / c.steps));
   };
@@ -85,7 +66,7 @@ MonobotRun runMonobot(const MonobotConfig& c, MonobotModel model, math::Rng& rng
   // Measurement model: rows (z0 if any), then one per landmark.
   const int m = n + (extra ? 1 : 0);
   Eigen::MatrixXd h = Eigen::MatrixXd::Zero(m, dim);
-  if (extra) h(0, 0) = model == MonobotModel::kAnchor ? -1.0 : 1.0;
+  if (extra) h(0, 0) = model == Variant::kAnchor ? -1.0 : 1.0;
   for (int i = 0; i < n; ++i) {
     h(m - n + i, 0) = -1.0;
     h(m - n + i, 1 + i) = 1.0;
@@ -105,7 +86,7 @@ MonobotRun runMonobot(const MonobotConfig& c, MonobotModel model, math::Rng& rng
     Eigen::VectorXd z(m);
     Eigen::MatrixXd w = Eigen::MatrixXd::Zero(m, m);
     if (extra) {
-      const bool anchor = model == MonobotModel::kAnchor;
+      const bool anchor = model == Variant::kAnchor;
       const double sd = anchor ? range_sd(c.anchor_m - true_r) : c.external_std_m;
       z[0] = (anchor ? c.anchor_m - true_r : true_r) + rng.gaussian(0.0, sd);
       // The model of the anchor row is z0 - anchor = -x_r: move the known offset to z.

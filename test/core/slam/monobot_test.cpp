@@ -15,7 +15,7 @@ namespace {
 struct Stats {
   double mean = 0.0, sd = 0.0, corr_first = 0.0;
 };
-Stats monteCarlo(slam::MonobotModel model, int runs) {
+Stats monteCarlo(slam::Variant model, int runs) {
   slam::MonobotConfig cfg;
   math::Rng rng(11);
   std::vector<double> fin, first;
@@ -44,9 +44,9 @@ Stats monteCarlo(slam::MonobotModel model, int runs) {
 
 TEST(Monobot, StandardFinalErrorKeepsTheInitialErrorAnchoredDoesNot) {
   const int runs = 400;
-  const Stats standard = monteCarlo(slam::MonobotModel::kStandard, runs);
-  const Stats anchor = monteCarlo(slam::MonobotModel::kAnchor, runs);
-  const Stats external = monteCarlo(slam::MonobotModel::kExternal, runs);
+  const Stats standard = monteCarlo(slam::Variant::kStandard, runs);
+  const Stats anchor = monteCarlo(slam::Variant::kAnchor, runs);
+  const Stats external = monteCarlo(slam::Variant::kExternal, runs);
   EXPECT_GT(standard.corr_first, 0.9);
   EXPECT_LT(std::fabs(anchor.corr_first), 0.5);
   EXPECT_LT(anchor.sd, standard.sd);
@@ -58,7 +58,7 @@ TEST(Monobot, StandardFinalErrorKeepsTheInitialErrorAnchoredDoesNot) {
 
 TEST(Monobot, StandardLandmarkGainVanishes) {
   math::Rng rng(3);
-  const auto run = slam::runMonobot(slam::MonobotConfig(), slam::MonobotModel::kStandard, rng);
+  const auto run = slam::runMonobot(slam::MonobotConfig(), slam::Variant::kStandard, rng);
   // The landmark's own variance stops shrinking and its gain tends to zero.
   EXPECT_LT(std::fabs(run.steps.back().landmark_gain),
             0.05 * std::fabs(run.steps[1].landmark_gain));
@@ -71,7 +71,7 @@ TEST(Monobot, BadConfigurationNamesTheField) {
   cfg.landmarks = 0;
   math::Rng rng(1);
   try {
-    slam::runMonobot(cfg, slam::MonobotModel::kStandard, rng);
+    slam::runMonobot(cfg, slam::Variant::kStandard, rng);
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("landmarks"), std::string::npos);

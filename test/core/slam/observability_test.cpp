@@ -43,12 +43,10 @@ TEST(Observability, MismatchedSizesAreRejected) {
 TEST(Observability, MonobotFisherRankPerModel) {
   slam::MonobotConfig cfg;
   cfg.landmarks = 3;
-  for (auto model : {slam::MonobotModel::kStandard, slam::MonobotModel::kAnchor,
-                     slam::MonobotModel::kExternal}) {
+  for (auto model : {slam::Variant::kStandard, slam::Variant::kAnchor, slam::Variant::kExternal}) {
     math::Rng rng(7);
     const auto run = slam::runMonobot(cfg, model, rng);
     const int rank = slam::analyzeInformation(run.fisher).rank;
-    EXPECT_EQ(rank, model == slam::MonobotModel::kStandard ? 3 : 4)
-        << slam::monobotModelName(model);
+    EXPECT_EQ(rank, model == slam::Variant::kStandard ? 3 : 4) << slam::variantName(model);
   }
 }
