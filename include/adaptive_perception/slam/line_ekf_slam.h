@@ -73,6 +73,8 @@ struct LineEkfSlamConfig {
   // Two landmarks whose difference is compatible with zero at gate_probability are merged (the
   // same wall initialised twice before a loop closed); checked for the landmarks seen each scan.
   bool merge_landmarks = true;
+  // JCBB search budget per scan (tree nodes); past it the best hypothesis found so far is used.
+  long jcbb_max_nodes = 20000;
   void validate() const;
 };
 

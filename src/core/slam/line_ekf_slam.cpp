@@ -52,6 +52,7 @@ void LineEkfSlamConfig::validate() const {
         "line_model_rho_std_m and line_model_alpha_std_rad must be >= 0");
   check(anchor_min_angle_rad >= 0.0 && anchor_min_angle_rad <= math::kPi / 2.0,
         "anchor_min_angle_rad = " + std::to_string(anchor_min_angle_rad) + " (allowed: 0 .. pi/2)");
+  check(jcbb_max_nodes >= 1, "jcbb_max_nodes must be >= 1");
   check(retire_after_updates >= 0,
         "retire_after_updates = " + std::to_string(retire_after_updates) +
             " (allowed: 0 = off, or >= 1)");
@@ -267,6 +268,9 @@ void LineEkfSlam::jcbb(const std::vector<LineObservation>& obs,
   }
   // Bound: even pairing every remaining observation cannot beat the best.
   if (current.size() + (obs.size() - i) < best.size()) return;
+  // Budget: JCBB is exponential in the worst case (many parallel walls); past the budget the best
+  // hypothesis found so far stands.
+  if (nodes > config_.jcbb_max_nodes) return;
   for (int lm : candidates[i]) {
     bool used = false;
     for (const auto& p : current) used |= p.lm == lm;
@@ -388,18 +392,16 @@ void LineEkfSlam::addLandmark(const LineObservation& obs, int scan) {
 }
 
 void LineEkfSlam::removeLandmark(int i) {
-  const int n = static_cast<int>(x_.size()), k = landmarkIndex(i);
-  std::vector<int> keep;
-  for (int j = 0; j < n; ++j)
-    if (j != k && j != k + 1) keep.push_back(j);
-  Eigen::VectorXd x(n - 2);
-  Eigen::MatrixXd p(n - 2, n - 2);
-  for (int a = 0; a < n - 2; ++a) {
-    x[a] = x_[keep[a]];
-    for (int b = 0; b < n - 2; ++b) p(a, b) = p_(keep[a], keep[b]);
+  // Drop rows and columns k, k+1 by moving the blocks after them up and left (O(n^2) block copies,
+  // no per-element indexing).
+  const int n = static_cast<int>(x_.size()), k = landmarkIndex(i), tail = n - k - 2;
+  if (tail > 0) {
+    x_.segment(k, tail) = x_.tail(tail).eval();
+    p_.block(0, k, n, tail) = p_.rightCols(tail).eval();
+    p_.block(k, 0, tail, n - 2) = p_.block(k + 2, 0, tail, n - 2).eval();
   }
-  x_ = std::move(x);
-  p_ = std::move(p);
+  x_.conservativeResize(n - 2);
+  p_.conservativeResize(n - 2, n - 2);
   landmarks_.erase(landmarks_.begin() + i);
 }
 
