@@ -4,8 +4,9 @@
 //   evaluate_slam --bag FILE [--variant standard|anchor|external] [--retire_after N]
 //                 [--association jcbb|nn] [--gate_probability 0.99] [--relations FILE]
 //                 [--make_relations FILE] [--external_std_m 0.1] [--seed N] [--max_scans N]
-//                 [--range_noise_std_m 0.01] [--odom_noise_scale 1] [--output DIR]
-//                 [--name TITLE]
+//                 [--range_noise_std_m 0.01] [--max_gap_m 0.3] [--odom_noise_scale 1]
+//                 [--line_model_rho_std_m 0.02] [--line_model_alpha_std_rad 0.01]
+//                 [--merge_landmarks 1] [--output DIR] [--name TITLE]
 //
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
 // /tf_static (identity when absent). The external variant simulates an absolute position sensor
@@ -22,6 +23,7 @@
 // Kuemmerle et al. metric against --relations (Freiburg format, bag stamps). -1 where not
 // available. --make_relations writes reference relations from ground_truth/pose (1 s chain + 200
 // random pairs). Writes OUTPUT/estimate.tum, truth.tum, odometry.tum, pose_covariance.csv,
+// nees.csv (per scan with ground truth: NEES and the pose error),
 // landmarks.csv and map.png.
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -127,7 +129,9 @@ int main(int argc, char** argv) {
                    "evaluate_slam --bag FILE [--variant standard|anchor|external] "
                    "[--retire_after N] [--association jcbb|nn] [--gate_probability P] "
                    "[--relations FILE] [--make_relations FILE] [--external_std_m S] [--seed N] "
-                   "[--max_scans N] [--range_noise_std_m S] [--odom_noise_scale K] [--output DIR] "
+                   "[--max_scans N] [--range_noise_std_m S] [--max_gap_m M] [--odom_noise_scale K] "
+                   "[--line_model_rho_std_m S] [--line_model_alpha_std_rad S] [--merge_landmarks "
+                   "0|1] [--output DIR] "
                    "[--name TITLE]");
   const std::string bag_path = args.get("bag", "");
   slam::LineEkfSlamConfig cfg;
@@ -145,6 +149,7 @@ int main(int argc, char** argv) {
   cfg.line_model_rho_std_m = args.getDouble("line_model_rho_std_m", cfg.line_model_rho_std_m);
   cfg.line_model_alpha_std_rad =
       args.getDouble("line_model_alpha_std_rad", cfg.line_model_alpha_std_rad);
+  cfg.merge_landmarks = args.getInt("merge_landmarks", cfg.merge_landmarks ? 1 : 0) != 0;
   const double odom_scale = args.getDouble("odom_noise_scale", 1.0);
   localization::MotionModelConfig& m = cfg.motion;
   for (double* a : {&m.alpha1, &m.alpha2, &m.alpha3, &m.alpha4, &m.min_translation_std_m,
@@ -152,6 +157,7 @@ int main(int argc, char** argv) {
     *a *= odom_scale;
   laser::LineExtractionConfig lines;
   lines.range_noise_std_m = args.getDouble("range_noise_std_m", lines.range_noise_std_m);
+  lines.max_gap_m = args.getDouble("max_gap_m", lines.max_gap_m);
   args.finish();
   if (bag_path.empty()) args.fail("--bag FILE is required");
   try {
@@ -263,6 +269,8 @@ int main(int argc, char** argv) {
                                 : math::SE2();
     long in_bounds = 0;
     double nees_sum = 0.0;
+    std::ofstream nees_csv(fs::path(output) / "nees.csv");
+    nees_csv << "scan,nees,err_x_m,err_y_m,err_yaw_rad\n";
     for (size_t i = 0; i < est_cov.size(); ++i) {
       const math::SE2 g = frame * truth_at_scan[i];
       const math::SE2& e = est_cov[i].first;
@@ -271,6 +279,7 @@ int main(int argc, char** argv) {
       const double nees = err.dot(est_cov[i].second.ldlt().solve(err));
       in_bounds += nees >= nees_lo && nees <= nees_hi;
       nees_sum += nees;
+      nees_csv << i << "," << nees << "," << err.x() << "," << err.y() << "," << err.z() << "\n";
     }
     std::ofstream lm(fs::path(output) / "landmarks.csv");
     lm << "rho_m,alpha_rad,x0,y0,x1,y1,sightings,fixed\n";
