@@ -19,7 +19,7 @@ PACKAGES=(
   python3-sensor-msgs python3-geometry-msgs python3-nav-msgs python3-tf2-msgs python3-visualization-msgs
   python3-diagnostic-msgs python3-std-msgs
   # core libraries
-  libeigen3-dev libopencv-dev libyaml-cpp-dev libbz2-dev
+  libeigen3-dev libopencv-dev libyaml-cpp-dev libbz2-dev libsqlite3-dev
   # tests and benchmarks
   libgtest-dev googletest libbenchmark-dev
   # plots, rviz under a virtual display
