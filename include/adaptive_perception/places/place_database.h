@@ -1,0 +1,105 @@
+#pragma once
+// The place database: an SQLite file holding the places, their adjacency (the topological map)
+// and every training image's histograms in each configured colour space, with the histogram
+// settings it was built with.
+//
+// Safety: every change runs in one transaction (SQLite's rollback journal, synchronous=FULL), so a
+// writer killed at any point leaves the database as it was before the change or after it. A file
+// that is not SQLite, or SQLite that is not a place database (application_id, format key), is
+// refused with an error naming the file and is never written. A database built with other
+// settings (bins, colour spaces, mask) is refused by requireSettings with both settings named.
+//
+// Schema (version 1): meta(key, value); places(id, name UNIQUE); adjacency(a, b) with a < b;
+// images(id, place_id, source, stamp_s); histograms(image_id, space, data BLOB of 3 * bins
+// little-endian float32).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "adaptive_perception/places/histogram.h"
+#include "adaptive_perception/places/place_matcher.h"
+
+struct sqlite3;
+
+namespace adaptive_perception::places {
+
+/// What the stored histograms were computed with. Two databases (or a database and a caller)
+/// agree only when all of these are equal.
+struct DatabaseSettings {
+  int bins = 256;
+  std::vector<int> spaces{0, 1, 2, 3, 4, 5, 6, 7};
+  MaskConfig mask;
+
+  HistogramConfig histogramConfig() const;
+  static DatabaseSettings fromHistogramConfig(const HistogramConfig& c);
+  std::string toString() const;  // "bins=256 spaces=rgb,... mask=none"
+  bool operator==(const DatabaseSettings& o) const {
+    return bins == o.bins && spaces == o.spaces && mask == o.mask;
+  }
+};
+
+/// One training image to store.
+struct TrainingImage {
+  std::string source;  // where it came from: a file path or "bag.bag@12.5"
+  double stamp_s = 0.0;
+  ImageHistograms histograms;  // must have every space of the settings
+};
+
+struct PlaceInfo {
+  std::string name;
+  int images = 0;
+};
+
+class PlaceDatabase {
+ public:
+  /// Creates a new database at `path`; throws std::runtime_error when the file already exists
+  /// (it is never replaced) or cannot be created.
+  static PlaceDatabase create(const std::string& path, const DatabaseSettings& settings);
+  /// Opens an existing database; throws std::runtime_error naming the file when it is missing,
+  /// not SQLite, not a place database, or of an unknown schema version.
+  static PlaceDatabase open(const std::string& path, bool read_only = false);
+  /// open() when the file exists, else create().
+  static PlaceDatabase openOrCreate(const std::string& path, const DatabaseSettings& settings);
+
+  PlaceDatabase(PlaceDatabase&& o) noexcept;
+  PlaceDatabase& operator=(PlaceDatabase&& o) noexcept;
+  ~PlaceDatabase();
+
+  const std::string& path() const { return path_; }
+  const DatabaseSettings& settings() const { return settings_; }
+  /// Throws std::runtime_error naming both settings when `wanted` differs from the stored ones.
+  void requireSettings(const DatabaseSettings& wanted) const;
+
+  /// Adds the images to `place` (created when new) in one transaction; returns the stored count.
+  /// Throws std::invalid_argument when an image lacks a space of the settings or has other bins;
+  /// nothing is stored then.
+  int addImages(const std::string& place, const std::vector<TrainingImage>& images);
+  /// Removes a place with its images and edges; false when there is no such place.
+  bool removePlace(const std::string& place);
+  /// Adds (or with connected = false removes) the undirected edge a - b; both places must exist.
+  void setAdjacent(const std::string& a, const std::string& b, bool connected = true);
+
+  std::vector<PlaceInfo> places() const;  // sorted by name
+  /// Edges as pairs of names, each once, sorted.
+  std::vector<std::pair<std::string, std::string>> edges() const;
+  long imageCount() const;
+
+  /// Loads the histograms of `spaces` (default: all stored) into a contiguous in-memory index,
+  /// places in name order. Throws std::invalid_argument for a space the database lacks.
+  PlaceIndex loadIndex(const std::vector<int>& spaces = {}) const;
+  /// Adjacency lists in the index's place order (for PlaceFilter).
+  std::vector<std::vector<int>> adjacencyLists(const PlaceIndex& index) const;
+
+ private:
+  PlaceDatabase(sqlite3* db, std::string path, bool read_only);
+  void exec(const std::string& sql) const;
+  void readSettings();
+  int placeId(const std::string& name, bool create);
+
+  sqlite3* db_ = nullptr;
+  std::string path_;
+  bool read_only_ = false;
+  DatabaseSettings settings_;
+};
+
+}  // namespace adaptive_perception::places

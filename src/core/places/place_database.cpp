@@ -1,0 +1,442 @@
+#include "adaptive_perception/places/place_database.h"
+
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+
+namespace adaptive_perception::places {
+namespace {
+
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "histogram blobs are little-endian");
+
+constexpr int kApplicationId = 0x41505043;  // "APPC"
+constexpr int kSchemaVersion = 1;
+constexpr const char* kFormat = "adaptive_perception.places";
+
+// A prepared statement that finalizes itself.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& sql, const std::string& path) : db_(db), path_(path) {
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
+      throw std::runtime_error(path + ": " + sqlite3_errmsg(db) + " (in: " + sql + ")");
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  Statement& bind(int i, const std::string& s) {
+    check(sqlite3_bind_text(stmt_, i, s.c_str(), -1, SQLITE_TRANSIENT));
+    return *this;
+  }
+  Statement& bind(int i, long long v) {
+    check(sqlite3_bind_int64(stmt_, i, v));
+    return *this;
+  }
+  Statement& bind(int i, double v) {
+    check(sqlite3_bind_double(stmt_, i, v));
+    return *this;
+  }
+  Statement& bindBlob(int i, const void* data, int bytes) {
+    check(sqlite3_bind_blob(stmt_, i, data, bytes, SQLITE_TRANSIENT));
+    return *this;
+  }
+  /// True while there is a row.
+  bool step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw std::runtime_error(path_ + ": " + sqlite3_errmsg(db_));
+  }
+  void reset() {
+    sqlite3_reset(stmt_);
+    sqlite3_clear_bindings(stmt_);
+  }
+  long long integer(int col) const { return sqlite3_column_int64(stmt_, col); }
+  std::string text(int col) const {
+    const unsigned char* t = sqlite3_column_text(stmt_, col);
+    return t ? reinterpret_cast<const char*>(t) : "";
+  }
+  const void* blob(int col) const { return sqlite3_column_blob(stmt_, col); }
+  int bytes(int col) const { return sqlite3_column_bytes(stmt_, col); }
+
+ private:
+  void check(int rc) {
+    if (rc != SQLITE_OK) throw std::runtime_error(path_ + ": " + sqlite3_errmsg(db_));
+  }
+  sqlite3* db_;
+  std::string path_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+// Rolls back unless committed.
+class Transaction {
+ public:
+  Transaction(sqlite3* db, const std::string& path) : db_(db), path_(path) {
+    run("BEGIN IMMEDIATE");
+  }
+  ~Transaction() {
+    if (!done_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+  }
+  void commit() {
+    run("COMMIT");
+    done_ = true;
+  }
+
+ private:
+  void run(const char* sql) {
+    char* err = nullptr;
+    if (sqlite3_exec(db_, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+      const std::string msg = err ? err : "unknown error";
+      sqlite3_free(err);
+      throw std::runtime_error(path_ + ": " + msg);
+    }
+  }
+  sqlite3* db_;
+  std::string path_;
+  bool done_ = false;
+};
+
+sqlite3* openRaw(const std::string& path, int flags) {
+  sqlite3* db = nullptr;
+  const int rc = sqlite3_open_v2(path.c_str(), &db, flags, nullptr);
+  if (rc != SQLITE_OK) {
+    const std::string msg = db ? sqlite3_errmsg(db) : sqlite3_errstr(rc);
+    sqlite3_close(db);
+    throw std::runtime_error(path + ": cannot open as a place database: " + msg);
+  }
+  sqlite3_busy_timeout(db, 5000);
+  sqlite3_extended_result_codes(db, 1);
+  return db;
+}
+
+}  // namespace
+
+HistogramConfig DatabaseSettings::histogramConfig() const {
+  HistogramConfig c;
+  c.bins = bins;
+  c.spaces = spaces;
+  c.mask = mask;
+  return c;
+}
+
+DatabaseSettings DatabaseSettings::fromHistogramConfig(const HistogramConfig& c) {
+  DatabaseSettings s;
+  s.bins = c.bins;
+  s.spaces = c.spaces;
+  std::sort(s.spaces.begin(), s.spaces.end());
+  s.spaces.erase(std::unique(s.spaces.begin(), s.spaces.end()), s.spaces.end());
+  s.mask = c.mask;
+  return s;
+}
+
+std::string DatabaseSettings::toString() const {
+  return "bins=" + std::to_string(bins) + " spaces=" + spacesToString(spaces) +
+         " mask=" + mask.toString();
+}
+
+PlaceDatabase::PlaceDatabase(sqlite3* db, std::string path, bool read_only)
+    : db_(db), path_(std::move(path)), read_only_(read_only) {}
+
+PlaceDatabase::PlaceDatabase(PlaceDatabase&& o) noexcept
+    : db_(o.db_), path_(std::move(o.path_)), read_only_(o.read_only_), settings_(o.settings_) {
+  o.db_ = nullptr;
+}
+
+PlaceDatabase& PlaceDatabase::operator=(PlaceDatabase&& o) noexcept {
+  if (this != &o) {
+    sqlite3_close(db_);
+    db_ = o.db_;
+    o.db_ = nullptr;
+    path_ = std::move(o.path_);
+    read_only_ = o.read_only_;
+    settings_ = o.settings_;
+  }
+  return *this;
+}
+
+PlaceDatabase::~PlaceDatabase() { sqlite3_close(db_); }
+
+void PlaceDatabase::exec(const std::string& sql) const {
+  char* err = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
+    const std::string msg = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw std::runtime_error(path_ + ": " + msg);
+  }
+}
+
+PlaceDatabase PlaceDatabase::create(const std::string& path, const DatabaseSettings& settings) {
+  settings.histogramConfig().validate();
+  if (std::filesystem::exists(path))
+    throw std::runtime_error(path +
+                             ": already exists; a new place database is never written over "
+                             "an existing file");
+  // Build it beside the target, then link it into place: link() fails rather than replace a
+  // file that appeared meanwhile, and a crash leaves at worst a stray temporary file.
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  std::filesystem::remove(tmp);
+  {
+    PlaceDatabase db(openRaw(tmp, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE), tmp, false);
+    db.exec("PRAGMA application_id = " + std::to_string(kApplicationId));
+    db.exec("PRAGMA user_version = " + std::to_string(kSchemaVersion));
+    Transaction t(db.db_, tmp);
+    db.exec(
+        "CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+        "CREATE TABLE places (id INTEGER PRIMARY KEY, name TEXT NOT NULL UNIQUE);"
+        "CREATE TABLE adjacency (a INTEGER NOT NULL, b INTEGER NOT NULL, PRIMARY KEY (a, b));"
+        "CREATE TABLE images (id INTEGER PRIMARY KEY, place_id INTEGER NOT NULL, source TEXT, "
+        "stamp_s REAL);"
+        "CREATE INDEX images_by_place ON images (place_id);"
+        "CREATE TABLE histograms (image_id INTEGER NOT NULL, space INTEGER NOT NULL, data BLOB "
+        "NOT NULL, PRIMARY KEY (image_id, space));");
+    Statement meta(db.db_, "INSERT INTO meta (key, value) VALUES (?, ?)", tmp);
+    const std::vector<std::pair<std::string, std::string>> kv = {
+        {"format", kFormat},
+        {"bins", std::to_string(settings.bins)},
+        {"spaces", spacesToString(settings.spaces)},
+        {"mask", settings.mask.toString()}};
+    for (const auto& [k, v] : kv) {
+      meta.bind(1, k).bind(2, v);
+      meta.step();
+      meta.reset();
+    }
+    t.commit();
+  }
+  if (::link(tmp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::filesystem::remove(tmp);
+    throw std::runtime_error(path + ": cannot create the place database: " + why);
+  }
+  std::filesystem::remove(tmp);
+  return open(path);
+}
+
+PlaceDatabase PlaceDatabase::open(const std::string& path, bool read_only) {
+  if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
+  if (!std::filesystem::is_regular_file(path))
+    throw std::runtime_error(path + ": not a regular file");
+  PlaceDatabase db(openRaw(path, read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE), path,
+                   read_only);
+  long long app_id = 0, version = 0;
+  try {
+    Statement q(db.db_, "PRAGMA application_id", path);
+    if (q.step()) app_id = q.integer(0);
+    Statement v(db.db_, "PRAGMA user_version", path);
+    if (v.step()) version = v.integer(0);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(path + ": not a place database (not readable as SQLite: " +
+                             std::string(e.what()).substr(path.size() + 2) + ")");
+  }
+  if (app_id != kApplicationId)
+    throw std::runtime_error(path +
+                             ": an SQLite file but not an adaptive_perception place database "
+                             "(application_id " +
+                             std::to_string(app_id) + "); it is left untouched");
+  if (version != kSchemaVersion)
+    throw std::runtime_error(path + ": place database schema version " + std::to_string(version) +
+                             ", this build reads version " + std::to_string(kSchemaVersion));
+  db.readSettings();
+  if (!read_only) db.exec("PRAGMA synchronous = FULL");
+  return db;
+}
+
+PlaceDatabase PlaceDatabase::openOrCreate(const std::string& path,
+                                          const DatabaseSettings& settings) {
+  return std::filesystem::exists(path) ? open(path) : create(path, settings);
+}
+
+void PlaceDatabase::readSettings() {
+  std::map<std::string, std::string> meta;
+  try {
+    Statement q(db_, "SELECT key, value FROM meta", path_);
+    while (q.step()) meta[q.text(0)] = q.text(1);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(path_ + ": damaged place database (meta table: " + e.what() + ")");
+  }
+  if (meta["format"] != kFormat)
+    throw std::runtime_error(path_ + ": meta 'format' is '" + meta["format"] + "', expected '" +
+                             kFormat + "'");
+  try {
+    settings_.bins = std::stoi(meta.at("bins"));
+    settings_.spaces = parseSpaces(meta.at("spaces"));
+    settings_.mask = MaskConfig::parse(meta.at("mask"));
+    settings_.histogramConfig().validate();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path_ + ": damaged place database settings (" + e.what() + ")");
+  }
+}
+
+void PlaceDatabase::requireSettings(const DatabaseSettings& wanted) const {
+  if (!(wanted == settings_))
+    throw std::runtime_error(path_ + ": built with " + settings_.toString() + ", asked for " +
+                             wanted.toString() +
+                             "; use the database's settings or build a new database");
+}
+
+int PlaceDatabase::placeId(const std::string& name, bool create) {
+  Statement q(db_, "SELECT id FROM places WHERE name = ?", path_);
+  q.bind(1, name);
+  if (q.step()) return static_cast<int>(q.integer(0));
+  if (!create) return -1;
+  Statement ins(db_, "INSERT INTO places (name) VALUES (?)", path_);
+  ins.bind(1, name);
+  ins.step();
+  return static_cast<int>(sqlite3_last_insert_rowid(db_));
+}
+
+int PlaceDatabase::addImages(const std::string& place, const std::vector<TrainingImage>& images) {
+  if (place.empty()) throw std::invalid_argument("addImages: empty place name");
+  for (size_t i = 0; i < images.size(); ++i) {
+    const ImageHistograms& h = images[i].histograms;
+    if (h.bins != settings_.bins)
+      throw std::invalid_argument("addImages: image " + images[i].source + " has " +
+                                  std::to_string(h.bins) + " bins, the database " +
+                                  std::to_string(settings_.bins));
+    for (int s : settings_.spaces)
+      if (static_cast<int>(h.spaces[s].size()) != 3 * settings_.bins)
+        throw std::invalid_argument("addImages: image " + images[i].source + " lacks space " +
+                                    spaceName(s));
+  }
+  Transaction t(db_, path_);
+  const int pid = placeId(place, true);
+  Statement img(db_, "INSERT INTO images (place_id, source, stamp_s) VALUES (?, ?, ?)", path_);
+  Statement hist(db_, "INSERT INTO histograms (image_id, space, data) VALUES (?, ?, ?)", path_);
+  for (const TrainingImage& ti : images) {
+    img.bind(1, static_cast<long long>(pid)).bind(2, ti.source).bind(3, ti.stamp_s);
+    img.step();
+    img.reset();
+    const long long iid = sqlite3_last_insert_rowid(db_);
+    for (int s : settings_.spaces) {
+      const std::vector<float>& h = ti.histograms.spaces[s];
+      hist.bind(1, iid).bind(2, static_cast<long long>(s));
+      hist.bindBlob(3, h.data(), static_cast<int>(h.size() * sizeof(float)));
+      hist.step();
+      hist.reset();
+    }
+  }
+  t.commit();
+  return static_cast<int>(images.size());
+}
+
+bool PlaceDatabase::removePlace(const std::string& place) {
+  Transaction t(db_, path_);
+  const int pid = placeId(place, false);
+  if (pid < 0) return false;
+  const std::string id = std::to_string(pid);
+  exec("DELETE FROM histograms WHERE image_id IN (SELECT id FROM images WHERE place_id = " + id +
+       ");"
+       "DELETE FROM images WHERE place_id = " +
+       id + "; DELETE FROM adjacency WHERE a = " + id + " OR b = " + id +
+       "; DELETE FROM places WHERE id = " + id + ";");
+  t.commit();
+  return true;
+}
+
+void PlaceDatabase::setAdjacent(const std::string& a, const std::string& b, bool connected) {
+  if (a == b) throw std::invalid_argument("setAdjacent: a place is not adjacent to itself");
+  Transaction t(db_, path_);
+  int ia = placeId(a, false), ib = placeId(b, false);
+  if (ia < 0 || ib < 0)
+    throw std::invalid_argument("setAdjacent: unknown place '" + (ia < 0 ? a : b) + "'");
+  if (ia > ib) std::swap(ia, ib);
+  Statement q(db_,
+              connected ? "INSERT OR IGNORE INTO adjacency (a, b) VALUES (?, ?)"
+                        : "DELETE FROM adjacency WHERE a = ? AND b = ?",
+              path_);
+  q.bind(1, static_cast<long long>(ia)).bind(2, static_cast<long long>(ib));
+  q.step();
+  t.commit();
+}
+
+std::vector<PlaceInfo> PlaceDatabase::places() const {
+  Statement q(db_,
+              "SELECT p.name, COUNT(i.id) FROM places p LEFT JOIN images i ON i.place_id = p.id "
+              "GROUP BY p.id ORDER BY p.name",
+              path_);
+  std::vector<PlaceInfo> out;
+  while (q.step()) out.push_back({q.text(0), static_cast<int>(q.integer(1))});
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> PlaceDatabase::edges() const {
+  Statement q(db_,
+              "SELECT pa.name, pb.name FROM adjacency j JOIN places pa ON pa.id = j.a JOIN "
+              "places pb ON pb.id = j.b",
+              path_);
+  std::vector<std::pair<std::string, std::string>> out;
+  while (q.step()) {
+    std::string a = q.text(0), b = q.text(1);
+    if (b < a) std::swap(a, b);
+    out.emplace_back(a, b);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+long PlaceDatabase::imageCount() const {
+  Statement q(db_, "SELECT COUNT(*) FROM images", path_);
+  q.step();
+  return static_cast<long>(q.integer(0));
+}
+
+PlaceIndex PlaceDatabase::loadIndex(const std::vector<int>& spaces_in) const {
+  const std::vector<int> spaces = spaces_in.empty() ? settings_.spaces : spaces_in;
+  std::vector<bool> wanted(kNumSpaces, false);
+  for (int s : spaces) {
+    if (std::find(settings_.spaces.begin(), settings_.spaces.end(), s) == settings_.spaces.end())
+      throw std::invalid_argument(path_ + ": the database has no " + spaceName(s) +
+                                  " histograms (it has " + spacesToString(settings_.spaces) + ")");
+    wanted[s] = true;
+  }
+  PlaceIndex index(settings_.bins);
+  for (const PlaceInfo& p : places()) index.addPlace(p.name);
+  Statement q(db_,
+              "SELECT p.name, h.image_id, h.space, h.data FROM histograms h JOIN images i ON "
+              "i.id = h.image_id JOIN places p ON p.id = i.place_id ORDER BY h.image_id, h.space",
+              path_);
+  const int bytes = 3 * settings_.bins * static_cast<int>(sizeof(float));
+  long long current = -1;
+  std::string current_place;
+  ImageHistograms h;
+  auto flush = [&] {
+    if (current >= 0) index.addImage(index.placeIndex(current_place), h);
+  };
+  while (q.step()) {
+    const long long iid = q.integer(1);
+    if (iid != current) {
+      flush();
+      current = iid;
+      current_place = q.text(0);
+      h = ImageHistograms();
+      h.bins = settings_.bins;
+    }
+    const int s = static_cast<int>(q.integer(2));
+    if (s < 0 || s >= kNumSpaces || !wanted[s]) continue;
+    if (q.bytes(3) != bytes)
+      throw std::runtime_error(path_ + ": image " + std::to_string(iid) + " has a " +
+                               std::to_string(q.bytes(3)) + "-byte histogram, expected " +
+                               std::to_string(bytes));
+    h.spaces[s].resize(3 * settings_.bins);
+    std::memcpy(h.spaces[s].data(), q.blob(3), bytes);
+  }
+  flush();
+  return index;
+}
+
+std::vector<std::vector<int>> PlaceDatabase::adjacencyLists(const PlaceIndex& index) const {
+  std::vector<std::vector<int>> adj(index.numPlaces());
+  for (const auto& [a, b] : edges()) {
+    const int ia = index.placeIndex(a), ib = index.placeIndex(b);
+    if (ia < 0 || ib < 0) continue;
+    adj[ia].push_back(ib);
+    adj[ib].push_back(ia);
+  }
+  return adj;
+}
+
+}  // namespace adaptive_perception::places

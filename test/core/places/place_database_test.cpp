@@ -1,0 +1,254 @@
+// The SQLite place database: round trip, refusal of other settings, foreign and corrupt files,
+// and a writer killed in the middle of its transactions.
+#include "adaptive_perception/places/place_database.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+using namespace adaptive_perception::places;
+namespace fs = std::filesystem;
+
+namespace {
+
+class PlaceDatabaseTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("ap_places_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    settings_.bins = 8;
+    settings_.spaces = {0, 4};
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+  // Deterministic histograms: band mass at bin (seed + band) % bins.
+  ImageHistograms hist(int seed) const {
+    ImageHistograms h;
+    h.bins = settings_.bins;
+    for (int s : settings_.spaces) {
+      h.spaces[s].assign(3 * h.bins, 0.0f);
+      for (int band = 0; band < 3; ++band) {
+        h.spaces[s][band * h.bins + (seed + band) % h.bins] = 0.75f;
+        h.spaces[s][band * h.bins + (seed + band + s) % h.bins] += 0.25f;
+      }
+    }
+    return h;
+  }
+  std::vector<TrainingImage> images(int first, int n) const {
+    std::vector<TrainingImage> out;
+    for (int i = first; i < first + n; ++i)
+      out.push_back({"image_" + std::to_string(i) + ".png", 0.5 * i, hist(i)});
+    return out;
+  }
+  static std::string contents(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+
+  fs::path dir_;
+  DatabaseSettings settings_;
+};
+
+}  // namespace
+
+TEST_F(PlaceDatabaseTest, RoundTripMatchesAnInMemoryIndex) {
+  PlaceIndex direct(settings_.bins);
+  {
+    PlaceDatabase db = PlaceDatabase::create(file("p.sqlite"), settings_);
+    EXPECT_EQ(db.addImages("kitchen", images(0, 3)), 3);
+    EXPECT_EQ(db.addImages("corridor", images(10, 2)), 2);
+    EXPECT_EQ(db.addImages("kitchen", images(3, 1)), 1);
+    db.setAdjacent("kitchen", "corridor");
+    db.setAdjacent("corridor", "kitchen");  // the same edge
+  }
+  // Places come back in name order.
+  const int c = direct.addPlace("corridor"), k = direct.addPlace("kitchen");
+  for (const auto& ti : images(10, 2)) direct.addImage(c, ti.histograms);
+  for (const auto& ti : images(0, 4)) direct.addImage(k, ti.histograms);
+
+  PlaceDatabase db = PlaceDatabase::open(file("p.sqlite"), true);
+  EXPECT_EQ(db.settings(), settings_);
+  EXPECT_EQ(db.imageCount(), 6);
+  const auto places = db.places();
+  ASSERT_EQ(places.size(), 2u);
+  EXPECT_EQ(places[0].name, "corridor");
+  EXPECT_EQ(places[0].images, 2);
+  EXPECT_EQ(places[1].images, 4);
+  ASSERT_EQ(db.edges().size(), 1u);
+  EXPECT_EQ(db.edges()[0], std::make_pair(std::string("corridor"), std::string("kitchen")));
+
+  const PlaceIndex loaded = db.loadIndex();
+  ASSERT_EQ(loaded.placeNames(), direct.placeNames());
+  for (int s : settings_.spaces)
+    for (Distance d : parseDistances("all")) {
+      const auto a = loaded.nodeDistances(s, d, hist(2));
+      const auto b = direct.nodeDistances(s, d, hist(2));
+      for (size_t x = 0; x < a.size(); ++x) EXPECT_DOUBLE_EQ(a[x], b[x]);
+    }
+  EXPECT_EQ(db.adjacencyLists(loaded), (std::vector<std::vector<int>>{{1}, {0}}));
+  // A space the database was not built with.
+  EXPECT_THROW(db.loadIndex({2}), std::invalid_argument);
+}
+
+TEST_F(PlaceDatabaseTest, RemovePlaceAndEdges) {
+  PlaceDatabase db = PlaceDatabase::create(file("p.sqlite"), settings_);
+  db.addImages("a", images(0, 2));
+  db.addImages("b", images(2, 2));
+  db.addImages("c", images(4, 2));
+  db.setAdjacent("a", "b");
+  db.setAdjacent("b", "c");
+  EXPECT_THROW(db.setAdjacent("a", "nowhere"), std::invalid_argument);
+  EXPECT_TRUE(db.removePlace("b"));
+  EXPECT_FALSE(db.removePlace("b"));
+  EXPECT_EQ(db.imageCount(), 4);
+  EXPECT_TRUE(db.edges().empty());
+  db.setAdjacent("a", "c");
+  db.setAdjacent("a", "c", false);
+  EXPECT_TRUE(db.edges().empty());
+  EXPECT_EQ(db.loadIndex().totalImages(0), 4);
+}
+
+TEST_F(PlaceDatabaseTest, RefusesOtherSettingsAndBadImages) {
+  PlaceDatabase db = PlaceDatabase::create(file("p.sqlite"), settings_);
+  DatabaseSettings other = settings_;
+  other.bins = 16;
+  try {
+    db.requireSettings(other);
+    FAIL() << "other bins accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("bins=8"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bins=16"), std::string::npos) << e.what();
+  }
+  other = settings_;
+  other.mask = MaskConfig::parse("ring:10,10,2,8");
+  EXPECT_THROW(db.requireSettings(other), std::runtime_error);
+  EXPECT_NO_THROW(db.requireSettings(settings_));
+  // An image without one of the spaces: nothing is stored.
+  std::vector<TrainingImage> bad = images(0, 2);
+  bad[1].histograms.spaces[4].clear();
+  EXPECT_THROW(db.addImages("a", bad), std::invalid_argument);
+  EXPECT_EQ(db.imageCount(), 0);
+  EXPECT_TRUE(db.places().empty());
+}
+
+TEST_F(PlaceDatabaseTest, NeverReplacesAnExistingFile) {
+  const std::string path = file("notes.sqlite");
+  { std::ofstream(path) << "my notes\n"; }
+  EXPECT_THROW(PlaceDatabase::create(path, settings_), std::runtime_error);
+  EXPECT_EQ(contents(path), "my notes\n");
+  PlaceDatabase::create(file("p.sqlite"), settings_);
+  EXPECT_THROW(PlaceDatabase::create(file("p.sqlite"), settings_), std::runtime_error);
+}
+
+TEST_F(PlaceDatabaseTest, ForeignAndCorruptFilesGiveClearErrors) {
+  // A text file.
+  const std::string text = file("text.sqlite");
+  { std::ofstream(text) << std::string(4096, 'x'); }
+  try {
+    PlaceDatabase::open(text);
+    FAIL() << "a text file was opened";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not a place database"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(contents(text), std::string(4096, 'x'));
+  // Another program's SQLite database.
+  const std::string foreign = file("foreign.sqlite");
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(foreign.c_str(), &db), SQLITE_OK);
+    sqlite3_exec(db, "CREATE TABLE t (x); INSERT INTO t VALUES (1);", nullptr, nullptr, nullptr);
+    sqlite3_close(db);
+  }
+  const std::string before = contents(foreign);
+  try {
+    PlaceDatabase::open(foreign);
+    FAIL() << "a foreign database was opened";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("not an adaptive_perception place database"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(contents(foreign), before);
+  // A place database whose pages were overwritten in the middle.
+  const std::string broken = file("broken.sqlite");
+  {
+    PlaceDatabase db = PlaceDatabase::create(broken, settings_);
+    db.addImages("a", images(0, 50));
+  }
+  {
+    std::fstream f(broken, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(4096);
+    const std::string junk(8192, '\x5a');
+    f.write(junk.data(), junk.size());
+  }
+  EXPECT_THROW(
+      {
+        PlaceDatabase db = PlaceDatabase::open(broken);
+        db.loadIndex();
+      },
+      std::runtime_error);
+  EXPECT_THROW(PlaceDatabase::open(file("missing.sqlite")), std::runtime_error);
+}
+
+TEST_F(PlaceDatabaseTest, KilledWriterLeavesWholeTransactions) {
+  const std::string path = file("p.sqlite");
+  PlaceDatabase::create(path, settings_);
+  const int batch = 20;
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    try {
+      PlaceDatabase db = PlaceDatabase::open(path);
+      for (int i = 0;; ++i) db.addImages("place_" + std::to_string(i % 3), images(i, batch));
+    } catch (...) {
+    }
+    ::_exit(1);
+  }
+  // Let it commit some batches, then kill it wherever it is.
+  for (int i = 0; i < 200; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    try {
+      if (PlaceDatabase::open(path, true).imageCount() >= 3 * batch) break;
+    } catch (const std::runtime_error&) {
+    }
+  }
+  ::kill(child, SIGKILL);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+
+  PlaceDatabase db = PlaceDatabase::open(path);  // replays the hot journal, if any
+  {
+    sqlite3* raw = nullptr;
+    ASSERT_EQ(sqlite3_open_v2(path.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+    sqlite3_stmt* st = nullptr;
+    sqlite3_prepare_v2(raw, "PRAGMA integrity_check", -1, &st, nullptr);
+    ASSERT_EQ(sqlite3_step(st), SQLITE_ROW);
+    EXPECT_STREQ(reinterpret_cast<const char*>(sqlite3_column_text(st, 0)), "ok");
+    sqlite3_finalize(st);
+    sqlite3_close(raw);
+  }
+  const long n = db.imageCount();
+  EXPECT_GE(n, 3 * batch);
+  EXPECT_EQ(n % batch, 0) << "a half-written batch survived";
+  const PlaceIndex index = db.loadIndex();
+  for (int s : settings_.spaces) EXPECT_EQ(index.totalImages(s), n);
+  // And it still takes writes.
+  db.addImages("after", images(0, 1));
+  EXPECT_EQ(db.imageCount(), n + 1);
+}
