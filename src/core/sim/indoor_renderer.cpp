@@ -1,0 +1,631 @@
+#include "adaptive_perception/sim/indoor_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+
+#include "adaptive_perception/world/lighting.h"
+
+namespace adaptive_perception::sim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kDeg = M_PI / 180.0;
+
+// Deterministic hashing for procedural textures: the building looks the same in every run.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+double hash01(std::int64_t a, std::int64_t b = 0, std::int64_t c = 0) {
+  const std::uint64_t h =
+      mix(mix(mix(static_cast<std::uint64_t>(a)) ^ static_cast<std::uint64_t>(b)) ^
+          static_cast<std::uint64_t>(c));
+  return (h >> 11) * (1.0 / 9007199254740992.0);
+}
+// Bilinear value noise in [0, 1] on a unit lattice.
+double valueNoise(double x, double y, int seed) {
+  const double fx = std::floor(x), fy = std::floor(y);
+  const auto ix = static_cast<std::int64_t>(fx), iy = static_cast<std::int64_t>(fy);
+  const double tx = x - fx, ty = y - fy;
+  const double sx = tx * tx * (3 - 2 * tx), sy = ty * ty * (3 - 2 * ty);
+  const double a = hash01(ix, iy, seed), b = hash01(ix + 1, iy, seed);
+  const double c = hash01(ix, iy + 1, seed), d = hash01(ix + 1, iy + 1, seed);
+  return (a * (1 - sx) + b * sx) * (1 - sy) + (c * (1 - sx) + d * sx) * sy;
+}
+// A saturated-ish random colour.
+Eigen::Vector3d randomColour(std::int64_t a, std::int64_t b, std::int64_t c) {
+  const double h = hash01(a, b, c) * 6.0, s = 0.45 + 0.5 * hash01(a, b, c + 1),
+               v = 0.25 + 0.65 * hash01(a, b, c + 2);
+  const int i = static_cast<int>(h) % 6;
+  const double f = h - std::floor(h);
+  const double p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+  switch (i) {
+    case 0:
+      return {v, t, p};
+    case 1:
+      return {q, v, p};
+    case 2:
+      return {p, v, t};
+    case 3:
+      return {p, q, v};
+    case 4:
+      return {t, p, v};
+    default:
+      return {v, p, q};
+  }
+}
+
+// Ray (origin o, direction d) against segment a-b in the plane: ray parameter t (in units of d,
+// using d's xy part) and the segment parameter u in [0, 1]. False when parallel or missed.
+bool raySegment(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector2d& a,
+                const Eigen::Vector2d& b, double* t, double* u) {
+  const Eigen::Vector2d e = b - a;
+  const double den = d.x() * e.y() - d.y() * e.x();
+  if (std::abs(den) < 1e-12) return false;
+  const Eigen::Vector2d w(a.x() - o.x(), a.y() - o.y());
+  *t = (w.x() * e.y() - w.y() * e.x()) / den;
+  *u = (w.x() * d.y() - w.y() * d.x()) / den;
+  return *t > 1e-9 && *u >= 0.0 && *u <= 1.0;
+}
+
+// Slab test of a ray against an axis-aligned box standing on the floor; entry t and the normal.
+bool rayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const IndoorBox& b, double* t,
+            Eigen::Vector3d* n) {
+  const Eigen::Vector3d lo(b.min_m.x(), b.min_m.y(), 0.0), hi(b.max_m.x(), b.max_m.y(), b.height_m);
+  double t0 = 1e-9, t1 = kInf;
+  int axis = -1;
+  double sign = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(d[k]) < 1e-12) {
+      if (o[k] < lo[k] || o[k] > hi[k]) return false;
+      continue;
+    }
+    double ta = (lo[k] - o[k]) / d[k], tb = (hi[k] - o[k]) / d[k];
+    double s = -1.0;
+    if (ta > tb) {
+      std::swap(ta, tb);
+      s = 1.0;
+    }
+    if (ta > t0) {
+      t0 = ta;
+      axis = k;
+      sign = s;
+    }
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  if (axis < 0) return false;  // starts inside
+  *t = t0;
+  *n = Eigen::Vector3d::Zero();
+  (*n)[axis] = sign;
+  return true;
+}
+
+}  // namespace
+
+IndoorLightingKind parseIndoorLighting(const std::string& name) {
+  if (name == "night") return IndoorLightingKind::kNight;
+  if (name == "cloudy") return IndoorLightingKind::kCloudy;
+  if (name == "sunny") return IndoorLightingKind::kSunny;
+  throw std::invalid_argument("lighting '" + name + "' is not one of night, cloudy, sunny");
+}
+
+std::string indoorLightingName(IndoorLightingKind kind) {
+  switch (kind) {
+    case IndoorLightingKind::kNight:
+      return "night";
+    case IndoorLightingKind::kCloudy:
+      return "cloudy";
+    case IndoorLightingKind::kSunny:
+      return "sunny";
+  }
+  return "?";
+}
+
+IndoorLighting IndoorLighting::sample(IndoorLightingKind kind, math::Rng& rng) {
+  IndoorLighting l;
+  l.kind = kind;
+  l.lamp_temperature_shift_k = rng.uniform(-300.0, 300.0);
+  switch (kind) {
+    case IndoorLightingKind::kNight:
+      l.lamp_scale = rng.uniform(0.8, 1.2);
+      l.daylight = 0.0;
+      l.street_light = rng.uniform(0.15, 0.3);
+      break;
+    case IndoorLightingKind::kCloudy:
+      l.lamp_scale = rng.uniform(0.45, 0.75);
+      l.daylight = rng.uniform(0.8, 1.4);
+      l.sky_temperature_k = rng.uniform(6500.0, 7500.0);
+      break;
+    case IndoorLightingKind::kSunny: {
+      l.lamp_scale = rng.uniform(0.35, 0.6);
+      l.daylight = rng.uniform(1.0, 1.5);
+      l.sky_temperature_k = rng.uniform(8500.0, 11000.0);
+      l.sun = rng.uniform(5.0, 8.0);
+      l.sun_temperature_k = rng.uniform(4300.0, 5200.0);
+      const double az = rng.uniform(0.0, 2.0 * M_PI), el = rng.uniform(25.0, 45.0) * kDeg;
+      l.sun_direction = {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+      break;
+    }
+  }
+  return l;
+}
+
+void IndoorCameraConfig::validate() const {
+  auto need = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("indoor camera: " + what);
+  };
+  need(width_px >= 8 && height_px >= 8 && width_px <= 4096 && height_px <= 4096,
+       "width_px and height_px must be in 8..4096");
+  need(hfov_deg > 1.0 && hfov_deg < 170.0, "hfov_deg must be in (1, 170)");
+  need(omni_width_px >= 8 && omni_height_px >= 8, "omni image size must be at least 8");
+  need(inner_radius_px >= 0.0 && outer_radius_px > inner_radius_px,
+       "omni radii need 0 <= inner_radius_px < outer_radius_px");
+  need(max_elevation_deg > min_elevation_deg && min_elevation_deg > -90.0 &&
+           max_elevation_deg < 90.0,
+       "omni elevations need -90 < min_elevation_deg < max_elevation_deg < 90");
+  need(height_m > 0.05, "height_m must exceed 0.05");
+  need(exposure_target > 0.0 && exposure_target < 1.0, "exposure_target must be in (0, 1)");
+  need(gamma > 0.0 && vignetting >= 0.0 && vignetting < 1.0 && read_noise >= 0.0 &&
+           shot_noise >= 0.0 && exposure_jitter >= 0.0,
+       "gamma > 0, 0 <= vignetting < 1, noise and jitter >= 0");
+}
+
+struct IndoorRenderer::Hit {
+  enum Kind { kNone, kWall, kFloor, kCeiling, kBox } kind = kNone;
+  double t = kInf;
+  int index = -1;  // wall or box
+  double u = 0.0;  // along the wall, 0..1
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+};
+
+IndoorRenderer::IndoorRenderer(IndoorWorld world, IndoorCameraConfig camera)
+    : world_(std::move(world)), camera_(camera) {
+  camera_.validate();
+  const int w = camera_.width(), h = camera_.height();
+  rays_body_.resize(static_cast<size_t>(w) * h);
+  vignette_.resize(rays_body_.size());
+  valid_.assign(rays_body_.size(), 1);
+  if (!camera_.omni) {
+    const double f = 0.5 * w / std::tan(0.5 * camera_.hfov_deg * kDeg);
+    const double cp = std::cos(camera_.pitch_down_deg * kDeg),
+                 sp = std::sin(camera_.pitch_down_deg * kDeg);
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < w; ++u) {
+        const double y = -(u + 0.5 - 0.5 * w) / f, z = -(v + 0.5 - 0.5 * h) / f;
+        // Pitch down about the y axis: forward tips towards -z.
+        rays_body_[v * w + u] = Eigen::Vector3d(cp - sp * z, y, sp + cp * z).normalized();
+        const double r2 = (std::pow(u + 0.5 - 0.5 * w, 2) + std::pow(v + 0.5 - 0.5 * h, 2)) /
+                          (0.25 * (w * w + h * h));
+        vignette_[v * w + u] = static_cast<float>(1.0 - camera_.vignetting * r2);
+      }
+  } else {
+    const double cx = 0.5 * w, cy = 0.5 * h;
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < w; ++u) {
+        const double dx = u + 0.5 - cx, dy = v + 0.5 - cy, r = std::hypot(dx, dy);
+        const size_t i = static_cast<size_t>(v) * w + u;
+        if (r > camera_.outer_radius_px) {
+          valid_[i] = 0;
+          continue;
+        }
+        if (r < camera_.inner_radius_px) {
+          valid_[i] = 2;
+          continue;
+        }
+        const double az = std::atan2(-dx, -dy);
+        const double el =
+            (camera_.min_elevation_deg +
+             (r - camera_.inner_radius_px) / (camera_.outer_radius_px - camera_.inner_radius_px) *
+                 (camera_.max_elevation_deg - camera_.min_elevation_deg)) *
+            kDeg;
+        rays_body_[i] = {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+        const double rr = r / camera_.outer_radius_px;
+        vignette_[i] = static_cast<float>(1.0 - camera_.vignetting * rr * rr);
+      }
+  }
+  // Daylight reaching each indoor place: window length on its boundary, saturating at 4 m.
+  window_light_.assign(world_.places.size(), 0.0);
+  for (size_t p = 0; p < world_.places.size(); ++p) {
+    const IndoorPlace& pl = world_.places[p];
+    if (pl.outdoor) continue;
+    double len = 0.0;
+    for (const IndoorWindow& win : world_.windows) {
+      const Eigen::Vector2d mid = 0.5 * (win.a_m + win.b_m);
+      const Eigen::Vector2d lo = pl.min_m.array() - 0.05, hi = pl.max_m.array() + 0.05;
+      if ((mid.array() >= lo.array()).all() && (mid.array() <= hi.array()).all())
+        len += (win.b_m - win.a_m).norm() * (win.top_m - win.bottom_m) / 1.3;
+    }
+    window_light_[p] = 0.08 + 0.35 * std::min(1.0, len / 4.0);
+  }
+}
+
+bool IndoorRenderer::castRay(const Eigen::Vector3d& o, const Eigen::Vector3d& d, Hit* hit) const {
+  Hit best;
+  for (size_t i = 0; i < world_.walls.size(); ++i) {
+    double t, u;
+    if (!raySegment(o, d, world_.walls[i].a_m, world_.walls[i].b_m, &t, &u) || t >= best.t)
+      continue;
+    const double z = o.z() + t * d.z();
+    if (z < 0.0 || z > world_.walls[i].height_m) continue;  // over the wall (or under the floor)
+    best.kind = Hit::kWall;
+    best.t = t;
+    best.index = static_cast<int>(i);
+    best.u = u;
+  }
+  for (size_t i = 0; i < world_.boxes.size(); ++i) {
+    double t;
+    Eigen::Vector3d n;
+    if (rayBox(o, d, world_.boxes[i], &t, &n) && t < best.t) {
+      best.kind = Hit::kBox;
+      best.t = t;
+      best.index = static_cast<int>(i);
+      best.normal = n;
+    }
+  }
+  if (d.z() < -1e-9) {
+    const double t = -o.z() / d.z();
+    if (t < best.t) {
+      best.kind = Hit::kFloor;
+      best.t = t;
+      best.normal = {0, 0, 1};
+    }
+  } else if (d.z() > 1e-9) {
+    const double t = (world_.ceiling_m - o.z()) / d.z();
+    if (t > 0.0 && t < best.t) {
+      const Eigen::Vector3d p = o + t * d;
+      const int place = world_.placeAt(p.head<2>());
+      if (place >= 0 && !world_.places[place].outdoor) {
+        best.kind = Hit::kCeiling;
+        best.t = t;
+        best.normal = {0, 0, -1};
+      }
+    }
+  }
+  *hit = best;
+  return best.kind != Hit::kNone;
+}
+
+bool IndoorRenderer::sunVisible(const Eigen::Vector3d& p, const IndoorLighting& l) const {
+  const Eigen::Vector3d& d = l.sun_direction;
+  if (d.z() <= 0.0) return false;
+  for (const IndoorBox& b : world_.boxes) {
+    double t;
+    Eigen::Vector3d n;
+    if (rayBox(p, d, b, &t, &n)) return false;
+  }
+  // Wall crossings in order: a crossing below the wall top blocks unless it is in a window; the
+  // ceiling blocks when the ray climbs above it while over an indoor place.
+  struct Crossing {
+    double t;
+    size_t wall;
+  };
+  std::vector<Crossing> crossings;
+  for (size_t i = 0; i < world_.walls.size(); ++i) {
+    double t, u;
+    if (raySegment(p, d, world_.walls[i].a_m, world_.walls[i].b_m, &t, &u))
+      crossings.push_back({t, i});
+  }
+  std::sort(crossings.begin(), crossings.end(),
+            [](const Crossing& a, const Crossing& b) { return a.t < b.t; });
+  int place = world_.placeAt(p.head<2>());
+  for (const Crossing& c : crossings) {
+    const Eigen::Vector3d q = p + c.t * d;
+    if (place >= 0 && !world_.places[place].outdoor && q.z() > world_.ceiling_m) return false;
+    const IndoorWall& w = world_.walls[c.wall];
+    if (q.z() <= w.height_m) {
+      bool through = false;
+      for (const IndoorWindow& win : world_.windows) {
+        const Eigen::Vector2d e = win.b_m - win.a_m;
+        const double s = (q.head<2>() - win.a_m).dot(e) / e.squaredNorm();
+        const double off = (win.a_m + s * e - q.head<2>()).norm();
+        if (s >= 0.0 && s <= 1.0 && off < 0.02 && q.z() >= win.bottom_m && q.z() <= win.top_m) {
+          through = true;
+          break;
+        }
+      }
+      if (!through) return false;
+    }
+    place = world_.placeAt((q + 0.02 * d).head<2>());
+  }
+  if (place >= 0 && !world_.places[place].outdoor) return false;  // under the ceiling
+  return true;
+}
+
+Eigen::Vector3d IndoorRenderer::skyRadiance(const Eigen::Vector3d& d,
+                                            const IndoorLighting& l) const {
+  using world::colorTemperatureRgb;
+  const double wp = camera_.white_point_k;
+  if (l.kind == IndoorLightingKind::kNight) return {0.004, 0.005, 0.012};
+  const Eigen::Vector3d sky = colorTemperatureRgb(l.sky_temperature_k, wp);
+  if (d.z() < 0.0) {  // below the horizon: distant trees and lawns
+    return l.daylight * 0.25 * Eigen::Vector3d(0.18, 0.28, 0.12).cwiseProduct(sky) *
+           (1.0 + (l.kind == IndoorLightingKind::kSunny ? 1.5 : 0.0));
+  }
+  if (l.kind == IndoorLightingKind::kCloudy)
+    return l.daylight * 1.4 * Eigen::Vector3d(0.80, 0.82, 0.86).cwiseProduct(sky);
+  // Clear sky: deeper blue overhead.
+  const double up = std::clamp(d.z(), 0.0, 1.0);
+  const Eigen::Vector3d horizon(0.70, 0.80, 0.95), zenith(0.25, 0.45, 0.95);
+  return l.daylight * 1.6 * ((1.0 - up) * horizon + up * zenith).cwiseProduct(sky);
+}
+
+Eigen::Vector3d IndoorRenderer::irradiance(const Eigen::Vector3d& p, const Eigen::Vector3d& n,
+                                           int place, double lamp_factor,
+                                           const IndoorLighting& l) const {
+  using world::colorTemperatureRgb;
+  const double wp = camera_.white_point_k;
+  Eigen::Vector3d e = Eigen::Vector3d::Zero();
+  const bool outdoor = place < 0 || world_.places[place].outdoor;
+  if (!outdoor) {
+    const PlaceStyle& s = world_.places[place].style;
+    e += lamp_factor * s.lamp_intensity * l.lamp_scale *
+         colorTemperatureRgb(s.lamp_color_temperature_k + l.lamp_temperature_shift_k, wp);
+    e += l.daylight * window_light_[place] * colorTemperatureRgb(l.sky_temperature_k, wp);
+  } else {
+    e += l.street_light * colorTemperatureRgb(2100.0, wp);
+    e += l.daylight * 1.8 * (0.6 + 0.4 * std::max(0.0, n.z())) *
+         colorTemperatureRgb(l.sky_temperature_k, wp);
+  }
+  if (l.sun > 0.0) {
+    const double cos_in = n.dot(l.sun_direction);
+    if (cos_in > 0.0 && sunVisible(p + 0.01 * n, l))
+      e += l.sun * cos_in * colorTemperatureRgb(l.sun_temperature_k, wp);
+  }
+  return e;
+}
+
+Eigen::Vector3d IndoorRenderer::floorAlbedo(int place, double x, double y) const {
+  if (place < 0) return world_.ground_rgb * (0.8 + 0.4 * valueNoise(x * 4, y * 4, 7));
+  const PlaceStyle& s = world_.places[place].style;
+  const Eigen::Vector3d& c = s.floor_rgb;
+  switch (s.floor_pattern) {
+    case FloorPattern::kCarpet:
+      return c * (0.8 + 0.25 * valueNoise(x * 20, y * 20, place) +
+                  0.1 * valueNoise(x * 2, y * 2, place + 50));
+    case FloorPattern::kTiles: {
+      const double gx = x * 2.0 - std::floor(x * 2.0), gy = y * 2.0 - std::floor(y * 2.0);
+      if (gx < 0.03 || gy < 0.03) return c * 0.55;  // grout
+      const bool odd = (static_cast<std::int64_t>(std::floor(x * 2)) +
+                        static_cast<std::int64_t>(std::floor(y * 2))) %
+                           2 !=
+                       0;
+      return c * (odd ? 0.82 : 1.0) * (0.95 + 0.1 * valueNoise(x * 9, y * 9, place));
+    }
+    case FloorPattern::kWood: {
+      const auto plank = static_cast<std::int64_t>(std::floor(y / 0.15));
+      const double shade = 0.75 + 0.45 * hash01(plank, place, 11);
+      const double grain = 0.9 + 0.1 * std::sin(x * 40.0 + 7.0 * hash01(plank, place, 12));
+      const double gap = y / 0.15 - std::floor(y / 0.15) < 0.06 ? 0.5 : 1.0;
+      return c * shade * grain * gap;
+    }
+    case FloorPattern::kConcrete:
+      return c * (0.85 + 0.2 * valueNoise(x * 8, y * 8, place) +
+                  0.05 * valueNoise(x * 40, y * 40, place + 3));
+    case FloorPattern::kAsphalt: {
+      // White bays every 2.5 m along x in the far half of the lot.
+      const double bx = x / 2.5 - std::floor(x / 2.5);
+      if (bx < 0.04 && y < -3.0 && y > -7.8) return {0.8, 0.8, 0.78};
+      return c * (0.8 + 0.4 * valueNoise(x * 30, y * 30, place));
+    }
+    case FloorPattern::kGrass: {
+      // A gravel path diagonally across.
+      if (std::abs((x - 18.0) - (y - 0.0) * 0.9 - 1.0) < 0.5) return {0.45, 0.42, 0.36};
+      return c * (0.7 + 0.5 * valueNoise(x * 12, y * 12, place) +
+                  0.2 * valueNoise(x * 1.5, y * 1.5, place + 9));
+    }
+  }
+  return c;
+}
+
+Eigen::Vector3d IndoorRenderer::wallAlbedo(int wall, int side, double s, double z) const {
+  const IndoorWall& w = world_.walls[wall];
+  const bool outdoor_side = side < 0 || world_.places[side].outdoor;
+  if (outdoor_side) {
+    if (w.height_m < 1.2) {  // fence: posts and rails
+      const double ps = s / 2.0 - std::floor(s / 2.0);
+      if (ps < 0.04 || std::abs(z - 1.0) < 0.04 || std::abs(z - 0.5) < 0.03)
+        return {0.45, 0.47, 0.50};
+      return world_.ground_rgb * (0.7 + 0.5 * valueNoise(s * 6, z * 6, wall));  // shrubs behind
+    }
+    if (w.height_m < 2.0)  // hedge
+      return Eigen::Vector3d(0.12, 0.26, 0.08) *
+             (0.6 + 0.7 * valueNoise(s * 8, z * 8, wall) + 0.2 * valueNoise(s * 30, z * 30, wall));
+    // Brick facade: 0.075 m courses, 0.24 m bricks, staggered.
+    const Eigen::Vector3d brick =
+        side >= 0 ? world_.places[side].style.wall_rgb : Eigen::Vector3d(0.55, 0.30, 0.22);
+    const auto course = static_cast<std::int64_t>(std::floor(z / 0.075));
+    const double off = (course % 2) * 0.12;
+    const double bs = (s + off) / 0.24;
+    if (z / 0.075 - course < 0.12 || bs - std::floor(bs) < 0.05) return {0.62, 0.60, 0.55};
+    return brick * (0.8 + 0.35 * hash01(course, static_cast<std::int64_t>(std::floor(bs)), wall));
+  }
+  const PlaceStyle& st = world_.places[side].style;
+  Eigen::Vector3d base = st.wall_rgb * (0.95 + 0.06 * valueNoise(s * 2, z * 2, wall));
+  if (z < 0.1) return base * 0.35;  // skirting
+  const auto cell = static_cast<std::int64_t>(std::floor(s));
+  const double x = s - std::floor(s);
+  const double pick = hash01(wall, side, cell);
+  double acc = 0.0;
+  auto chosen = [&](double p) {
+    const bool yes = pick >= acc && pick < acc + p;
+    acc += p;
+    return yes;
+  };
+  if (chosen(st.poster)) {
+    if (x > 0.2 && x < 0.8 && z > 1.15 && z < 1.95) {
+      if (x < 0.23 || x > 0.77 || z < 1.18 || z > 1.92) return {0.08, 0.08, 0.08};  // frame
+      const Eigen::Vector3d a = randomColour(wall, cell, 1), b = randomColour(wall, cell, 5);
+      const double split = 1.3 + 0.5 * hash01(wall, cell, 9);
+      if (std::hypot(x - 0.5, z - 1.6) < 0.12 * (0.5 + hash01(wall, cell, 10)))
+        return randomColour(wall, cell, 13);
+      return z < split ? a : b;
+    }
+    return base;
+  }
+  if (chosen(st.shelf)) {
+    if (x < 0.03 || x > 0.97 || z > 2.0) return z > 2.0 ? base : Eigen::Vector3d(0.30, 0.19, 0.09);
+    const double row = z / 0.4;
+    const auto r = static_cast<std::int64_t>(std::floor(row));
+    if (row - r < 0.08) return {0.30, 0.19, 0.09};  // shelf board
+    const auto spine = static_cast<std::int64_t>(std::floor(x / 0.035));
+    const double top = 0.55 + 0.4 * hash01(wall, cell * 100 + spine, r);
+    if (row - r > top) return {0.06, 0.05, 0.04};  // dark back above the books
+    return randomColour(wall * 7 + r, cell, spine) * 0.8;
+  }
+  if (chosen(st.cabinet)) {
+    const Eigen::Vector3d panel = hash01(wall, side, 77) < 0.5 ? Eigen::Vector3d(0.85, 0.85, 0.82)
+                                                               : Eigen::Vector3d(0.55, 0.12, 0.10);
+    if (z < 0.88)
+      return std::abs(x - 0.5) < 0.01 || (z > 0.7 && z < 0.72 && x > 0.4 && x < 0.6)
+                 ? Eigen::Vector3d(0.15, 0.15, 0.15)
+                 : panel;
+    if (z < 0.93) return {0.2, 0.2, 0.22};  // worktop edge
+    if (z < 1.5) {                          // tiled splashback
+      const double tx = x * 8 - std::floor(x * 8), tz = z * 8 - std::floor(z * 8);
+      return tx < 0.06 || tz < 0.06 ? Eigen::Vector3d(0.5, 0.5, 0.5)
+                                    : Eigen::Vector3d(0.35, 0.55, 0.60);
+    }
+    if (z < 2.2) return std::abs(x - 0.5) < 0.01 ? Eigen::Vector3d(0.15, 0.15, 0.15) : panel;
+    return base;
+  }
+  if (chosen(st.board)) {
+    if (x > 0.05 && x < 0.95 && z > 0.9 && z < 2.0) {
+      if (x < 0.07 || x > 0.93 || z < 0.92 || z > 1.98) return {0.6, 0.6, 0.62};  // frame
+      for (int k = 0; k < 3; ++k) {
+        const double zc = 1.15 + 0.3 * k + 0.06 * std::sin(x * 25.0 + 6.0 * hash01(wall, cell, k));
+        if (std::abs(z - zc) < 0.012 && hash01(wall, cell, k + 20) < 0.8)
+          return randomColour(wall, cell, 30 + k) * 0.6;
+      }
+      return {0.93, 0.93, 0.92};
+    }
+    return base;
+  }
+  if (chosen(st.machine)) {
+    if (x > 0.1 && x < 0.9 && z < 1.3) {
+      if (z > 1.1 && z < 1.25 && x > 0.5 && x < 0.8) return {0.05, 0.35, 0.45};  // display
+      if (z > 0.55 && z < 0.62) return {0.95, 0.95, 0.93};                       // paper tray
+      return {0.62, 0.63, 0.65};
+    }
+    return base;
+  }
+  return base;
+}
+
+Eigen::Vector3d IndoorRenderer::radiance(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                                         const IndoorLighting& l) const {
+  Hit hit;
+  if (!castRay(o, d, &hit)) return skyRadiance(d, l);
+  const Eigen::Vector3d p = o + hit.t * d;
+  switch (hit.kind) {
+    case Hit::kFloor: {
+      const int place = world_.placeAt(p.head<2>());
+      return floorAlbedo(place, p.x(), p.y())
+          .cwiseProduct(irradiance(p, hit.normal, place, 1.0, l));
+    }
+    case Hit::kCeiling: {
+      const int place = world_.placeAt(p.head<2>());
+      const double gx = p.x() / 2.0 - std::floor(p.x() / 2.0),
+                   gy = p.y() / 2.0 - std::floor(p.y() / 2.0);
+      if (std::abs(gx - 0.5) < 0.15 && std::abs(gy - 0.5) < 0.3) {  // lamp panel: emits
+        const PlaceStyle& s = world_.places[place].style;
+        return 1.6 * s.lamp_intensity * l.lamp_scale *
+               world::colorTemperatureRgb(s.lamp_color_temperature_k + l.lamp_temperature_shift_k,
+                                          camera_.white_point_k);
+      }
+      return Eigen::Vector3d(0.85, 0.85, 0.83)
+          .cwiseProduct(irradiance(p, hit.normal, place, 0.45, l));
+    }
+    case Hit::kBox: {
+      const IndoorBox& b = world_.boxes[hit.index];
+      const int place = world_.placeAt(p.head<2>());
+      const double shade = hit.normal.z() > 0.5 ? 1.0 : 0.8;
+      const Eigen::Vector3d tex =
+          b.rgb * shade * (0.92 + 0.12 * valueNoise(p.x() * 10 + p.z() * 7, p.y() * 10, hit.index));
+      return tex.cwiseProduct(irradiance(p, hit.normal, place, 0.9, l));
+    }
+    case Hit::kWall: {
+      const IndoorWall& w = world_.walls[hit.index];
+      const Eigen::Vector2d e = (w.b_m - w.a_m).normalized();
+      Eigen::Vector3d n(-e.y(), e.x(), 0.0);
+      if (n.dot(d) > 0.0) n = -n;
+      const Eigen::Vector2d dxy = d.head<2>().normalized();
+      const int side = world_.placeAt(p.head<2>() - 0.02 * dxy);
+      const bool indoor_side = side >= 0 && !world_.places[side].outdoor;
+      for (const IndoorWindow& win : world_.windows) {
+        const Eigen::Vector2d we = win.b_m - win.a_m;
+        const double s = (p.head<2>() - win.a_m).dot(we) / we.squaredNorm();
+        const double off = (win.a_m + s * we - p.head<2>()).norm();
+        if (s < 0.0 || s > 1.0 || off > 0.02 || p.z() < win.bottom_m || p.z() > win.top_m) continue;
+        const double along = s * we.norm();
+        const bool frame = along < 0.05 || (we.norm() - along) < 0.05 ||
+                           p.z() - win.bottom_m < 0.05 || win.top_m - p.z() < 0.05 ||
+                           std::abs(along - std::round(along / 1.2) * 1.2) < 0.03;
+        if (frame)
+          return Eigen::Vector3d(0.8, 0.8, 0.8).cwiseProduct(irradiance(p, n, side, 0.8, l));
+        if (indoor_side) return skyRadiance(d, l);  // the view outside
+        // Glass seen from outside: dark, with a reflection of the sky.
+        Eigen::Vector3d r = d;
+        r.head<2>() -= 2.0 * r.head<2>().dot(n.head<2>()) * n.head<2>();
+        return 0.25 * skyRadiance(r, l) + Eigen::Vector3d(0.01, 0.012, 0.015);
+      }
+      const double s_m = hit.u * (w.b_m - w.a_m).norm();
+      return wallAlbedo(hit.index, side, s_m, p.z()).cwiseProduct(irradiance(p, n, side, 0.8, l));
+    }
+    case Hit::kNone:
+      break;
+  }
+  return skyRadiance(d, l);
+}
+
+cv::Mat IndoorRenderer::render(const math::SE2& pose, const IndoorLighting& l,
+                               math::Rng& rng) const {
+  const int w = camera_.width(), h = camera_.height();
+  const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
+  const Eigen::Vector3d origin(pose.x_m, pose.y_m, camera_.height_m);
+  std::vector<Eigen::Vector3f> lin(rays_body_.size(), Eigen::Vector3f::Zero());
+  double lum_sum = 0.0;
+  long lum_n = 0;
+  for (size_t i = 0; i < rays_body_.size(); ++i) {
+    if (valid_[i] != 1) continue;
+    const Eigen::Vector3d& b = rays_body_[i];
+    const Eigen::Vector3d d(c * b.x() - s * b.y(), s * b.x() + c * b.y(), b.z());
+    const Eigen::Vector3d r = radiance(origin, d, l) * vignette_[i];
+    lin[i] = r.cast<float>();
+    lum_sum += 0.299 * r.x() + 0.587 * r.y() + 0.114 * r.z();
+    ++lum_n;
+  }
+  // Auto-exposure: bring the mean luminance to the target (the paper's auto-brightness).
+  const double mean = lum_n > 0 ? lum_sum / lum_n : 1.0;
+  const double gain = camera_.exposure_target / std::max(mean, 1e-6) *
+                      std::max(0.2, 1.0 + rng.gaussian(0.0, camera_.exposure_jitter));
+  cv::Mat out(h, w, CV_8UC3);
+  const double inv_gamma = 1.0 / camera_.gamma;
+  for (int v = 0; v < h; ++v) {
+    cv::Vec3b* row = out.ptr<cv::Vec3b>(v);
+    for (int u = 0; u < w; ++u) {
+      const size_t i = static_cast<size_t>(v) * w + u;
+      if (valid_[i] == 0) {
+        row[u] = {0, 0, 0};
+        continue;
+      }
+      Eigen::Vector3d px = valid_[i] == 2 ? Eigen::Vector3d(0.012, 0.012, 0.014)
+                                          : (lin[i].cast<double>() * gain).eval();
+      for (int k = 0; k < 3; ++k) {
+        double level = 255.0 * std::pow(std::clamp(px[k], 0.0, 1.0), inv_gamma);
+        const double sd =
+            std::sqrt(camera_.read_noise * camera_.read_noise + camera_.shot_noise * level);
+        level = std::clamp(level + rng.gaussian(0.0, sd), 0.0, 255.0);
+        row[u][2 - k] = static_cast<unsigned char>(std::lround(level));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace adaptive_perception::sim
