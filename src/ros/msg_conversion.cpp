@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/world/camera_model.h"
@@ -56,6 +57,36 @@ cv::Mat imageToYuv(const sensor_msgs::Image& msg) {
   }
   throw ImageFormatError("unsupported image encoding '" + msg.encoding +
                          "' (accepted: yuv422, bgr8, rgb8)");
+}
+
+cv::Mat imageToBgr8(const sensor_msgs::Image& msg) {
+  if (msg.encoding == enc::BGR8 || msg.encoding == enc::RGB8) {
+    checkBuffer(msg, 3);
+    const cv::Mat view(msg.height, msg.width, CV_8UC3, const_cast<std::uint8_t*>(msg.data.data()),
+                       msg.step);
+    cv::Mat out;
+    if (msg.encoding == enc::BGR8)
+      out = view.clone();
+    else
+      cv::cvtColor(view, out, cv::COLOR_RGB2BGR);
+    return out;
+  }
+  if (msg.encoding == enc::YUV422) {
+    const cv::Mat yuv = imageToYuv(msg);
+    cv::Mat out(yuv.size(), CV_8UC3);
+    for (int r = 0; r < yuv.rows; ++r) {
+      const cv::Vec3b* s = yuv.ptr<cv::Vec3b>(r);
+      cv::Vec3b* o = out.ptr<cv::Vec3b>(r);
+      for (int c = 0; c < yuv.cols; ++c) {
+        const Eigen::Vector3d rgb = color::yuvToRgb(Eigen::Vector3d(s[c][0], s[c][1], s[c][2]));
+        for (int k = 0; k < 3; ++k)
+          o[c][2 - k] = static_cast<std::uint8_t>(std::clamp(std::lround(rgb[k]), 0L, 255L));
+      }
+    }
+    return out;
+  }
+  throw ImageFormatError("unsupported image encoding '" + msg.encoding +
+                         "' (accepted: bgr8, rgb8, yuv422)");
 }
 
 sensor_msgs::Image uyvyToImage(const cv::Mat& uyvy, const std_msgs::Header& header) {

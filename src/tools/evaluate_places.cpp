@@ -1,0 +1,240 @@
+// evaluate_places: recognises the places of labelled test images against a place database, the
+// paper's way (papers/004 sections 5-7) and with the topological Bayes filter.
+//
+//   evaluate_places --database DB.sqlite (--bag FILE | --list CSV) [--images_per_place 15]
+//                   [--window 5] [--spaces all] [--methods paper|all|chi_square,...]
+//                   [--stay_probability 0.8] [--likelihood_sharpness 4] [--output DIR]
+//
+// 1. The paper's protocol: for each test place, --images_per_place of its images (spread evenly)
+//    form one test set; every colour space and method gives a place and a confidence (eqs. 5-7),
+//    printed as the paper's Tables 1-7, and the most confident choice is the answer (section 6).
+//    `accuracy` is the fraction of test places answered right, `mean_confidence` the mean of the
+//    answers' confidences.
+// 2. Single images: every test image alone, per space and method; `best_space best_method` have
+//    the highest single-image accuracy (`single_image_accuracy`).
+// 3. Sequences, with the best space and method: a sliding window of --window successive images
+//    (eqs. 6-7, `window_accuracy`) and the Bayes filter over the database's adjacency
+//    (`filter_accuracy`), scored against each window's last image.
+// `queries_per_s`: single-image queries (eq. 5 over the whole database) per second, best space
+// and method, one core. Writes DIR/results.yaml (all tables) and DIR/images.csv (per image: truth,
+// single-image answer, window answer, filter answer). Last line:
+// `evaluate_places: accuracy=.. mean_confidence=.. best_space=.. best_method=..
+//  single_image_accuracy=.. window_accuracy=.. filter_accuracy=.. queries_per_s=.. places=..
+//  test_images=..`
+#include <yaml-cpp/yaml.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include "adaptive_perception/places/place_database.h"
+#include "adaptive_perception/places/place_filter.h"
+#include "labelled_images.h"
+#include "tool_args.h"
+
+using namespace adaptive_perception;
+using places::Distance;
+namespace fs = std::filesystem;
+
+namespace {
+std::string pct(double c) {
+  char b[16];
+  std::snprintf(b, sizeof(b), "%.1f", 100.0 * c);
+  return b;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  tools::Args args(argc, argv,
+                   "evaluate_places --database DB.sqlite (--bag FILE | --list CSV) "
+                   "[--images_per_place N] [--window M] [--spaces all|rgb,...] "
+                   "[--methods paper|all|chi_square,jeffrey,ks,ks_cumulative,intersection] "
+                   "[--stay_probability P] [--likelihood_sharpness K] [--output DIR]");
+  const std::string db_path = args.get("database", "");
+  const std::string bag = args.get("bag", "");
+  const std::string list = args.get("list", "");
+  const long per_place = args.getInt("images_per_place", 15);
+  const long window = args.getInt("window", 5);
+  const std::string spaces_arg = args.get("spaces", "");
+  const std::string methods_arg = args.get("methods", "paper");
+  places::PlaceFilterConfig fc;
+  fc.stay_probability = args.getDouble("stay_probability", fc.stay_probability);
+  fc.likelihood_sharpness = args.getDouble("likelihood_sharpness", fc.likelihood_sharpness);
+  const std::string output = args.get("output", "results/evaluate_places");
+  args.finish();
+  if (db_path.empty()) args.fail("--database DB.sqlite is required");
+  if (bag.empty() == list.empty()) args.fail("give exactly one of --bag FILE and --list CSV");
+  if (per_place < 1) args.fail("--images_per_place must be >= 1");
+  if (window < 1) args.fail("--window must be >= 1");
+  try {
+    fc.validate();
+    const places::PlaceDatabase db = places::PlaceDatabase::open(db_path, true);
+    const std::vector<int> spaces =
+        spaces_arg.empty() ? db.settings().spaces : places::parseSpaces(spaces_arg);
+    const std::vector<Distance> methods = places::parseDistances(methods_arg);
+    const places::PlaceIndex index = db.loadIndex(spaces);
+    if (index.numPlaces() == 0) throw std::runtime_error(db_path + ": the database has no place");
+    const places::HistogramConfig hc = db.settings().histogramConfig();
+
+    std::vector<places::ImageHistograms> tests;
+    std::vector<std::string> truth;
+    tools::forEachLabelledImage(bag, list, [&](const tools::LabelledImage& li) {
+      tests.push_back(places::computeHistograms(li.bgr, hc));
+      truth.push_back(li.label);
+    });
+    if (tests.empty()) throw std::runtime_error("no labelled test image");
+    std::map<std::string, std::vector<size_t>> by_place;
+    for (size_t i = 0; i < truth.size(); ++i) by_place[truth[i]].push_back(i);
+    for (const auto& [p, v] : by_place)
+      if (index.placeIndex(p) < 0)
+        std::cerr << "evaluate_places: test place '" << p << "' (" << v.size()
+                  << " images) is not in the database: it counts as wrong\n";
+
+    // Node distances of every test image for every (space, method): [combo][image][place].
+    struct Combo {
+      int space;
+      Distance method;
+      std::vector<std::vector<double>> d;
+      long single_correct = 0;
+    };
+    std::vector<Combo> combos;
+    for (int s : spaces)
+      for (Distance m : methods) combos.push_back({s, m, {}, 0});
+    for (Combo& c : combos) {
+      c.d.reserve(tests.size());
+      for (size_t i = 0; i < tests.size(); ++i) {
+        c.d.push_back(index.nodeDistances(c.space, c.method, tests[i]));
+        const auto& row = c.d.back();
+        const int best = static_cast<int>(std::min_element(row.begin(), row.end()) - row.begin());
+        c.single_correct += index.placeNames()[best] == truth[i];
+      }
+    }
+
+    // 1. The paper's protocol, one table per test place.
+    YAML::Emitter y;
+    y << YAML::BeginMap << YAML::Key << "database" << YAML::Value << db_path;
+    y << YAML::Key << "settings" << YAML::Value << db.settings().toString();
+    y << YAML::Key << "images_per_place" << YAML::Value << per_place;
+    y << YAML::Key << "tables" << YAML::Value << YAML::BeginSeq;
+    long places_right = 0;
+    double conf_sum = 0.0;
+    for (const auto& [place, idx] : by_place) {
+      std::vector<size_t> chosen;
+      const size_t total = idx.size(), k = std::min<size_t>(total, per_place);
+      for (size_t i = 0; i < k; ++i) chosen.push_back(idx[(2 * i + 1) * total / (2 * k)]);
+      std::vector<places::Recognition> recs;
+      std::printf("test place %s (%zu test images)\n  %-16s", place.c_str(), chosen.size(),
+                  "space");
+      for (Distance m : methods) std::printf(" %-26s", places::distanceName(m).c_str());
+      std::printf("\n");
+      y << YAML::BeginMap << YAML::Key << "test_place" << YAML::Value << place;
+      y << YAML::Key << "test_images" << YAML::Value << chosen.size();
+      y << YAML::Key << "rows" << YAML::Value << YAML::BeginSeq;
+      for (int s : spaces) {
+        std::printf("  %-16s", places::spaceName(s).c_str());
+        for (const Combo& c : combos) {
+          if (c.space != s) continue;
+          std::vector<std::vector<double>> rows;
+          for (size_t i : chosen) rows.push_back(c.d[i]);
+          recs.push_back(places::combineTestImages(rows, c.space, c.method));
+          const places::Recognition& r = recs.back();
+          const std::string& sel = index.placeNames()[r.place];
+          std::printf(" %-20s %5s", sel.c_str(), pct(r.confidence).c_str());
+          y << YAML::Flow << YAML::BeginMap << YAML::Key << "space" << YAML::Value
+            << places::spaceName(s) << YAML::Key << "method" << YAML::Value
+            << places::distanceName(c.method) << YAML::Key << "selected" << YAML::Value << sel
+            << YAML::Key << "confidence" << YAML::Value << r.confidence << YAML::EndMap;
+        }
+        std::printf("\n");
+      }
+      y << YAML::EndSeq;
+      const places::Recognition& best = places::mostConfident(recs);
+      const std::string& answer = index.placeNames()[best.place];
+      places_right += answer == place;
+      conf_sum += best.confidence;
+      std::printf("  -> %s (%s, %s), confidence %s: %s\n", answer.c_str(),
+                  places::spaceName(best.space).c_str(), places::distanceName(best.method).c_str(),
+                  pct(best.confidence).c_str(), answer == place ? "right" : "WRONG");
+      y << YAML::Key << "answer" << YAML::Value << answer << YAML::Key << "answer_space"
+        << YAML::Value << places::spaceName(best.space) << YAML::Key << "answer_method"
+        << YAML::Value << places::distanceName(best.method) << YAML::Key << "answer_confidence"
+        << YAML::Value << best.confidence << YAML::EndMap;
+    }
+    y << YAML::EndSeq;
+
+    // 2. Single images.
+    const Combo* best = &combos.front();
+    y << YAML::Key << "single_image_accuracy" << YAML::Value << YAML::BeginMap;
+    for (const Combo& c : combos) {
+      if (c.single_correct > best->single_correct) best = &c;
+      y << YAML::Key << places::spaceName(c.space) + "/" + places::distanceName(c.method)
+        << YAML::Value << static_cast<double>(c.single_correct) / tests.size();
+    }
+    y << YAML::EndMap;
+
+    // 3. Sequences with the best combination: sliding window and Bayes filter.
+    places::PlaceFilter filter(db.adjacencyLists(index), fc);
+    long window_right = 0, filter_right = 0;
+    fs::create_directories(output);
+    std::ofstream csv(fs::path(output) / "images.csv");
+    csv << "image,truth,single,window,filter\n";
+    for (size_t i = 0; i < tests.size(); ++i) {
+      const size_t first = i + 1 >= static_cast<size_t>(window) ? i + 1 - window : 0;
+      const std::vector<std::vector<double>> rows(best->d.begin() + first, best->d.begin() + i + 1);
+      const places::Recognition w = places::combineTestImages(rows, best->space, best->method);
+      if (i > 0) filter.predict();
+      filter.update(best->d[i]);
+      const auto& row = best->d[i];
+      const std::string& single =
+          index.placeNames()[std::min_element(row.begin(), row.end()) - row.begin()];
+      const std::string& wname = index.placeNames()[w.place];
+      const std::string& fname = index.placeNames()[filter.best()];
+      window_right += wname == truth[i];
+      filter_right += fname == truth[i];
+      csv << i << "," << truth[i] << "," << single << "," << wname << "," << fname << "\n";
+    }
+
+    // Query speed: eq. 5 for every test image, best combination.
+    const auto t0 = std::chrono::steady_clock::now();
+    double sink = 0.0;
+    int rounds = 0;
+    do {
+      for (const auto& t : tests) sink += index.nodeDistances(best->space, best->method, t)[0];
+      ++rounds;
+    } while (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 0.5);
+    const double qps = rounds * tests.size() /
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (sink < 0.0) std::printf(" ");
+
+    const double n = static_cast<double>(tests.size());
+    const double accuracy = static_cast<double>(places_right) / by_place.size();
+    const double mean_conf = conf_sum / by_place.size();
+    y << YAML::Key << "summary" << YAML::Value << YAML::BeginMap;
+    y << YAML::Key << "accuracy" << YAML::Value << accuracy;
+    y << YAML::Key << "mean_confidence" << YAML::Value << mean_conf;
+    y << YAML::Key << "best_space" << YAML::Value << places::spaceName(best->space);
+    y << YAML::Key << "best_method" << YAML::Value << places::distanceName(best->method);
+    y << YAML::Key << "single_image_accuracy" << YAML::Value << best->single_correct / n;
+    y << YAML::Key << "window" << YAML::Value << window;
+    y << YAML::Key << "window_accuracy" << YAML::Value << window_right / n;
+    y << YAML::Key << "filter_accuracy" << YAML::Value << filter_right / n;
+    y << YAML::Key << "queries_per_s" << YAML::Value << qps;
+    y << YAML::Key << "database_images" << YAML::Value << index.totalImages(best->space);
+    y << YAML::EndMap << YAML::EndMap;
+    std::ofstream(fs::path(output) / "results.yaml") << y.c_str() << "\n";
+    std::printf(
+        "evaluate_places: accuracy=%.3f mean_confidence=%.3f best_space=%s best_method=%s "
+        "single_image_accuracy=%.3f window_accuracy=%.3f filter_accuracy=%.3f queries_per_s=%.0f "
+        "places=%zu test_images=%zu\n",
+        accuracy, mean_conf, places::spaceName(best->space).c_str(),
+        places::distanceName(best->method).c_str(), best->single_correct / n, window_right / n,
+        filter_right / n, qps, by_place.size(), tests.size());
+  } catch (const std::exception& e) {
+    std::cerr << "evaluate_places: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,91 @@
+// train_places: builds (or extends) a place database from labelled images.
+//
+//   train_places (--bag FILE | --list CSV) --database DB.sqlite [--images_per_place 15]
+//                [--bins 256] [--spaces all] [--mask none|auto|ring:cx,cy,r_in,r_out]
+//                [--no_adjacency]
+//
+// Images come from a bag (camera/image_raw labelled by ground_truth/place) or a CSV list of
+// `image_path,place` lines. Per place, --images_per_place images spread evenly over that place's
+// images are stored (0: all), with their histograms in every colour space of the database. A new
+// database takes --bins/--spaces/--mask (defaults 256, all eight spaces, no mask); an existing one
+// keeps its own, and explicit options that differ are refused. Adjacency: consecutive images with
+// different places make the two places adjacent (the route walked), unless --no_adjacency.
+// Each place is written in one transaction. Last line:
+// `train_places: database=DB places=N images_added=M images_total=T edges=E seconds=S`.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <set>
+
+#include "adaptive_perception/places/place_database.h"
+#include "labelled_images.h"
+#include "tool_args.h"
+
+using namespace adaptive_perception;
+
+int main(int argc, char** argv) {
+  tools::Args args(argc, argv,
+                   "train_places (--bag FILE | --list CSV) --database DB.sqlite "
+                   "[--images_per_place N] [--bins B] [--spaces all|rgb,hsv,...] "
+                   "[--mask none|auto|ring:cx,cy,r_in,r_out] [--no_adjacency]");
+  const std::string bag = args.get("bag", "");
+  const std::string list = args.get("list", "");
+  const std::string db_path = args.get("database", "");
+  const long per_place = args.getInt("images_per_place", 15);
+  const bool explicit_settings = args.has("bins") || args.has("spaces") || args.has("mask");
+  const long bins = args.getInt("bins", 256);
+  const std::string spaces = args.get("spaces", "all");
+  const std::string mask = args.get("mask", "none");
+  const bool adjacency = !args.has("no_adjacency");
+  args.finish();
+  if (bag.empty() == list.empty()) args.fail("give exactly one of --bag FILE and --list CSV");
+  if (db_path.empty()) args.fail("--database DB.sqlite is required");
+  if (per_place < 0) args.fail("--images_per_place must be >= 0");
+  const auto t_start = std::chrono::steady_clock::now();
+  try {
+    places::HistogramConfig hc;
+    hc.bins = static_cast<int>(bins);
+    hc.spaces = places::parseSpaces(spaces);
+    hc.mask = places::MaskConfig::parse(mask);
+    hc.validate();
+    const places::DatabaseSettings wanted = places::DatabaseSettings::fromHistogramConfig(hc);
+    places::PlaceDatabase db = places::PlaceDatabase::openOrCreate(db_path, wanted);
+    if (explicit_settings) db.requireSettings(wanted);
+    const places::HistogramConfig use = db.settings().histogramConfig();
+
+    // Histograms of every image, grouped by place in arrival order.
+    std::map<std::string, std::vector<places::TrainingImage>> by_place;
+    std::set<std::pair<std::string, std::string>> edges;
+    std::string previous;
+    const long n = tools::forEachLabelledImage(bag, list, [&](const tools::LabelledImage& li) {
+      by_place[li.label].push_back({li.source, li.stamp_s, places::computeHistograms(li.bgr, use)});
+      if (!previous.empty() && previous != li.label) edges.insert(std::minmax(previous, li.label));
+      previous = li.label;
+    });
+    if (n == 0) throw std::runtime_error("no labelled image in " + (bag.empty() ? list : bag));
+    long added = 0;
+    for (auto& [place, images] : by_place) {
+      std::vector<places::TrainingImage> chosen;
+      const size_t total = images.size();
+      const size_t k = per_place == 0 ? total : std::min<size_t>(total, per_place);
+      for (size_t i = 0; i < k; ++i)
+        chosen.push_back(std::move(images[(2 * i + 1) * total / (2 * k)]));
+      added += db.addImages(place, chosen);
+      std::cerr << "train_places: " << place << ": " << chosen.size() << " of " << total
+                << " images\n";
+    }
+    if (adjacency)
+      for (const auto& [a, b] : edges) db.setAdjacent(a, b);
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    std::printf(
+        "train_places: database=%s places=%zu images_added=%ld images_total=%ld edges=%zu "
+        "seconds=%.1f\n",
+        db_path.c_str(), db.places().size(), added, db.imageCount(), db.edges().size(), secs);
+  } catch (const std::exception& e) {
+    std::cerr << "train_places: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
