@@ -1,0 +1,131 @@
+// bench_places: place-recognition speed on one core.
+//
+//   bench_places [--images 10000] [--space hsv] [--bins 256] [--seconds 1] [--seed N]
+//
+// 1. Histogram extraction of a 640 x 480 rendering of the indoor building (the kitchen, cloudy),
+//    each colour space alone and all eight together (ms per image).
+// 2. Queries: eq. (5) node distances of one test image against --images stored images (11
+//    places; histograms of rendered views of the building, perturbed per stored image) in one
+//    colour space, for each distance (ms per query; the target is under 10 ms for 10,000 images).
+// Last line: `bench_places: extract_ms_<space>=... extract_ms_all=... query_ms_<method>=...
+// images=N space=S`.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "adaptive_perception/places/histogram.h"
+#include "adaptive_perception/places/place_matcher.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/sim/indoor_renderer.h"
+#include "tool_args.h"
+
+using namespace adaptive_perception;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+template <typename F>
+double msPerCall(double seconds, F&& f) {
+  const auto t0 = Clock::now();
+  long n = 0;
+  double elapsed = 0.0;
+  do {
+    f();
+    ++n;
+    elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
+  } while (elapsed < seconds);
+  return 1e3 * elapsed / n;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  tools::Args args(argc, argv,
+                   "bench_places [--images N] [--space NAME] [--bins B] [--seconds S] [--seed N]");
+  const long images = args.getInt("images", 10000);
+  const std::string space_name = args.get("space", "hsv");
+  const long bins = args.getInt("bins", 256);
+  const double seconds = args.getDouble("seconds", 1.0);
+  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
+  args.finish();
+  if (images < 1 || images > 1000000) args.fail("--images must be in 1..1000000");
+  if (bins < 2 || bins > 256) args.fail("--bins must be in 2..256");
+  if (!(seconds > 0.0)) args.fail("--seconds must be positive");
+  try {
+    const int space = places::spaceIndex(space_name);
+    const sim::IndoorWorld world = sim::IndoorWorld::loadYaml(
+        ros_params::resolvePackagePath("config/worlds/indoor_building.yaml"));
+    sim::IndoorCameraConfig cam;
+    cam.width_px = 640;
+    cam.height_px = 480;
+    const sim::IndoorRenderer renderer(world, cam);
+    math::Rng rng(seed);
+    const sim::IndoorLighting light =
+        sim::IndoorLighting::sample(sim::IndoorLightingKind::kCloudy, rng);
+    const cv::Mat kitchen = renderer.render(math::SE2(3.5, 11.8, 1.0), light, rng);
+
+    std::string line = "bench_places:";
+    char buf[96];
+    for (int s = 0; s < places::kNumSpaces; ++s) {
+      const double ms = msPerCall(seconds / 4, [&] {
+        places::computeHistograms(kitchen, cv::Mat(), static_cast<int>(bins), {s});
+      });
+      std::snprintf(buf, sizeof(buf), " extract_ms_%s=%.2f", places::spaceName(s).c_str(), ms);
+      line += buf;
+    }
+    const std::vector<int> all = places::parseSpaces("all");
+    const double ms_all = msPerCall(seconds / 2, [&] {
+      places::computeHistograms(kitchen, cv::Mat(), static_cast<int>(bins), all);
+    });
+    std::snprintf(buf, sizeof(buf), " extract_ms_all=%.2f", ms_all);
+    line += buf;
+
+    // A database of `images` stored histograms: 40 rendered views (small images are enough for
+    // histograms), each stored many times with multiplicative noise on every bin, renormalised.
+    sim::IndoorCameraConfig small;
+    small.width_px = 160;
+    small.height_px = 120;
+    const sim::IndoorRenderer small_renderer(world, small);
+    std::vector<places::ImageHistograms> views;
+    std::vector<int> view_place;
+    for (int v = 0; v < 40; ++v) {
+      const auto& stop = world.route[rng.uniformInt(0, static_cast<int>(world.route.size()) - 1)];
+      const math::SE2 pose(stop.xy_m.x(), stop.xy_m.y(), rng.uniform(-M_PI, M_PI));
+      views.push_back(places::computeHistograms(small_renderer.render(pose, light, rng), cv::Mat(),
+                                                static_cast<int>(bins), {space}));
+      view_place.push_back(std::max(0, world.placeAt(stop.xy_m)));
+    }
+    places::PlaceIndex index(static_cast<int>(bins));
+    for (const auto& p : world.places) index.addPlace(p.name);
+    for (long i = 0; i < images; ++i) {
+      const int v = static_cast<int>(i % views.size());
+      places::ImageHistograms h = views[v];
+      std::vector<float>& x = h.spaces[space];
+      for (int band = 0; band < 3; ++band) {
+        double sum = 0.0;
+        for (long b = 0; b < bins; ++b)
+          sum += (x[band * bins + b] *= static_cast<float>(rng.uniform(0.8, 1.2)));
+        for (long b = 0; b < bins; ++b)
+          x[band * bins + b] = static_cast<float>(x[band * bins + b] / sum);
+      }
+      index.addImage(view_place[v], h);
+    }
+    const places::ImageHistograms query =
+        places::computeHistograms(kitchen, cv::Mat(), static_cast<int>(bins), {space});
+    double sink = 0.0;
+    for (int m = 0; m < places::kNumDistances; ++m) {
+      const auto d = static_cast<places::Distance>(m);
+      const double ms =
+          msPerCall(seconds, [&] { sink += index.nodeDistances(space, d, query)[0]; });
+      std::snprintf(buf, sizeof(buf), " query_ms_%s=%.2f", places::distanceName(d).c_str(), ms);
+      line += buf;
+    }
+    if (std::isnan(sink)) line += " (nan)";
+    std::snprintf(buf, sizeof(buf), " images=%ld space=%s bins=%ld", images, space_name.c_str(),
+                  bins);
+    std::printf("%s%s\n", line.c_str(), buf);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_places: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
