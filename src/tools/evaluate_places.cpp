@@ -31,7 +31,7 @@
 #include <map>
 
 #include "adaptive_perception/places/place_database.h"
-#include "adaptive_perception/places/place_filter.h"
+#include "adaptive_perception/places/place_recognizer.h"
 #include "labelled_images.h"
 #include "tool_args.h"
 
@@ -176,22 +176,24 @@ int main(int argc, char** argv) {
     y << YAML::EndMap;
 
     // 3. Sequences with the best combination: sliding window and Bayes filter.
-    places::PlaceFilter filter(db.adjacencyLists(index), fc);
+    places::PlaceRecognizerConfig rc;
+    rc.color_space = places::spaceName(best->space);
+    rc.method = places::distanceName(best->method);
+    rc.window = static_cast<int>(window);
+    rc.filter = fc;
+    places::PlaceRecognizer recognizer(rc);
+    recognizer.setDatabase(index, db.adjacencyLists(index));
     long window_right = 0, filter_right = 0;
     fs::create_directories(output);
     std::ofstream csv(fs::path(output) / "images.csv");
     csv << "image,truth,single,window,filter\n";
     for (size_t i = 0; i < tests.size(); ++i) {
-      const size_t first = i + 1 >= static_cast<size_t>(window) ? i + 1 - window : 0;
-      const std::vector<std::vector<double>> rows(best->d.begin() + first, best->d.begin() + i + 1);
-      const places::Recognition w = places::combineTestImages(rows, best->space, best->method);
-      if (i > 0) filter.predict();
-      filter.update(best->d[i]);
+      const places::PlaceResult r = recognizer.add(tests[i]);
       const auto& row = best->d[i];
       const std::string& single =
           index.placeNames()[std::min_element(row.begin(), row.end()) - row.begin()];
-      const std::string& wname = index.placeNames()[w.place];
-      const std::string& fname = index.placeNames()[filter.best()];
+      const std::string& wname = index.placeNames()[r.recognition.place];
+      const std::string& fname = index.placeNames()[r.filtered_place];
       window_right += wname == truth[i];
       filter_right += fname == truth[i];
       csv << i << "," << truth[i] << "," << single << "," << wname << "," << fname << "\n";

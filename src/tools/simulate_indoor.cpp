@@ -4,6 +4,7 @@
 //   simulate_indoor --lighting night|cloudy|sunny --seed N --output FILE.bag
 //                   [--camera perspective|omni] [--images_out DIR] [--world FILE.yaml]
 //                   [--camera_rate_hz 2] [--odom_rate_hz 20] [--duration_s S] [--overwrite]
+//                   [--width_px 309 --height_px 240 (perspective) | 320 x 240 (omni)]
 //
 // Topics: camera/image_raw (bgr8; frame camera_link, x forward), camera/camera_info (perspective
 // only), odom + tf odom -> base_link, tf_static base_link -> camera_link, ground_truth/pose
@@ -47,7 +48,8 @@ int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "simulate_indoor --lighting night|cloudy|sunny --seed N --output FILE.bag "
                    "[--camera perspective|omni] [--images_out DIR] [--world FILE.yaml] "
-                   "[--camera_rate_hz HZ] [--odom_rate_hz HZ] [--duration_s S] [--overwrite]");
+                   "[--camera_rate_hz HZ] [--odom_rate_hz HZ] [--duration_s S] [--overwrite] "
+                   "[--width_px W --height_px H]");
   const std::string world_path = args.get("world", "config/worlds/indoor_building.yaml");
   const std::string lighting_name = args.get("lighting", "cloudy");
   const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
@@ -58,6 +60,7 @@ int main(int argc, char** argv) {
   const double odom_rate = args.getDouble("odom_rate_hz", 20.0);
   const double duration_arg = args.getDouble("duration_s", -1.0);
   const bool overwrite = args.has("overwrite");
+  const long width = args.getInt("width_px", 0), height = args.getInt("height_px", 0);
   args.finish();
   if (output.empty() && images_out.empty()) args.fail("--output FILE.bag or --images_out DIR");
   if (camera_name != "perspective" && camera_name != "omni")
@@ -75,6 +78,21 @@ int main(int argc, char** argv) {
         sim::IndoorWorld::loadYaml(ros_params::resolvePackagePath(world_path));
     sim::IndoorCameraConfig cam;
     cam.omni = camera_name == "omni";
+    if (width > 0 || height > 0) {
+      if (width < 8 || height < 8 || width > 4096 || height > 4096)
+        args.fail("--width_px and --height_px must both be in 8..4096");
+      if (cam.omni) {
+        // Scale the donut with the image.
+        const double k = std::min(width / 320.0, height / 240.0);
+        cam.omni_width_px = static_cast<int>(width);
+        cam.omni_height_px = static_cast<int>(height);
+        cam.inner_radius_px *= k;
+        cam.outer_radius_px *= k;
+      } else {
+        cam.width_px = static_cast<int>(width);
+        cam.height_px = static_cast<int>(height);
+      }
+    }
     const sim::IndoorRenderer renderer(world, cam);
     math::Rng rng(seed * 7919 + 17);
     const sim::IndoorLighting lighting = sim::IndoorLighting::sample(kind, rng);

@@ -1,0 +1,95 @@
+#pragma once
+// histogram_place_recognizer: topological place recognition by colour-histogram correlation
+// (papers/004), with a SQLite place database (places/place_database.h) and a Bayes filter over
+// the places' adjacency.
+//
+// Parameters (private; config/histogram_place_recognizer.yaml documents defaults and ranges):
+//   ~database (path, required), ~create_if_missing (true), ~bins (256), ~spaces ("all"), ~mask
+//   ("none" | "auto" | "ring:cx,cy,r_in,r_out") -- the last three build a new database; given
+//   for an existing one they must match it or the node refuses to start --, ~mode (recognise |
+//   train), ~color_space ("auto" or a space), ~method ("auto" or a distance), ~window (5),
+//   ~use_filter (true), ~stay_probability (0.8), ~teleport_probability (0.02),
+//   ~likelihood_sharpness (4), ~max_rate_hz (5; images beyond it are dropped), ~train_batch (15),
+//   ~train_every_n (1).
+// Subscribed: camera/image_raw (bgr8, rgb8, yuv422); ground_truth/place (std_msgs/String; train
+//   mode labels each image with the latest one).
+// Published: place (adaptive_perception/PlaceRecognition, per image, over the last ~window
+//   images), ~overlay (bgr8 image with the result written on it, only when subscribed),
+//   /diagnostics (rate, places, images, last confidence).
+// Services: ~add_images (AddPlaceImages: the next N images / T seconds go to a place),
+//   ~remove_place (RemovePlace), ~set_adjacency (SetPlaceAdjacency), ~save (std_srvs/Trigger:
+//   write images still being collected now). Every change is one SQLite transaction.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <std_msgs/String.h>
+#include <std_srvs/Trigger.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+
+#include "adaptive_perception/AddPlaceImages.h"
+#include "adaptive_perception/PlaceRecognition.h"
+#include "adaptive_perception/RemovePlace.h"
+#include "adaptive_perception/SetPlaceAdjacency.h"
+#include "adaptive_perception/places/place_database.h"
+#include "adaptive_perception/places/place_recognizer.h"
+
+namespace adaptive_perception {
+
+class HistogramPlaceRecognizerNode {
+ public:
+  HistogramPlaceRecognizerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~HistogramPlaceRecognizerNode();
+
+ private:
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onLabel(const std_msgs::StringConstPtr& msg);
+  bool onAddImages(AddPlaceImages::Request& req, AddPlaceImages::Response& res);
+  bool onRemovePlace(RemovePlace::Request& req, RemovePlace::Response& res);
+  bool onSetAdjacency(SetPlaceAdjacency::Request& req, SetPlaceAdjacency::Response& res);
+  bool onSave(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  /// Writes the collected images (one transaction per place) and reloads the index.
+  std::string flush();
+  void reload();
+  void publishOverlay(const cv::Mat& bgr, const std_msgs::Header& header,
+                      const PlaceRecognition& result);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  std::optional<places::PlaceDatabase> db_;
+  places::HistogramConfig histograms_;
+  std::unique_ptr<places::PlaceRecognizer> recognizer_;
+  bool train_mode_ = false;
+  double max_rate_hz_ = 5.0;
+  int train_batch_ = 15, train_every_n_ = 1;
+  long train_seen_ = 0;
+  std::string label_;  // latest ground_truth/place
+  // Images being collected, per place.
+  std::map<std::string, std::vector<places::TrainingImage>> pending_;
+  std::set<std::pair<std::string, std::string>>
+      pending_edges_;  // train mode: places walked between
+  struct Collect {
+    std::string place;
+    long remaining = 0;       // images; -1 = no count limit
+    double duration_s = 0.0;  // 0 = no time limit
+    ros::Time started;        // first collected image
+    ros::Time until;
+  };
+  std::optional<Collect> collect_;
+
+  ros::Subscriber image_sub_, label_sub_;
+  ros::Publisher place_pub_, overlay_pub_;
+  ros::ServiceServer add_srv_, remove_srv_, adjacency_srv_, save_srv_;
+  diagnostic_updater::Updater diagnostics_;
+  double min_freq_ = 0.1, max_freq_ = 100.0;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+  ros::Time last_stamp_, last_processed_;
+  long images_ = 0, bad_images_ = 0;
+  double last_confidence_ = 0.0;
+  std::string last_place_;
+};
+
+}  // namespace adaptive_perception

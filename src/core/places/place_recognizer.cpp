@@ -1,0 +1,83 @@
+#include "adaptive_perception/places/place_recognizer.h"
+
+#include <stdexcept>
+
+namespace adaptive_perception::places {
+
+void PlaceRecognizerConfig::validate() const {
+  if (color_space != "auto") spaceIndex(color_space);  // throws naming the valid ones
+  if (method != "auto") distanceFromName(method);
+  if (window < 1 || window > 1000)
+    throw std::invalid_argument("window must be in 1..1000, got " + std::to_string(window));
+  filter.validate();
+}
+
+PlaceRecognizer::PlaceRecognizer(PlaceRecognizerConfig config) : config_(std::move(config)) {
+  config_.validate();
+  methods_ = config_.method == "auto" ? parseDistances("paper")
+                                      : std::vector<Distance>{distanceFromName(config_.method)};
+}
+
+void PlaceRecognizer::setDatabase(PlaceIndex index, std::vector<std::vector<int>> adjacency) {
+  if (static_cast<int>(adjacency.size()) != index.numPlaces())
+    throw std::invalid_argument("setDatabase: adjacency for " + std::to_string(adjacency.size()) +
+                                " places, the index has " + std::to_string(index.numPlaces()));
+  std::vector<int> spaces;
+  if (config_.color_space == "auto") {
+    for (int s = 0; s < kNumSpaces; ++s)
+      if (index.hasSpace(s)) spaces.push_back(s);
+  } else {
+    const int s = spaceIndex(config_.color_space);
+    if (index.numPlaces() > 0 && !index.hasSpace(s))
+      throw std::invalid_argument("the place database has no " + config_.color_space +
+                                  " histograms");
+    spaces.push_back(s);
+  }
+  index_ = std::move(index);
+  spaces_ = spaces;
+  adjacency_ = std::move(adjacency);
+  reset();
+}
+
+void PlaceRecognizer::reset() {
+  window_.clear();
+  seen_ = 0;
+  filter_.clear();
+  if (config_.use_filter && index_.numPlaces() > 0)
+    filter_.emplace_back(adjacency_, config_.filter);
+}
+
+PlaceResult PlaceRecognizer::add(const ImageHistograms& h) {
+  if (index_.numPlaces() == 0 || spaces_.empty())
+    throw std::logic_error("the place database has no trained place yet");
+  std::vector<std::vector<double>> per_combo;
+  for (int s : spaces_)
+    for (Distance m : methods_) per_combo.push_back(index_.nodeDistances(s, m, h));
+  window_.push_back(std::move(per_combo));
+  while (static_cast<int>(window_.size()) > config_.window) window_.pop_front();
+
+  std::vector<Recognition> recs;
+  size_t c = 0;
+  for (int s : spaces_)
+    for (Distance m : methods_) {
+      std::vector<std::vector<double>> rows;
+      for (const auto& img : window_) rows.push_back(img[c]);
+      recs.push_back(combineTestImages(rows, s, m));
+      ++c;
+    }
+  ++seen_;
+  PlaceResult out;
+  const Recognition& best = mostConfident(recs);
+  out.recognition = best;
+  out.images = static_cast<int>(window_.size());
+  if (!filter_.empty()) {
+    const size_t chosen = &best - recs.data();
+    if (seen_ > 0) filter_[0].predict();
+    filter_[0].update(window_.back()[chosen]);
+    out.belief = filter_[0].belief();
+    out.filtered_place = filter_[0].best();
+  }
+  return out;
+}
+
+}  // namespace adaptive_perception::places

@@ -1,0 +1,341 @@
+#include "adaptive_perception/ros/histogram_place_recognizer_node.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <opencv2/imgproc.hpp>
+
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+
+namespace adaptive_perception {
+
+HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
+                                                           ros::NodeHandle pnh) {
+  namespace P = ros_params;
+  const std::string path = P::getName(pnh, "database", "places.sqlite");
+  const bool create = P::get<bool>(pnh, "create_if_missing", true);
+  places::HistogramConfig hc;
+  hc.bins = P::getInRange(pnh, "bins", hc.bins, 2, 256);
+  const bool explicit_settings =
+      pnh.hasParam("bins") || pnh.hasParam("spaces") || pnh.hasParam("mask");
+  try {
+    hc.spaces = places::parseSpaces(P::get<std::string>(pnh, "spaces", "all"));
+    hc.mask = places::MaskConfig::parse(P::get<std::string>(pnh, "mask", "none"));
+  } catch (const std::invalid_argument& e) {
+    throw P::ParamError(std::string("parameter ~spaces / ~mask: ") + e.what());
+  }
+  const std::string mode = P::get<std::string>(pnh, "mode", "recognise");
+  if (mode != "recognise" && mode != "recognize" && mode != "train")
+    throw P::ParamError("parameter " + pnh.resolveName("mode") + " is '" + mode +
+                        "'; allowed: recognise, train");
+  train_mode_ = mode == "train";
+  places::PlaceRecognizerConfig rc;
+  rc.color_space = P::get<std::string>(pnh, "color_space", rc.color_space);
+  rc.method = P::get<std::string>(pnh, "method", rc.method);
+  rc.window = P::getInRange(pnh, "window", rc.window, 1, 1000);
+  rc.use_filter = P::get<bool>(pnh, "use_filter", rc.use_filter);
+  rc.filter.stay_probability =
+      P::getInRange(pnh, "stay_probability", rc.filter.stay_probability, 0.0, 1.0);
+  rc.filter.teleport_probability =
+      P::getInRange(pnh, "teleport_probability", rc.filter.teleport_probability, 0.0, 1.0);
+  rc.filter.likelihood_sharpness =
+      P::getInRange(pnh, "likelihood_sharpness", rc.filter.likelihood_sharpness, 1e-3, 1e3);
+  max_rate_hz_ = P::getInRange(pnh, "max_rate_hz", max_rate_hz_, 0.01, 1000.0);
+  train_batch_ = P::getInRange(pnh, "train_batch", train_batch_, 1, 100000);
+  train_every_n_ = P::getInRange(pnh, "train_every_n", train_every_n_, 1, 100000);
+  try {
+    rc.validate();
+    recognizer_ = std::make_unique<places::PlaceRecognizer>(rc);
+  } catch (const std::invalid_argument& e) {
+    throw P::ParamError(std::string("recognition parameters: ") + e.what());
+  }
+  const places::DatabaseSettings wanted = places::DatabaseSettings::fromHistogramConfig(hc);
+  if (std::filesystem::exists(path)) {
+    db_.emplace(places::PlaceDatabase::open(path));
+    if (explicit_settings) db_->requireSettings(wanted);
+  } else if (create) {
+    db_.emplace(places::PlaceDatabase::create(path, wanted));
+    ROS_INFO("histogram_place_recognizer: created %s (%s)", path.c_str(),
+             wanted.toString().c_str());
+  } else {
+    throw std::runtime_error(path + ": no such place database (and ~create_if_missing is false)");
+  }
+  histograms_ = db_->settings().histogramConfig();
+  reload();
+
+  place_pub_ = nh.advertise<PlaceRecognition>(ros_topics::kPlace, 10);
+  overlay_pub_ = pnh.advertise<sensor_msgs::Image>("overlay", 2);
+  image_sub_ =
+      nh.subscribe(ros_topics::kCameraImage, 2, &HistogramPlaceRecognizerNode::onImage, this);
+  label_sub_ =
+      nh.subscribe(ros_topics::kGroundTruthPlace, 10, &HistogramPlaceRecognizerNode::onLabel, this);
+  add_srv_ = pnh.advertiseService("add_images", &HistogramPlaceRecognizerNode::onAddImages, this);
+  remove_srv_ =
+      pnh.advertiseService("remove_place", &HistogramPlaceRecognizerNode::onRemovePlace, this);
+  adjacency_srv_ =
+      pnh.advertiseService("set_adjacency", &HistogramPlaceRecognizerNode::onSetAdjacency, this);
+  save_srv_ = pnh.advertiseService("save", &HistogramPlaceRecognizerNode::onSave, this);
+  diagnostics_.setHardwareID("histogram_place_recognizer");
+  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
+  diagnostics_.add(*freq_);
+  diagnostics_.add("place database", this, &HistogramPlaceRecognizerNode::diagnose);
+  ROS_INFO("histogram_place_recognizer: %s mode, database %s: %zu places, %ld images",
+           train_mode_ ? "train" : "recognise", path.c_str(), db_->places().size(),
+           db_->imageCount());
+}
+
+HistogramPlaceRecognizerNode::~HistogramPlaceRecognizerNode() {
+  try {
+    if (!pending_.empty()) ROS_INFO("histogram_place_recognizer: %s", flush().c_str());
+  } catch (const std::exception& e) {
+    ROS_ERROR("histogram_place_recognizer: images collected but not stored: %s", e.what());
+  }
+}
+
+void HistogramPlaceRecognizerNode::reload() {
+  places::PlaceIndex index = db_->loadIndex();
+  std::vector<std::vector<int>> adj = db_->adjacencyLists(index);
+  recognizer_->setDatabase(std::move(index), std::move(adj));
+}
+
+std::string HistogramPlaceRecognizerNode::flush() {
+  std::string msg;
+  for (auto& [place, images] : pending_) {
+    if (images.empty()) continue;
+    const int n = db_->addImages(place, images);
+    msg += (msg.empty() ? "" : ", ") + std::to_string(n) + " images to '" + place + "'";
+  }
+  pending_.clear();
+  // Edges walked in train mode, once both places are stored.
+  const auto stored = db_->places();
+  auto known = [&](const std::string& n) {
+    return std::any_of(stored.begin(), stored.end(),
+                       [&](const places::PlaceInfo& p) { return p.name == n; });
+  };
+  for (auto it = pending_edges_.begin(); it != pending_edges_.end();) {
+    if (known(it->first) && known(it->second)) {
+      db_->setAdjacent(it->first, it->second);
+      it = pending_edges_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  reload();
+  return msg.empty() ? "nothing to store" : "stored " + msg;
+}
+
+void HistogramPlaceRecognizerNode::onLabel(const std_msgs::StringConstPtr& msg) {
+  if (train_mode_ && !label_.empty() && msg->data != label_ && msg->data != "none" &&
+      label_ != "none") {
+    // The robot walked from one place into the next: they are adjacent (stored with the images).
+    pending_edges_.insert(std::minmax(label_, msg->data));
+  }
+  label_ = msg->data;
+}
+
+void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+  if (!last_stamp_.isZero() && msg->header.stamp < last_stamp_) {
+    ROS_WARN(
+        "histogram_place_recognizer: image time went backwards (bag looped?): window and "
+        "filter reset");
+    recognizer_->reset();
+    last_processed_ = ros::Time();
+  }
+  last_stamp_ = msg->header.stamp;
+  if (!last_processed_.isZero() &&
+      (msg->header.stamp - last_processed_).toSec() < 1.0 / max_rate_hz_)
+    return;
+  cv::Mat bgr;
+  try {
+    bgr = ros_conv::imageToBgr8(*msg);
+  } catch (const ros_conv::ImageFormatError& e) {
+    ROS_ERROR_THROTTLE(10.0, "histogram_place_recognizer: image dropped: %s", e.what());
+    ++bad_images_;
+    return;
+  }
+  places::ImageHistograms h;
+  try {
+    h = places::computeHistograms(bgr, histograms_);
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(10.0, "histogram_place_recognizer: image dropped: %s", e.what());
+    ++bad_images_;
+    return;
+  }
+  last_processed_ = msg->header.stamp;
+  ++images_;
+  freq_->tick();
+
+  // Collecting training images: from a service request, or in train mode from the labels.
+  std::string target;
+  if (collect_) {
+    target = collect_->place;
+  } else if (train_mode_ && !label_.empty() && label_ != "none" &&
+             train_seen_++ % train_every_n_ == 0) {
+    target = label_;
+  }
+  if (!target.empty()) {
+    char src[64];
+    std::snprintf(src, sizeof(src), "%s@%.3f", ros_topics::kCameraImage, msg->header.stamp.toSec());
+    pending_[target].push_back({src, msg->header.stamp.toSec(), h});
+    bool done = false;
+    if (collect_) {
+      if (collect_->started.isZero()) {
+        collect_->started = msg->header.stamp;
+        if (collect_->duration_s > 0.0)
+          collect_->until = msg->header.stamp + ros::Duration(collect_->duration_s);
+      }
+      if (collect_->remaining > 0) --collect_->remaining;
+      done = collect_->remaining == 0 ||
+             (!collect_->until.isZero() && msg->header.stamp >= collect_->until);
+    } else {
+      done = static_cast<int>(pending_[target].size()) >= train_batch_;
+    }
+    if (done) {
+      try {
+        const std::string m = flush();
+        ROS_INFO("histogram_place_recognizer: %s", m.c_str());
+      } catch (const std::exception& e) {
+        ROS_ERROR("histogram_place_recognizer: could not store training images: %s", e.what());
+        pending_.clear();
+      }
+      collect_.reset();
+    }
+  }
+
+  if (recognizer_->index().numPlaces() == 0 || recognizer_->spaces().empty()) {
+    ROS_WARN_THROTTLE(30.0, "histogram_place_recognizer: the database has no trained place yet");
+    diagnostics_.update();
+    return;
+  }
+  places::PlaceResult r;
+  try {
+    r = recognizer_->add(h);
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(10.0, "histogram_place_recognizer: recognition failed: %s", e.what());
+    return;
+  }
+  PlaceRecognition out;
+  out.header = msg->header;
+  const auto& names = recognizer_->index().placeNames();
+  out.place = names[r.recognition.place];
+  out.confidence = r.recognition.confidence;
+  out.method = places::distanceName(r.recognition.method);
+  out.color_space = places::spaceName(r.recognition.space);
+  out.images = static_cast<std::uint32_t>(r.images);
+  out.places = names;
+  out.distances = r.recognition.total_distances;
+  out.belief = r.belief;
+  out.filtered_place = r.filtered_place >= 0 ? names[r.filtered_place] : "";
+  place_pub_.publish(out);
+  last_place_ = out.place;
+  last_confidence_ = out.confidence;
+  if (overlay_pub_.getNumSubscribers() > 0) publishOverlay(bgr, msg->header, out);
+  diagnostics_.update();
+}
+
+void HistogramPlaceRecognizerNode::publishOverlay(const cv::Mat& bgr,
+                                                  const std_msgs::Header& header,
+                                                  const PlaceRecognition& r) {
+  cv::Mat img = bgr.clone();
+  char line1[160], line2[160];
+  std::snprintf(line1, sizeof(line1), "%s  %.0f%%  (%s, %s, %u images)", r.place.c_str(),
+                100.0 * r.confidence, r.color_space.c_str(), r.method.c_str(), r.images);
+  std::snprintf(line2, sizeof(line2), "filter: %s", r.filtered_place.c_str());
+  const double scale = std::max(0.35, img.cols / 900.0);
+  cv::rectangle(img, {0, 0}, {img.cols, static_cast<int>(44 * scale / 0.35 * 0.35 + 8)},
+                cv::Scalar(0, 0, 0), cv::FILLED);
+  cv::putText(img, line1, {4, static_cast<int>(16 * scale / 0.35 * 0.35 + 4)},
+              cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(80, 255, 80), 1, cv::LINE_AA);
+  if (!r.filtered_place.empty())
+    cv::putText(img, line2, {4, static_cast<int>(36 * scale / 0.35 * 0.35 + 4)},
+                cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 200, 80), 1, cv::LINE_AA);
+  overlay_pub_.publish(ros_conv::bgr8ToImage(img, header));
+}
+
+bool HistogramPlaceRecognizerNode::onAddImages(AddPlaceImages::Request& req,
+                                               AddPlaceImages::Response& res) {
+  if (req.place.empty() || req.place == "none") {
+    res.success = false;
+    res.message = "place must be a non-empty name other than 'none'";
+    return true;
+  }
+  if (req.count == 0 && !(req.duration_s > 0.0)) {
+    res.success = false;
+    res.message = "give count > 0 or duration_s > 0";
+    return true;
+  }
+  if (collect_) {
+    res.success = false;
+    res.message = "already collecting for '" + collect_->place + "'";
+    return true;
+  }
+  Collect c;
+  c.place = req.place;
+  c.remaining = req.count > 0 ? static_cast<long>(req.count) : -1;
+  // The time limit counts from the first collected image's stamp (bag time or wall time alike).
+  c.duration_s = req.duration_s > 0.0 ? req.duration_s : 0.0;
+  collect_ = c;
+  res.success = true;
+  res.message = "collecting images for '" + req.place + "'";
+  return true;
+}
+
+bool HistogramPlaceRecognizerNode::onRemovePlace(RemovePlace::Request& req,
+                                                 RemovePlace::Response& res) {
+  try {
+    res.success = db_->removePlace(req.place);
+    res.message = res.success ? "removed '" + req.place + "'" : "no place '" + req.place + "'";
+    if (res.success) reload();
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+  }
+  return true;
+}
+
+bool HistogramPlaceRecognizerNode::onSetAdjacency(SetPlaceAdjacency::Request& req,
+                                                  SetPlaceAdjacency::Response& res) {
+  try {
+    db_->setAdjacent(req.place_a, req.place_b, req.connected);
+    reload();
+    res.success = true;
+    res.message = (req.connected ? "connected '" : "disconnected '") + req.place_a + "' and '" +
+                  req.place_b + "'";
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+  }
+  return true;
+}
+
+bool HistogramPlaceRecognizerNode::onSave(std_srvs::Trigger::Request&,
+                                          std_srvs::Trigger::Response& res) {
+  try {
+    res.message = flush();
+    collect_.reset();
+    res.success = true;
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+  }
+  return true;
+}
+
+void HistogramPlaceRecognizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  const auto& index = recognizer_->index();
+  if (index.numPlaces() == 0)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no trained place");
+  else
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "recognising");
+  stat.add("database", db_->path());
+  stat.add("places", index.numPlaces());
+  stat.add("images processed", images_);
+  stat.add("images dropped (bad)", bad_images_);
+  stat.add("last place", last_place_);
+  stat.add("last confidence", last_confidence_);
+  stat.add("mode", train_mode_ ? "train" : "recognise");
+}
+
+}  // namespace adaptive_perception
