@@ -13,7 +13,8 @@
 // Cameras: perspective (default 309 x 240, 62 deg wide, 1 m above the floor, pitched 5 deg down)
 // or omni-directional (a catadioptric "donut": an image ring between two radii maps linearly to
 // elevation, azimuth around the centre with the robot's forward direction up; a black border
-// outside the ring and a dark dead centre inside it, as in the paper's Fig. 4).
+// outside the ring and a near-black dead centre inside it (the mirror mount), as in the paper's
+// Fig. 4).
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <string>

@@ -614,7 +614,7 @@ cv::Mat IndoorRenderer::render(const math::SE2& pose, const IndoorLighting& l,
         row[u] = {0, 0, 0};
         continue;
       }
-      Eigen::Vector3d px = valid_[i] == 2 ? Eigen::Vector3d(0.012, 0.012, 0.014)
+      Eigen::Vector3d px = valid_[i] == 2 ? Eigen::Vector3d(0.0006, 0.0006, 0.0007)
                                           : (lin[i].cast<double>() * gain).eval();
       for (int k = 0; k < 3; ++k) {
         double level = 255.0 * std::pow(std::clamp(px[k], 0.0, 1.0), inv_gamma);

@@ -1,0 +1,84 @@
+// PlaceRecognizer: the sliding window of eqs. (6)-(7), the auto choice of space / method, and the
+// filter's use of the chosen node distances.
+#include "adaptive_perception/places/place_recognizer.h"
+
+#include <gtest/gtest.h>
+
+using namespace adaptive_perception::places;
+
+namespace {
+// Two spaces (rgb, hsv) over 2 bins: band 0 = (p, 1 - p) in rgb, (q, 1 - q) in hsv.
+ImageHistograms hist(float p, float q) {
+  ImageHistograms h;
+  h.bins = 2;
+  h.spaces[0] = {p, 1 - p, 1, 0, 1, 0};
+  h.spaces[4] = {q, 1 - q, 1, 0, 1, 0};
+  return h;
+}
+PlaceIndex twoPlaces() {
+  PlaceIndex index(2);
+  index.addPlace("a");
+  index.addPlace("b");
+  index.addImage(0, hist(1.0f, 1.0f));
+  index.addImage(1, hist(0.0f, 0.0f));
+  return index;
+}
+}  // namespace
+
+TEST(PlaceRecognizer, WindowCombinesTheLastImages) {
+  PlaceRecognizerConfig cfg;
+  cfg.color_space = "rgb";
+  cfg.method = "ks";
+  cfg.window = 3;
+  cfg.use_filter = false;
+  PlaceRecognizer r(cfg);
+  r.setDatabase(twoPlaces(), {{1}, {0}});
+  EXPECT_EQ(r.spaces(), std::vector<int>{0});
+  EXPECT_EQ(r.add(hist(0.9f, 0)).recognition.place, 0);
+  EXPECT_EQ(r.add(hist(0.8f, 0)).recognition.place, 0);
+  // Third image votes b; the window (0.9, 0.8, 0.1) still says a with 2/3.
+  PlaceResult x = r.add(hist(0.1f, 0));
+  EXPECT_EQ(x.recognition.place, 0);
+  EXPECT_NEAR(x.recognition.confidence, 2.0 / 3, 1e-12);
+  EXPECT_EQ(x.images, 3);
+  // Two more b images push the a images out of the window of 3.
+  r.add(hist(0.2f, 0));
+  x = r.add(hist(0.0f, 0));
+  EXPECT_EQ(x.recognition.place, 1);
+  EXPECT_NEAR(x.recognition.confidence, 1.0, 1e-12);
+  EXPECT_TRUE(x.belief.empty());
+  r.reset();
+  EXPECT_EQ(r.add(hist(0.9f, 0)).images, 1);
+}
+
+TEST(PlaceRecognizer, AutoPicksTheMostConfidentSpace) {
+  // rgb is ambiguous (p = 0.5: a tie, first place wins, margin 0), hsv clearly says b.
+  PlaceRecognizerConfig cfg;
+  cfg.window = 2;
+  cfg.use_filter = true;
+  PlaceRecognizer r(cfg);
+  r.setDatabase(twoPlaces(), {{1}, {0}});
+  EXPECT_EQ(r.spaces(), (std::vector<int>{0, 4}));
+  r.add(hist(0.5f, 0.1f));
+  const PlaceResult x = r.add(hist(0.5f, 0.05f));
+  EXPECT_EQ(x.recognition.space, 4);
+  EXPECT_EQ(x.recognition.place, 1);
+  ASSERT_EQ(x.belief.size(), 2u);
+  EXPECT_EQ(x.filtered_place, 1);
+  EXPECT_GT(x.belief[1], 0.9);
+}
+
+TEST(PlaceRecognizer, RefusesBadConfigAndEmptyDatabase) {
+  PlaceRecognizerConfig bad;
+  bad.color_space = "lab";
+  EXPECT_THROW(PlaceRecognizer{bad}, std::invalid_argument);
+  bad = {};
+  bad.window = 0;
+  EXPECT_THROW(PlaceRecognizer{bad}, std::invalid_argument);
+  PlaceRecognizerConfig cfg;
+  cfg.color_space = "hsi";
+  PlaceRecognizer r(cfg);
+  EXPECT_THROW(r.setDatabase(twoPlaces(), {{1}, {0}}), std::invalid_argument);  // no hsi
+  PlaceRecognizer empty;
+  EXPECT_THROW(empty.add(hist(0.5f, 0.5f)), std::logic_error);
+}
