@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "adaptive_perception/places/histogram_distance.h"
 #include "adaptive_perception/places/place_filter.h"
@@ -197,4 +198,36 @@ TEST(PlaceFilter, SuccessiveImagesOutvoteOneBadImage) {
   f.predict();
   f.update({1.0, 1.3, 2.0});
   EXPECT_EQ(f.best(), 1);
+}
+
+TEST(PlaceMatcher, FastJeffreyAgreesWithTheDefinition) {
+  // Random sparse histograms over 64 bins: nodeDistances' rewritten Jeffrey against eq. (3).
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  auto random_hist = [&] {
+    ImageHistograms h;
+    h.bins = 64;
+    h.spaces[2].assign(3 * 64, 0.0f);
+    for (int band = 0; band < 3; ++band) {
+      double s = 0;
+      for (int i = 0; i < 64; ++i)
+        if (u(gen) < 0.4f) s += (h.spaces[2][band * 64 + i] = u(gen));
+      for (int i = 0; i < 64; ++i) h.spaces[2][band * 64 + i] /= static_cast<float>(s);
+    }
+    return h;
+  };
+  PlaceIndex index(64);
+  index.addPlace("a");
+  std::vector<ImageHistograms> train;
+  for (int i = 0; i < 5; ++i) {
+    train.push_back(random_hist());
+    index.addImage(0, train.back());
+  }
+  const ImageHistograms test = random_hist();
+  double expect = 0.0;
+  for (const auto& t : train)
+    expect += histogramDistance(Distance::kJeffrey, test.spaces[2].data(), t.spaces[2].data(), 64);
+  expect /= train.size();
+  EXPECT_NEAR(index.nodeDistances(2, Distance::kJeffrey, test)[0], expect, 1e-5);
+  EXPECT_GT(expect, 0.1);
 }
