@@ -29,6 +29,7 @@
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/sim/field_simulator.h"
+#include "tick_schedule.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -83,18 +84,10 @@ int main(int argc, char** argv) {
     }
 
     // Event times in integer nanoseconds: odometry ticks and camera ticks, merged.
-    std::set<std::int64_t> odom_ticks, camera_ticks, events;
-    const auto dur_ns = static_cast<std::int64_t>(cfg.duration_s * 1e9);
-    for (std::int64_t k = 0;; ++k) {
-      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / cfg.odom_rate_hz));
-      if (t > dur_ns) break;
-      odom_ticks.insert(t);
-    }
-    for (std::int64_t k = 0;; ++k) {
-      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / cfg.camera_rate_hz));
-      if (t > dur_ns) break;
-      camera_ticks.insert(t);
-    }
+    const std::set<std::int64_t> odom_ticks = tools::tickTimesNs(cfg.odom_rate_hz, cfg.duration_s);
+    const std::set<std::int64_t> camera_ticks =
+        tools::tickTimesNs(cfg.camera_rate_hz, cfg.duration_s);
+    std::set<std::int64_t> events;
     events = odom_ticks;
     events.insert(camera_ticks.begin(), camera_ticks.end());
 

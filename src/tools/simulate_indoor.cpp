@@ -38,6 +38,7 @@
 #include "adaptive_perception/sim/indoor_renderer.h"
 #include "adaptive_perception/sim/indoor_route.h"
 #include "adaptive_perception/world/camera_model.h"
+#include "tick_schedule.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -133,18 +134,8 @@ int main(int argc, char** argv) {
       info = ros_conv::toCameraInfo(pin, h);
     }
 
-    std::set<std::int64_t> odom_ticks, cam_ticks;
-    const auto dur_ns = static_cast<std::int64_t>(duration * 1e9);
-    for (std::int64_t k = 0;; ++k) {
-      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / odom_rate));
-      if (t > dur_ns) break;
-      odom_ticks.insert(t);
-    }
-    for (std::int64_t k = 0;; ++k) {
-      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / camera_rate));
-      if (t > dur_ns) break;
-      cam_ticks.insert(t);
-    }
+    const std::set<std::int64_t> odom_ticks = tools::tickTimesNs(odom_rate, duration);
+    const std::set<std::int64_t> cam_ticks = tools::tickTimesNs(camera_rate, duration);
     std::set<std::int64_t> events = odom_ticks;
     events.insert(cam_ticks.begin(), cam_ticks.end());
     double t_prev = 0.0;

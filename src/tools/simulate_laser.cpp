@@ -26,6 +26,7 @@
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/sim/laser_simulator.h"
 #include "adaptive_perception/world/camera_model.h"
+#include "tick_schedule.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -59,18 +60,8 @@ int main(int argc, char** argv) {
                                                     T::kBaseFrame, T::kLaserFrame, t0));
       bag.writeLatched("/tf_static", t0, st, "/simulate_laser");
     }
-    std::set<std::int64_t> odom_ticks, scan_ticks;
-    const auto dur_ns = static_cast<std::int64_t>(duration * 1e9);
-    for (std::int64_t k = 0;; ++k) {
-      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / odom_rate));
-      if (t > dur_ns) break;
-      odom_ticks.insert(t);
-    }
-    for (std::int64_t k = 0;; ++k) {
-      const auto t = static_cast<std::int64_t>(std::llround(k * 1e9 / world.laser.rate_hz));
-      if (t > dur_ns) break;
-      scan_ticks.insert(t);
-    }
+    const std::set<std::int64_t> odom_ticks = tools::tickTimesNs(odom_rate, duration);
+    const std::set<std::int64_t> scan_ticks = tools::tickTimesNs(world.laser.rate_hz, duration);
     std::set<std::int64_t> events = odom_ticks;
     events.insert(scan_ticks.begin(), scan_ticks.end());
     double t_prev = 0.0;

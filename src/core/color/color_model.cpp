@@ -1,7 +1,5 @@
 #include "adaptive_perception/color/color_model.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <array>
@@ -13,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "adaptive_perception/io/yaml_file.h"
 #include "adaptive_perception/world/color_class.h"
 
 namespace adaptive_perception::color {
@@ -112,14 +111,7 @@ ColorObservation computeColorObservation(const cv::Mat& yuv, const cv::Mat& labe
 // LightingPrior
 
 LightingPrior LightingPrior::loadYaml(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw std::runtime_error(path + ": cannot open lighting prior file");
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error(path + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  const YAML::Node root = io::loadYamlFile(path, "lighting prior file");
   LightingPrior p;
   try {
     p.name =

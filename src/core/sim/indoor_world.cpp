@@ -1,10 +1,10 @@
 #include "adaptive_perception/sim/indoor_world.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <set>
 #include <stdexcept>
+
+#include "adaptive_perception/io/yaml_file.h"
 
 namespace adaptive_perception::sim {
 
@@ -41,15 +41,8 @@ std::vector<std::vector<int>> IndoorWorld::adjacency() const {
 }
 
 IndoorWorld IndoorWorld::loadYaml(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw std::runtime_error(path + ": cannot open world file");
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error(path + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
-  auto where = [&](const YAML::Node& n) { return path + ":" + std::to_string(n.Mark().line + 1); };
+  const YAML::Node root = io::loadYamlFile(path, "world file");
+  auto where = [&](const YAML::Node& n) { return io::yamlWhere(path, n); };
   auto vec2 = [&](const YAML::Node& n, const char* what) {
     if (!n) throw std::runtime_error(path + ": missing " + std::string(what));
     const auto v = n.as<std::vector<double>>();

@@ -1,25 +1,17 @@
 #include "adaptive_perception/sim/laser_simulator.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "adaptive_perception/io/yaml_file.h"
 #include "adaptive_perception/math/angles.h"
 
 namespace adaptive_perception::sim {
 
 LaserWorld LaserWorld::loadYaml(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw std::runtime_error(path + ": cannot open world file");
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error(path + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  const YAML::Node root = io::loadYamlFile(path, "world file");
   LaserWorld w;
   auto point = [&](const YAML::Node& n) {
     const auto v = n.as<std::vector<double>>();
