@@ -1,6 +1,7 @@
 #include "adaptive_perception/ros/histogram_place_recognizer_node.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <opencv2/imgproc.hpp>
 
@@ -87,6 +88,14 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
 }
 
 HistogramPlaceRecognizerNode::~HistogramPlaceRecognizerNode() {
+  // One summary line (the demo prints it); accuracy only when ground_truth/place was heard.
+  std::printf(
+      "histogram_place_recognizer: images=%ld dropped=%ld results=%ld labelled=%ld "
+      "window_accuracy=%.3f filter_accuracy=%.3f\n",
+      images_, bad_images_, results_, labelled_,
+      labelled_ > 0 ? static_cast<double>(window_right_) / labelled_ : -1.0,
+      labelled_ > 0 ? static_cast<double>(filter_right_) / labelled_ : -1.0);
+  std::fflush(stdout);
   try {
     if (!pending_.empty()) ROS_INFO("histogram_place_recognizer: %s", flush().c_str());
   } catch (const std::exception& e) {
@@ -229,6 +238,12 @@ void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg
   out.belief = r.belief;
   out.filtered_place = r.filtered_place >= 0 ? names[r.filtered_place] : "";
   place_pub_.publish(out);
+  ++results_;
+  if (!label_.empty() && label_ != "none") {
+    ++labelled_;
+    window_right_ += out.place == label_;
+    filter_right_ += out.filtered_place == label_;
+  }
   last_place_ = out.place;
   last_confidence_ = out.confidence;
   if (overlay_pub_.getNumSubscribers() > 0) publishOverlay(bgr, msg->header, out);
@@ -238,19 +253,29 @@ void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg
 void HistogramPlaceRecognizerNode::publishOverlay(const cv::Mat& bgr,
                                                   const std_msgs::Header& header,
                                                   const PlaceRecognition& r) {
-  cv::Mat img = bgr.clone();
-  char line1[160], line2[160];
-  std::snprintf(line1, sizeof(line1), "%s  %.0f%%  (%s, %s, %u images)", r.place.c_str(),
-                100.0 * r.confidence, r.color_space.c_str(), r.method.c_str(), r.images);
-  std::snprintf(line2, sizeof(line2), "filter: %s", r.filtered_place.c_str());
-  const double scale = std::max(0.35, img.cols / 900.0);
-  cv::rectangle(img, {0, 0}, {img.cols, static_cast<int>(44 * scale / 0.35 * 0.35 + 8)},
-                cv::Scalar(0, 0, 0), cv::FILLED);
-  cv::putText(img, line1, {4, static_cast<int>(16 * scale / 0.35 * 0.35 + 4)},
-              cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(80, 255, 80), 1, cv::LINE_AA);
-  if (!r.filtered_place.empty())
-    cv::putText(img, line2, {4, static_cast<int>(36 * scale / 0.35 * 0.35 + 4)},
-                cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 200, 80), 1, cv::LINE_AA);
+  // The image (enlarged to at least 480 px wide, so the text stays legible) above a black band
+  // with the window's answer and the filter's.
+  const int scale_up = std::max(1, (480 + bgr.cols - 1) / bgr.cols);
+  cv::Mat big;
+  cv::resize(bgr, big, {}, scale_up, scale_up, cv::INTER_NEAREST);
+  const int band = 100;
+  cv::Mat img(big.rows + band, big.cols, CV_8UC3, cv::Scalar(0, 0, 0));
+  big.copyTo(img(cv::Rect(0, 0, big.cols, big.rows)));
+  char line[160];
+  const double font = 0.8 * big.cols / 480.0;
+  auto text = [&](int row, const cv::Scalar& colour) {
+    cv::putText(img, line, {6, big.rows + 28 + 32 * row}, cv::FONT_HERSHEY_SIMPLEX, font, colour, 2,
+                cv::LINE_AA);
+  };
+  std::snprintf(line, sizeof(line), "%s %.0f%%", r.place.c_str(), 100.0 * r.confidence);
+  text(0, cv::Scalar(80, 255, 80));
+  if (!r.filtered_place.empty()) {
+    std::snprintf(line, sizeof(line), "filter: %s", r.filtered_place.c_str());
+    text(1, cv::Scalar(255, 200, 80));
+  }
+  std::snprintf(line, sizeof(line), "%s %s, %u img", r.color_space.c_str(), r.method.c_str(),
+                r.images);
+  text(2, cv::Scalar(200, 200, 200));
   overlay_pub_.publish(ros_conv::bgr8ToImage(img, header));
 }
 
@@ -335,6 +360,8 @@ void HistogramPlaceRecognizerNode::diagnose(diagnostic_updater::DiagnosticStatus
   stat.add("images dropped (bad)", bad_images_);
   stat.add("last place", last_place_);
   stat.add("last confidence", last_confidence_);
+  if (labelled_ > 0)
+    stat.add("accuracy against ground_truth/place", static_cast<double>(window_right_) / labelled_);
   stat.add("mode", train_mode_ ? "train" : "recognise");
 }
 

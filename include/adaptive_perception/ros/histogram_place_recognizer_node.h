@@ -14,8 +14,11 @@
 // Subscribed: camera/image_raw (bgr8, rgb8, yuv422); ground_truth/place (std_msgs/String; train
 //   mode labels each image with the latest one).
 // Published: place (adaptive_perception/PlaceRecognition, per image, over the last ~window
-//   images), ~overlay (bgr8 image with the result written on it, only when subscribed),
-//   /diagnostics (rate, places, images, last confidence).
+//   images), ~overlay (bgr8: the image, enlarged to >= 480 px wide, over a band with the result;
+//   only when subscribed),
+//   /diagnostics (rate, places, images, last confidence; accuracy against ground_truth/place when
+//   that topic is heard). On shutdown, one line `histogram_place_recognizer: images=.. dropped=..
+//   results=.. labelled=.. window_accuracy=.. filter_accuracy=..` on stdout.
 // Services: ~add_images (AddPlaceImages: the next N images / T seconds go to a place),
 //   ~remove_place (RemovePlace), ~set_adjacency (SetPlaceAdjacency), ~save (std_srvs/Trigger:
 //   write images still being collected now). Every change is one SQLite transaction.
@@ -87,7 +90,9 @@ class HistogramPlaceRecognizerNode {
   double min_freq_ = 0.1, max_freq_ = 100.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   ros::Time last_stamp_, last_processed_;
-  long images_ = 0, bad_images_ = 0;
+  long images_ = 0, bad_images_ = 0, results_ = 0;
+  // Evaluation aid: results against the latest ground_truth/place when one is heard.
+  long labelled_ = 0, window_right_ = 0, filter_right_ = 0;
   double last_confidence_ = 0.0;
   std::string last_place_;
 };
