@@ -1,17 +1,21 @@
 #pragma once
 // Labelled images for the place tools (train_places, evaluate_places, bench_places): from a bag
 // (camera/image_raw, labelled by the ground_truth/place message of the same stamp, or the latest
-// one before it) or from a CSV image list (io/image_list.h). Images that cannot be read are
+// one before it; with the ground_truth/pose of that stamp when the bag has one) or from a CSV image
+// list (io/image_list.h). Images that cannot be read are
 // reported on stderr and skipped; images labelled "none" (outside every place) are skipped.
+#include <geometry_msgs/PoseStamped.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/Image.h>
 #include <std_msgs/String.h>
 
+#include <array>
 #include <functional>
 #include <iostream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <string>
 
 #include "adaptive_perception/io/image_list.h"
@@ -25,6 +29,7 @@ struct LabelledImage {
   std::string label;
   std::string source;  // "file.bag@12.500" or the image path
   double stamp_s = 0.0;
+  std::optional<std::array<double, 3>> pose;  // bags: ground_truth/pose at the image (x, y, yaw)
 };
 
 /// Calls `fn` for each labelled image in order; returns the number delivered. Throws
@@ -68,6 +73,16 @@ inline long forEachLabelledImage(const std::string& bag_path, const std::string&
   if (places.empty())
     throw std::runtime_error(bag_path + ": no " + place_topic +
                              " messages: cannot label the images (use --list for image lists)");
+  std::map<double, std::array<double, 3>> poses;
+  {
+    const std::string pose_topic = std::string("/") + ros_topics::kGroundTruthPose;
+    rosbag::View pv(bag, rosbag::TopicQuery(std::vector<std::string>{pose_topic}));
+    for (const rosbag::MessageInstance& m : pv)
+      if (const auto p = m.instantiate<geometry_msgs::PoseStamped>()) {
+        const math::SE2 se2 = ros_conv::toSE2(p->pose);
+        poses[p->header.stamp.toSec()] = {se2.x_m, se2.y_m, se2.yaw_rad};
+      }
+  }
   rosbag::View v(bag, rosbag::TopicQuery(std::vector<std::string>{image_topic}));
   for (const rosbag::MessageInstance& m : v) {
     const auto img = m.instantiate<sensor_msgs::Image>();
@@ -93,6 +108,8 @@ inline long forEachLabelledImage(const std::string& bag_path, const std::string&
     std::snprintf(src, sizeof(src), "@%.3f", t);
     li.source = bag_path + src;
     li.stamp_s = t;
+    auto pit = poses.upper_bound(t + 1e-6);
+    if (pit != poses.begin() && t - std::prev(pit)->first < 0.1) li.pose = std::prev(pit)->second;
     fn(li);
     ++delivered;
   }

@@ -2,7 +2,7 @@
 //
 //   train_places (--bag FILE | --list CSV) --database DB.sqlite [--images_per_place 15]
 //                [--bins 256] [--spaces all] [--mask none|auto|ring:cx,cy,r_in,r_out]
-//                [--no_adjacency]
+//                [--no_adjacency] [--features] [--max_features 200]
 //
 // Images come from a bag (camera/image_raw labelled by ground_truth/place) or a CSV list of
 // `image_path,place` lines. Per place, --images_per_place images spread evenly over that place's
@@ -10,6 +10,8 @@
 // database takes --bins/--spaces/--mask (defaults 256, all eight spaces, no mask); an existing one
 // keeps its own, and explicit options that differ are refused. Adjacency: consecutive images with
 // different places make the two places adjacent (the route walked), unless --no_adjacency.
+// --features also stores each image's SIFT descriptors and, from bags, its ground_truth/pose (the
+// training frames of the room classifier and the appearance localizer, papers/002).
 // Each place is written in one transaction. Last line:
 // `train_places: database=DB places=N images_added=M images_total=T edges=E seconds=S`.
 #include <chrono>
@@ -18,6 +20,7 @@
 #include <map>
 #include <set>
 
+#include "adaptive_perception/places/feature_index.h"
 #include "adaptive_perception/places/place_database.h"
 #include "labelled_images.h"
 #include "tool_args.h"
@@ -28,7 +31,8 @@ int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "train_places (--bag FILE | --list CSV) --database DB.sqlite "
                    "[--images_per_place N] [--bins B] [--spaces all|rgb,hsv,...] "
-                   "[--mask none|auto|ring:cx,cy,r_in,r_out] [--no_adjacency]");
+                   "[--mask none|auto|ring:cx,cy,r_in,r_out] [--no_adjacency] [--features] "
+                   "[--max_features N]");
   const std::string bag = args.get("bag", "");
   const std::string list = args.get("list", "");
   const std::string db_path = args.get("database", "");
@@ -38,10 +42,18 @@ int main(int argc, char** argv) {
   const std::string spaces = args.get("spaces", "all");
   const std::string mask = args.get("mask", "none");
   const bool adjacency = !args.has("no_adjacency");
+  const bool features = args.has("features");
+  places::SiftConfig sift;
+  sift.max_features = static_cast<int>(args.getInt("max_features", sift.max_features));
   args.finish();
   if (bag.empty() == list.empty()) args.fail("give exactly one of --bag FILE and --list CSV");
   if (db_path.empty()) args.fail("--database DB.sqlite is required");
   if (per_place < 0) args.fail("--images_per_place must be >= 0");
+  try {
+    sift.validate();
+  } catch (const std::invalid_argument& e) {
+    args.fail(std::string("--max_features: ") + e.what());
+  }
   const auto t_start = std::chrono::steady_clock::now();
   try {
     places::HistogramConfig hc;
@@ -59,7 +71,15 @@ int main(int argc, char** argv) {
     std::set<std::pair<std::string, std::string>> edges;
     std::string previous;
     const long n = tools::forEachLabelledImage(bag, list, [&](const tools::LabelledImage& li) {
-      by_place[li.label].push_back({li.source, li.stamp_s, places::computeHistograms(li.bgr, use)});
+      places::TrainingImage ti;
+      ti.source = li.source;
+      ti.stamp_s = li.stamp_s;
+      ti.histograms = places::computeHistograms(li.bgr, use);
+      if (features) {
+        ti.features = places::extractSift(li.bgr, sift);
+        ti.pose = li.pose;
+      }
+      by_place[li.label].push_back(std::move(ti));
       if (!previous.empty() && previous != li.label) edges.insert(std::minmax(previous, li.label));
       previous = li.label;
     });

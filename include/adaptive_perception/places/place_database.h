@@ -11,8 +11,13 @@
 //
 // Schema (version 1): meta(key, value); places(id, name UNIQUE); adjacency(a, b) with a < b;
 // images(id, place_id, source, stamp_s); histograms(image_id, space, data BLOB of 3 * bins
-// little-endian float32).
+// little-endian float32); features(image_id, rows, data BLOB of rows x 128 uint8 SIFT
+// descriptors); poses(image_id, x_m, y_m, yaw_rad). The last two are optional per image (SIFT room
+// classification, papers/002) and are added to an older file when it is opened for writing.
+#include <array>
 #include <memory>
+#include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +48,17 @@ struct TrainingImage {
   std::string source;  // where it came from: a file path or "bag.bag@12.5"
   double stamp_s = 0.0;
   ImageHistograms histograms;  // must have every space of the settings
+  cv::Mat features;            // optional: N x 128 CV_32F SIFT descriptors (stored as uint8)
+  std::optional<std::array<double, 3>> pose;  // optional: x_m, y_m, yaw_rad in map
+};
+
+/// A stored training frame with SIFT features, for room classification and appearance MCL.
+struct TrainingFrame {
+  long image_id = 0;
+  std::string place;
+  cv::Mat features;  // N x 128 CV_32F
+  bool has_pose = false;
+  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;
 };
 
 struct PlaceInfo {
@@ -87,6 +103,8 @@ class PlaceDatabase {
   /// Loads the histograms of `spaces` (default: all stored) into a contiguous in-memory index,
   /// places in name order. Throws std::invalid_argument for a space the database lacks.
   PlaceIndex loadIndex(const std::vector<int>& spaces = {}) const;
+  /// Every image that has SIFT features, in the order stored, with its place and pose.
+  std::vector<TrainingFrame> loadFrames() const;
   /// Adjacency lists in the index's place order (for PlaceFilter).
   std::vector<std::vector<int>> adjacencyLists(const PlaceIndex& index) const;
 

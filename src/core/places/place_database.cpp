@@ -17,6 +17,12 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "histogram blobs are li
 constexpr int kApplicationId = 0x41505043;  // "APPC"
 constexpr int kSchemaVersion = 1;
 constexpr const char* kFormat = "adaptive_perception.places";
+// Per-image extras; created with a new database and added to an older one opened for writing.
+constexpr const char* kOptionalTables =
+    "CREATE TABLE IF NOT EXISTS features (image_id INTEGER PRIMARY KEY, rows INTEGER NOT NULL, "
+    "data BLOB NOT NULL);"
+    "CREATE TABLE IF NOT EXISTS poses (image_id INTEGER PRIMARY KEY, x_m REAL NOT NULL, y_m REAL "
+    "NOT NULL, yaw_rad REAL NOT NULL);";
 
 // A prepared statement that finalizes itself.
 class Statement {
@@ -62,6 +68,8 @@ class Statement {
     return t ? reinterpret_cast<const char*>(t) : "";
   }
   const void* blob(int col) const { return sqlite3_column_blob(stmt_, col); }
+  double real(int col) const { return sqlite3_column_double(stmt_, col); }
+  bool isNull(int col) const { return sqlite3_column_type(stmt_, col) == SQLITE_NULL; }
   int bytes(int col) const { return sqlite3_column_bytes(stmt_, col); }
 
  private:
@@ -194,6 +202,7 @@ PlaceDatabase PlaceDatabase::create(const std::string& path, const DatabaseSetti
         "CREATE INDEX images_by_place ON images (place_id);"
         "CREATE TABLE histograms (image_id INTEGER NOT NULL, space INTEGER NOT NULL, data BLOB "
         "NOT NULL, PRIMARY KEY (image_id, space));");
+    db.exec(kOptionalTables);
     Statement meta(db.db_, "INSERT INTO meta (key, value) VALUES (?, ?)", tmp);
     const std::vector<std::pair<std::string, std::string>> kv = {
         {"format", kFormat},
@@ -241,7 +250,10 @@ PlaceDatabase PlaceDatabase::open(const std::string& path, bool read_only) {
     throw std::runtime_error(path + ": place database schema version " + std::to_string(version) +
                              ", this build reads version " + std::to_string(kSchemaVersion));
   db.readSettings();
-  if (!read_only) db.exec("PRAGMA synchronous = FULL");
+  if (!read_only) {
+    db.exec("PRAGMA synchronous = FULL");
+    db.exec(kOptionalTables);
+  }
   return db;
 }
 
@@ -301,11 +313,17 @@ int PlaceDatabase::addImages(const std::string& place, const std::vector<Trainin
       if (static_cast<int>(h.spaces[s].size()) != 3 * settings_.bins)
         throw std::invalid_argument("addImages: image " + images[i].source + " lacks space " +
                                     spaceName(s));
+    const cv::Mat& f = images[i].features;
+    if (!f.empty() && (f.cols != 128 || f.type() != CV_32F))
+      throw std::invalid_argument("addImages: image " + images[i].source +
+                                  " has features that are not N x 128 CV_32F");
   }
   Transaction t(db_, path_);
   const int pid = placeId(place, true);
   Statement img(db_, "INSERT INTO images (place_id, source, stamp_s) VALUES (?, ?, ?)", path_);
   Statement hist(db_, "INSERT INTO histograms (image_id, space, data) VALUES (?, ?, ?)", path_);
+  Statement feat(db_, "INSERT INTO features (image_id, rows, data) VALUES (?, ?, ?)", path_);
+  Statement pose(db_, "INSERT INTO poses (image_id, x_m, y_m, yaw_rad) VALUES (?, ?, ?, ?)", path_);
   for (const TrainingImage& ti : images) {
     img.bind(1, static_cast<long long>(pid)).bind(2, ti.source).bind(3, ti.stamp_s);
     img.step();
@@ -318,6 +336,19 @@ int PlaceDatabase::addImages(const std::string& place, const std::vector<Trainin
       hist.step();
       hist.reset();
     }
+    if (!ti.features.empty()) {
+      cv::Mat bytes;
+      ti.features.convertTo(bytes, CV_8U);  // SIFT descriptors are 0..255 (rounded here)
+      feat.bind(1, iid).bind(2, static_cast<long long>(bytes.rows));
+      feat.bindBlob(3, bytes.data, static_cast<int>(bytes.total()));
+      feat.step();
+      feat.reset();
+    }
+    if (ti.pose) {
+      pose.bind(1, iid).bind(2, (*ti.pose)[0]).bind(3, (*ti.pose)[1]).bind(4, (*ti.pose)[2]);
+      pose.step();
+      pose.reset();
+    }
   }
   t.commit();
   return static_cast<int>(images.size());
@@ -328,7 +359,13 @@ bool PlaceDatabase::removePlace(const std::string& place) {
   const int pid = placeId(place, false);
   if (pid < 0) return false;
   const std::string id = std::to_string(pid);
-  exec("DELETE FROM histograms WHERE image_id IN (SELECT id FROM images WHERE place_id = " + id +
+  exec("DELETE FROM features WHERE image_id IN (SELECT id FROM images WHERE place_id = " + id +
+       ");"
+       "DELETE FROM poses WHERE image_id IN (SELECT id FROM images WHERE place_id = " +
+       id +
+       ");"
+       "DELETE FROM histograms WHERE image_id IN (SELECT id FROM images WHERE place_id = " +
+       id +
        ");"
        "DELETE FROM images WHERE place_id = " +
        id + "; DELETE FROM adjacency WHERE a = " + id + " OR b = " + id +
@@ -426,6 +463,45 @@ PlaceIndex PlaceDatabase::loadIndex(const std::vector<int>& spaces_in) const {
   }
   flush();
   return index;
+}
+
+std::vector<TrainingFrame> PlaceDatabase::loadFrames() const {
+  std::vector<TrainingFrame> out;
+  {
+    Statement q(db_,
+                "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = 'features'",
+                path_);
+    q.step();
+    if (q.integer(0) == 0) return out;  // an older file opened read-only: no features
+  }
+  Statement q(db_,
+              "SELECT i.id, p.name, f.rows, f.data, o.x_m, o.y_m, o.yaw_rad FROM features f JOIN "
+              "images i ON i.id = f.image_id JOIN places p ON p.id = i.place_id LEFT JOIN poses o "
+              "ON o.image_id = i.id ORDER BY i.id",
+              path_);
+  while (q.step()) {
+    TrainingFrame f;
+    f.image_id = q.integer(0);
+    f.place = q.text(1);
+    const long long rows = q.integer(2);
+    if (rows < 0 || q.bytes(3) != rows * 128)
+      throw std::runtime_error(path_ + ": image " + std::to_string(f.image_id) +
+                               " has a damaged feature blob");
+    if (rows > 0) {
+      const cv::Mat bytes(static_cast<int>(rows), 128, CV_8U, const_cast<void*>(q.blob(3)));
+      bytes.convertTo(f.features, CV_32F);
+    } else {
+      f.features = cv::Mat(0, 128, CV_32F);
+    }
+    f.has_pose = !q.isNull(4);
+    if (f.has_pose) {
+      f.x_m = q.real(4);
+      f.y_m = q.real(5);
+      f.yaw_rad = q.real(6);
+    }
+    out.push_back(std::move(f));
+  }
+  return out;
 }
 
 std::vector<std::vector<int>> PlaceDatabase::adjacencyLists(const PlaceIndex& index) const {

@@ -49,7 +49,7 @@ class PlaceDatabaseTest : public ::testing::Test {
   std::vector<TrainingImage> images(int first, int n) const {
     std::vector<TrainingImage> out;
     for (int i = first; i < first + n; ++i)
-      out.push_back({"image_" + std::to_string(i) + ".png", 0.5 * i, hist(i)});
+      out.push_back({"image_" + std::to_string(i) + ".png", 0.5 * i, hist(i), {}, {}});
     return out;
   }
   static std::string contents(const std::string& path) {
@@ -251,4 +251,33 @@ TEST_F(PlaceDatabaseTest, KilledWriterLeavesWholeTransactions) {
   // And it still takes writes.
   db.addImages("after", images(0, 1));
   EXPECT_EQ(db.imageCount(), n + 1);
+}
+
+TEST_F(PlaceDatabaseTest, SiftFeaturesAndPosesRoundTrip) {
+  std::vector<TrainingImage> imgs = images(0, 3);
+  cv::Mat f(5, 128, CV_32F);
+  for (int r = 0; r < 5; ++r)
+    for (int c = 0; c < 128; ++c) f.at<float>(r, c) = static_cast<float>((r * 131 + c * 7) % 256);
+  imgs[0].features = f;
+  imgs[0].pose = std::array<double, 3>{1.5, -2.0, 0.25};
+  imgs[2].features = f.rowRange(0, 2).clone();  // no pose
+  {
+    PlaceDatabase db = PlaceDatabase::create(file("p.sqlite"), settings_);
+    db.addImages("lab", imgs);
+    cv::Mat bad(2, 64, CV_32F, cv::Scalar(1));
+    std::vector<TrainingImage> wrong = images(5, 1);
+    wrong[0].features = bad;
+    EXPECT_THROW(db.addImages("lab", wrong), std::invalid_argument);
+  }
+  const PlaceDatabase db = PlaceDatabase::open(file("p.sqlite"), true);
+  const auto frames = db.loadFrames();
+  ASSERT_EQ(frames.size(), 2u);  // the image without features is no frame
+  EXPECT_EQ(frames[0].place, "lab");
+  EXPECT_EQ(cv::norm(frames[0].features, f, cv::NORM_INF), 0.0);
+  EXPECT_TRUE(frames[0].has_pose);
+  EXPECT_DOUBLE_EQ(frames[0].x_m, 1.5);
+  EXPECT_DOUBLE_EQ(frames[0].yaw_rad, 0.25);
+  EXPECT_EQ(frames[1].features.rows, 2);
+  EXPECT_FALSE(frames[1].has_pose);
+  EXPECT_EQ(db.imageCount(), 3);
 }
