@@ -1,0 +1,53 @@
+#pragma once
+// Image-to-room classification (papers/002 section 4.1.1, the obligatory track): SIFT features of
+// the image, the best n training frames from the indexed matcher (feature_index.h), and their vote
+// with the 60% rule. Training frames come from the place database (PlaceDatabase::loadFrames).
+#include <string>
+#include <vector>
+
+#include "adaptive_perception/places/feature_index.h"
+#include "adaptive_perception/places/place_database.h"
+
+namespace adaptive_perception::places {
+
+struct RoomClassifierConfig {
+  SiftConfig sift;
+  FeatureIndexConfig index;
+  int best_frames = 20;    // n: training frames that vote, 1..1000
+  double min_share = 0.6;  // the leading room needs more than this share of the vote, [0, 1)
+  void validate() const;   // throws std::invalid_argument naming the bad field
+};
+
+struct RoomClassification {
+  int room = -1;  // index into rooms(); -1 = not classified
+  double share = 0.0;
+  std::vector<double> sums;      // per room
+  std::vector<FrameMatch> best;  // the voting frames
+  int features = 0;              // in the test image
+};
+
+class RoomClassifier {
+ public:
+  explicit RoomClassifier(RoomClassifierConfig config = {});
+  /// Installs the training frames (rooms are their places, in name order) and builds the index.
+  /// Throws std::invalid_argument when there is no frame.
+  void setFrames(std::vector<TrainingFrame> frames);
+  const std::vector<std::string>& rooms() const { return rooms_; }
+  int roomIndex(const std::string& name) const;  // -1 when unknown
+  const std::vector<TrainingFrame>& frames() const { return frames_; }
+  const std::vector<int>& frameRooms() const { return frame_room_; }
+
+  RoomClassification classify(const cv::Mat& bgr8) const;
+  RoomClassification classifyDescriptors(const cv::Mat& descriptors) const;
+  const RoomClassifierConfig& config() const { return config_; }
+  const FeatureIndex& index() const { return index_; }
+
+ private:
+  RoomClassifierConfig config_;
+  std::vector<TrainingFrame> frames_;
+  std::vector<std::string> rooms_;
+  std::vector<int> frame_room_;
+  FeatureIndex index_;
+};
+
+}  // namespace adaptive_perception::places

@@ -1,0 +1,125 @@
+// evaluate_room_classification: SIFT image-to-room classification (papers/002 section 4.1.1) of
+// labelled test images against the training frames of a place database, scored as ImageCLEF 2009
+// RobotVision does (+1 correct, -0.5 wrong, 0 not classified).
+//
+//   evaluate_room_classification --database DB.sqlite (--bag FILE | --list CSV) [--mode single]
+//       [--best_frames 20] [--min_share 0.6] [--max_features 200] [--candidates 30]
+//       [--max_images N] [--output DIR]
+//
+// The database needs training frames with features (train_places --features). Mode `single`
+// classifies every image alone (the paper's obligatory track, Table 3); the particle-filter mode
+// (Table 5) belongs to the appearance localizer and is not in this build yet.
+// Writes DIR/results.yaml (counts, confusion) and DIR/images.csv (image, truth, predicted, share,
+// features, ms). Last line: `evaluate_room_classification: mode=single score=.. correct=..
+// misclassified=.. not_classified=.. frames=.. score_per_frame=.. frames_per_s=..`.
+#include <yaml-cpp/yaml.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "adaptive_perception/places/room_classifier.h"
+#include "labelled_images.h"
+#include "tool_args.h"
+
+using namespace adaptive_perception;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+int main(int argc, char** argv) {
+  tools::Args args(argc, argv,
+                   "evaluate_room_classification --database DB.sqlite (--bag FILE | --list CSV) "
+                   "[--mode single] [--best_frames N] [--min_share S] [--max_features N] "
+                   "[--candidates N] [--max_images N] [--output DIR]");
+  const std::string db_path = args.get("database", "");
+  const std::string bag = args.get("bag", "");
+  const std::string list = args.get("list", "");
+  const std::string mode = args.get("mode", "single");
+  places::RoomClassifierConfig cfg;
+  cfg.best_frames = static_cast<int>(args.getInt("best_frames", cfg.best_frames));
+  cfg.min_share = args.getDouble("min_share", cfg.min_share);
+  cfg.sift.max_features = static_cast<int>(args.getInt("max_features", cfg.sift.max_features));
+  cfg.index.candidates = static_cast<int>(args.getInt("candidates", cfg.index.candidates));
+  const long max_images = args.getInt("max_images", 0);
+  const std::string output = args.get("output", "results/evaluate_room_classification");
+  args.finish();
+  if (db_path.empty()) args.fail("--database DB.sqlite is required");
+  if (bag.empty() == list.empty()) args.fail("give exactly one of --bag FILE and --list CSV");
+  if (mode != "single")
+    args.fail("--mode " + mode +
+              ": only `single` is available (the MCL mode comes with the "
+              "appearance localizer)");
+  try {
+    cfg.validate();
+    const places::PlaceDatabase db = places::PlaceDatabase::open(db_path, true);
+    places::RoomClassifier classifier(cfg);
+    const auto t_load = Clock::now();
+    classifier.setFrames(db.loadFrames());
+    const double load_s = std::chrono::duration<double>(Clock::now() - t_load).count();
+    const auto& rooms = classifier.rooms();
+    std::cerr << "evaluate_room_classification: " << classifier.frames().size()
+              << " training frames in " << rooms.size() << " rooms, index built in " << load_s
+              << " s\n";
+
+    fs::create_directories(output);
+    std::ofstream csv(fs::path(output) / "images.csv");
+    csv << "image,truth,predicted,share,features,ms\n";
+    places::ClefScore score;
+    std::vector<std::vector<long>> confusion(rooms.size() + 1,
+                                             std::vector<long>(rooms.size() + 1, 0));
+    double busy_s = 0.0;
+    long n = 0;
+    tools::forEachLabelledImage(bag, list, [&](const tools::LabelledImage& li) {
+      if (max_images > 0 && n >= max_images) return;
+      const auto t0 = Clock::now();
+      const places::RoomClassification r = classifier.classify(li.bgr);
+      const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+      busy_s += s;
+      const int truth = classifier.roomIndex(li.label);
+      // A test room the training never saw can only be "not classified" (0) or wrong.
+      score.add(r.room, truth < 0 ? -2 : truth);
+      confusion[truth < 0 ? rooms.size() : truth][r.room < 0 ? rooms.size() : r.room] += 1;
+      csv << n << "," << li.label << "," << (r.room < 0 ? "not_classified" : rooms[r.room]) << ","
+          << r.share << "," << r.features << "," << 1e3 * s << "\n";
+      ++n;
+    });
+    if (n == 0) throw std::runtime_error("no labelled test image");
+    const double fps = n / std::max(busy_s, 1e-9);
+    YAML::Emitter y;
+    y << YAML::BeginMap;
+    y << YAML::Key << "database" << YAML::Value << db_path;
+    y << YAML::Key << "mode" << YAML::Value << mode;
+    y << YAML::Key << "training_frames" << YAML::Value << classifier.frames().size();
+    y << YAML::Key << "best_frames" << YAML::Value << cfg.best_frames;
+    y << YAML::Key << "min_share" << YAML::Value << cfg.min_share;
+    y << YAML::Key << "score" << YAML::Value << score.score();
+    y << YAML::Key << "correct" << YAML::Value << score.correct;
+    y << YAML::Key << "misclassified" << YAML::Value << score.misclassified;
+    y << YAML::Key << "not_classified" << YAML::Value << score.not_classified;
+    y << YAML::Key << "frames" << YAML::Value << n;
+    y << YAML::Key << "frames_per_s" << YAML::Value << fps;
+    y << YAML::Key << "confusion" << YAML::Value << YAML::BeginMap;
+    for (size_t t = 0; t <= rooms.size(); ++t) {
+      y << YAML::Key << (t < rooms.size() ? rooms[t] : "unknown_room") << YAML::Value << YAML::Flow
+        << YAML::BeginMap;
+      for (size_t p = 0; p <= rooms.size(); ++p)
+        if (confusion[t][p] > 0)
+          y << YAML::Key << (p < rooms.size() ? rooms[p] : "not_classified") << YAML::Value
+            << confusion[t][p];
+      y << YAML::EndMap;
+    }
+    y << YAML::EndMap << YAML::EndMap;
+    std::ofstream(fs::path(output) / "results.yaml") << y.c_str() << "\n";
+    std::printf(
+        "evaluate_room_classification: mode=%s score=%.1f correct=%ld misclassified=%ld "
+        "not_classified=%ld frames=%ld score_per_frame=%.3f frames_per_s=%.1f\n",
+        mode.c_str(), score.score(), score.correct, score.misclassified, score.not_classified, n,
+        score.score() / n, fps);
+  } catch (const std::exception& e) {
+    std::cerr << "evaluate_room_classification: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
