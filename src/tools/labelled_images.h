@@ -5,6 +5,7 @@
 // list (io/image_list.h). Images that cannot be read are
 // reported on stderr and skipped; images labelled "none" (outside every place) are skipped.
 #include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/Image.h>
@@ -30,6 +31,7 @@ struct LabelledImage {
   std::string source;  // "file.bag@12.500" or the image path
   double stamp_s = 0.0;
   std::optional<std::array<double, 3>> pose;  // bags: ground_truth/pose at the image (x, y, yaw)
+  std::optional<std::array<double, 3>> odom;  // bags: odom (odom -> base_link) at the image
 };
 
 /// Calls `fn` for each labelled image in order; returns the number delivered. Throws
@@ -83,6 +85,16 @@ inline long forEachLabelledImage(const std::string& bag_path, const std::string&
         poses[p->header.stamp.toSec()] = {se2.x_m, se2.y_m, se2.yaw_rad};
       }
   }
+  std::map<double, std::array<double, 3>> odoms;
+  {
+    const std::string odom_topic = std::string("/") + ros_topics::kOdom;
+    rosbag::View ov(bag, rosbag::TopicQuery(std::vector<std::string>{odom_topic}));
+    for (const rosbag::MessageInstance& m : ov)
+      if (const auto o = m.instantiate<nav_msgs::Odometry>()) {
+        const math::SE2 se2 = ros_conv::toSE2(o->pose.pose);
+        odoms[o->header.stamp.toSec()] = {se2.x_m, se2.y_m, se2.yaw_rad};
+      }
+  }
   rosbag::View v(bag, rosbag::TopicQuery(std::vector<std::string>{image_topic}));
   for (const rosbag::MessageInstance& m : v) {
     const auto img = m.instantiate<sensor_msgs::Image>();
@@ -110,6 +122,8 @@ inline long forEachLabelledImage(const std::string& bag_path, const std::string&
     li.stamp_s = t;
     auto pit = poses.upper_bound(t + 1e-6);
     if (pit != poses.begin() && t - std::prev(pit)->first < 0.1) li.pose = std::prev(pit)->second;
+    auto oit = odoms.upper_bound(t + 1e-6);
+    if (oit != odoms.begin() && t - std::prev(oit)->first < 0.1) li.odom = std::prev(oit)->second;
     fn(li);
     ++delivered;
   }

@@ -1,0 +1,108 @@
+// Appearance MCL on scripted inputs: the training run's average step, heading-aware nearest frames,
+// convergence and room by summed weight, stability, restricted then full re-initialisation, and
+// unknown-room detection.
+#include "adaptive_perception/localization/appearance_mcl.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace adaptive_perception;
+using localization::AppearanceMcl;
+using localization::AppearanceMclConfig;
+using localization::PosedFrame;
+
+namespace {
+// A corridor run: frames every 0.5 m along x from 0 to 20 m, heading +x; room 0 below x = 10,
+// room 1 from there.
+std::vector<PosedFrame> corridor() {
+  std::vector<PosedFrame> f;
+  for (int i = 0; i <= 40; ++i) f.push_back({math::SE2(0.5 * i, 0.0, 0.0), i * 0.5 < 10.0 ? 0 : 1});
+  return f;
+}
+// What the matcher would say of an image taken at x: the frame there 0.6, its neighbours 0.3.
+std::vector<places::FrameMatch> seenAt(double x) {
+  const int i = static_cast<int>(std::lround(x / 0.5));
+  std::vector<places::FrameMatch> m;
+  for (int k = i - 1; k <= i + 1; ++k)
+    if (k >= 0 && k <= 40) m.push_back({k, k == i ? 0.6 : 0.3});
+  return m;
+}
+}  // namespace
+
+TEST(AppearanceMcl, AverageStepAndHeadingAwareNearestFrame) {
+  AppearanceMcl mcl(corridor(), 2, {}, 1);
+  EXPECT_NEAR(mcl.averageStep().x_m, 0.5, 1e-9);
+  EXPECT_NEAR(mcl.averageStep().y_m, 0.0, 1e-9);
+  std::vector<PosedFrame> two = {{math::SE2(1, 1, 0.0), 0}, {math::SE2(1, 1, M_PI), 1}};
+  AppearanceMcl m2(two, 2, {}, 1);
+  EXPECT_EQ(m2.nearestFrame(math::SE2(1.1, 1, 3.0)), 1);
+  EXPECT_EQ(m2.nearestFrame(math::SE2(1.1, 1, 0.2)), 0);
+  EXPECT_NEAR(m2.distanceToKnown(4, 5), 5.0, 1e-5);
+}
+
+TEST(AppearanceMcl, ConvergesBecomesStableThenReinitialisesWhenLost) {
+  AppearanceMclConfig cfg;
+  cfg.particles = 500;
+  AppearanceMcl mcl(corridor(), 2, cfg, 3);
+  const math::SE2 step(0.5, 0.0, 0.0);
+  localization::AppearanceEstimate e;
+  double x = 2.0;
+  bool was_stable = false;
+  for (int k = 0; k < 20; ++k, x += 0.5) {
+    e = mcl.step(step, seenAt(x));
+    was_stable = was_stable || e.stable;
+  }
+  ASSERT_TRUE(e.stable);
+  EXPECT_NEAR(e.pose.x_m, x - 0.5, 0.5);
+  EXPECT_EQ(e.room, 1);  // x = 11.5: the second room
+  EXPECT_FALSE(e.unknown_room);
+  // Images that match nothing: unstable, "not classified", and re-initialised around the last
+  // reliable pose first, over everything after full_reinit_after frames in a row.
+  const math::SE2 reliable = e.pose;
+  e = mcl.step(step, {});
+  EXPECT_FALSE(e.stable);
+  EXPECT_EQ(e.room, -1);
+  EXPECT_TRUE(e.reinitialized);
+  EXPECT_FALSE(e.full_reinit);
+  const double radius = cfg.reinit_radius_m + cfg.reinit_radius_gain_m;
+  for (const math::SE2& p : mcl.particles())
+    EXPECT_LE(std::hypot(p.x_m - reliable.x_m, p.y_m - reliable.y_m), radius + 1e-9);
+  bool full = false;
+  for (int k = 1; k < cfg.full_reinit_after && !full; ++k) full = mcl.step(step, {}).full_reinit;
+  EXPECT_TRUE(full);
+  // After a full re-initialisation the particles cover the whole run again.
+  double lo = 1e9, hi = -1e9;
+  for (const math::SE2& p : mcl.particles()) {
+    lo = std::min(lo, p.x_m);
+    hi = std::max(hi, p.x_m);
+  }
+  EXPECT_LT(lo, 3.0);
+  EXPECT_GT(hi, 17.0);
+}
+
+TEST(AppearanceMcl, UnknownRoomWhenAQuarterOfTheParticlesLeaveTheKnownPlaces) {
+  AppearanceMclConfig cfg;
+  cfg.particles = 100;
+  AppearanceMcl mcl(corridor(), 2, cfg, 5);
+  // 30 of 100 particles 5 m beside the corridor: unknown.
+  std::vector<math::SE2> p;
+  for (int i = 0; i < 100; ++i) p.emplace_back(5.0, i < 30 ? 5.0 : 0.0, 0.0);
+  mcl.setParticles(p);
+  auto e = mcl.step(math::SE2(0, 0, 0), seenAt(5.0));
+  EXPECT_TRUE(e.unknown_room);
+  EXPECT_EQ(e.room, -1);
+  // 20 of 100: below the 25% rule.
+  p.clear();
+  for (int i = 0; i < 100; ++i) p.emplace_back(5.0, i < 20 ? 5.0 : 0.0, 0.0);
+  mcl.setParticles(p);
+  EXPECT_FALSE(mcl.step(math::SE2(0, 0, 0), seenAt(5.0)).unknown_room);
+}
+
+TEST(AppearanceMcl, RefusesBadConfiguration) {
+  AppearanceMclConfig bad;
+  bad.particles = 1;
+  EXPECT_THROW(AppearanceMcl(corridor(), 2, bad, 1), std::invalid_argument);
+  EXPECT_THROW(AppearanceMcl({}, 2, {}, 1), std::invalid_argument);
+  EXPECT_THROW(AppearanceMcl({{math::SE2(0, 0, 0), 3}}, 2, {}, 1), std::invalid_argument);
+}
