@@ -1,0 +1,70 @@
+#pragma once
+// appearance_localizer: room classification and appearance-based Monte Carlo localization
+// (papers/002) against the training frames of a place database (train_places --features, from a
+// bag with ground_truth/pose).
+//
+// Parameters (private; config/appearance_localizer.yaml documents defaults and ranges):
+//   ~database (path, required), ~particles (100), ~best_frames (20), ~min_share (0.6),
+//   ~max_features (200), ~candidates (30), ~translation_noise_m (0.05), ~rotation_noise_rad
+//   (0.05), ~stable_spread_m (0.5), ~stable_min_weight (0.15), ~full_reinit_after (8),
+//   ~unknown_fraction (0.25), ~known_radius_m (1.5), ~use_odom (true), ~max_rate_hz (5),
+//   ~publish_tf (false), ~map_frame (map), ~odom_frame (odom), ~seed (1).
+// Subscribed: camera/image_raw (bgr8, rgb8, yuv422), odom (nav_msgs/Odometry; without it the
+//   training run's average step drives the particles).
+// Published: appearance_localizer/pose (PoseWithCovarianceStamped in ~map_frame),
+//   appearance_localizer/particles (PoseArray), appearance_localizer/room (PlaceRecognition:
+//   place = the room, "not classified" while unstable, "unknown" for an unknown room; confidence
+//   = the room's share of the particle weight; places / belief = every room and its share), tf
+//   ~map_frame -> ~odom_frame when ~publish_tf, /diagnostics (rate, stability,
+//   re-initialisations). On shutdown one line `appearance_localizer: frames=.. classified=..
+//   reinitializations=..` on stdout.
+// Services: global_localization (std_srvs/Empty): particles over every training pose again.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <std_srvs/Empty.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <memory>
+#include <optional>
+
+#include "adaptive_perception/localization/appearance_mcl.h"
+#include "adaptive_perception/places/room_classifier.h"
+
+namespace adaptive_perception {
+
+class AppearanceLocalizerNode {
+ public:
+  AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~AppearanceLocalizerNode();
+
+ private:
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onOdom(const nav_msgs::OdometryConstPtr& msg);
+  bool onGlobalLocalization(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  std::unique_ptr<places::RoomClassifier> classifier_;
+  std::unique_ptr<localization::AppearanceMcl> mcl_;
+  places::RoomClassifierConfig classifier_config_;
+  bool use_odom_ = true, publish_tf_ = false;
+  double max_rate_hz_ = 5.0;
+  std::string map_frame_, odom_frame_;
+  std::optional<nav_msgs::Odometry> odom_;  // latest
+  std::optional<math::SE2> last_odom_;      // at the last processed image
+  ros::Subscriber image_sub_, odom_sub_;
+  ros::Publisher pose_pub_, particles_pub_, room_pub_;
+  ros::ServiceServer global_srv_;
+  tf2_ros::TransformBroadcaster tf_;
+  diagnostic_updater::Updater diagnostics_;
+  double min_freq_ = 0.1, max_freq_ = 100.0;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+  ros::Time last_stamp_, last_processed_;
+  long frames_ = 0, classified_ = 0, reinits_ = 0, bad_images_ = 0;
+  bool stable_ = false;
+  std::string last_room_;
+};
+
+}  // namespace adaptive_perception

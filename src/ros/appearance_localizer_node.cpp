@@ -1,0 +1,168 @@
+#include "adaptive_perception/ros/appearance_localizer_node.h"
+
+#include <geometry_msgs/PoseArray.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+
+#include <cstdio>
+
+#include "adaptive_perception/PlaceRecognition.h"
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+
+namespace adaptive_perception {
+
+AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+  namespace P = ros_params;
+  const std::string path = P::getName(pnh, "database", "places.sqlite");
+  places::RoomClassifierConfig& c = classifier_config_;
+  c.best_frames = P::getInRange(pnh, "best_frames", c.best_frames, 1, 1000);
+  c.min_share = P::getInRange(pnh, "min_share", c.min_share, 0.0, 0.999);
+  c.sift.max_features = P::getInRange(pnh, "max_features", c.sift.max_features, 10, 5000);
+  c.index.candidates = P::getInRange(pnh, "candidates", c.index.candidates, 1, 10000);
+  localization::AppearanceMclConfig m;
+  m.particles = P::getInRange(pnh, "particles", m.particles, 10, 100000);
+  m.translation_noise_m =
+      P::getInRange(pnh, "translation_noise_m", m.translation_noise_m, 0.0, 10.0);
+  m.rotation_noise_rad = P::getInRange(pnh, "rotation_noise_rad", m.rotation_noise_rad, 0.0, 3.0);
+  m.stable_spread_m = P::getInRange(pnh, "stable_spread_m", m.stable_spread_m, 0.01, 100.0);
+  m.stable_min_weight = P::getInRange(pnh, "stable_min_weight", m.stable_min_weight, 0.0, 1.0);
+  m.full_reinit_after = P::getInRange(pnh, "full_reinit_after", m.full_reinit_after, 1, 100000);
+  m.unknown_fraction = P::getInRange(pnh, "unknown_fraction", m.unknown_fraction, 0.01, 1.0);
+  m.known_radius_m = P::getInRange(pnh, "known_radius_m", m.known_radius_m, 0.01, 100.0);
+  use_odom_ = P::get<bool>(pnh, "use_odom", true);
+  max_rate_hz_ = P::getInRange(pnh, "max_rate_hz", max_rate_hz_, 0.01, 1000.0);
+  publish_tf_ = P::get<bool>(pnh, "publish_tf", false);
+  map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
+  odom_frame_ = P::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
+  const int seed = P::getInRange(pnh, "seed", 1, 0, 1 << 30);
+
+  const places::PlaceDatabase db = places::PlaceDatabase::open(path, true);
+  classifier_ = std::make_unique<places::RoomClassifier>(c);
+  classifier_->setFrames(db.loadFrames());
+  std::vector<localization::PosedFrame> posed;
+  for (const auto& f : classifier_->frames()) {
+    if (!f.has_pose)
+      throw std::runtime_error(path + ": training frame " + std::to_string(f.image_id) +
+                               " has no pose (train from a bag with ground_truth/pose)");
+    posed.push_back({math::SE2(f.x_m, f.y_m, f.yaw_rad), classifier_->roomIndex(f.place)});
+  }
+  mcl_ = std::make_unique<localization::AppearanceMcl>(
+      posed, static_cast<int>(classifier_->rooms().size()), m, static_cast<std::uint64_t>(seed));
+
+  pose_pub_ =
+      nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("appearance_localizer/pose", 5);
+  particles_pub_ = nh.advertise<geometry_msgs::PoseArray>("appearance_localizer/particles", 2);
+  room_pub_ = nh.advertise<PlaceRecognition>("appearance_localizer/room", 10);
+  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &AppearanceLocalizerNode::onImage, this);
+  if (use_odom_)
+    odom_sub_ = nh.subscribe(ros_topics::kOdom, 50, &AppearanceLocalizerNode::onOdom, this);
+  global_srv_ = nh.advertiseService("global_localization",
+                                    &AppearanceLocalizerNode::onGlobalLocalization, this);
+  diagnostics_.setHardwareID("appearance_localizer");
+  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
+  diagnostics_.add(*freq_);
+  diagnostics_.add("localization", this, &AppearanceLocalizerNode::diagnose);
+  ROS_INFO("appearance_localizer: %zu training frames in %zu rooms from %s, %d particles",
+           classifier_->frames().size(), classifier_->rooms().size(), path.c_str(), m.particles);
+}
+
+AppearanceLocalizerNode::~AppearanceLocalizerNode() {
+  std::printf("appearance_localizer: frames=%ld classified=%ld reinitializations=%ld dropped=%ld\n",
+              frames_, classified_, reinits_, bad_images_);
+  std::fflush(stdout);
+}
+
+void AppearanceLocalizerNode::onOdom(const nav_msgs::OdometryConstPtr& msg) { odom_ = *msg; }
+
+bool AppearanceLocalizerNode::onGlobalLocalization(std_srvs::Empty::Request&,
+                                                   std_srvs::Empty::Response&) {
+  mcl_->initGlobal();
+  ROS_INFO("appearance_localizer: global localization requested");
+  return true;
+}
+
+void AppearanceLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+  if (!last_stamp_.isZero() && msg->header.stamp < last_stamp_) {
+    ROS_WARN("appearance_localizer: image time went backwards (bag looped?): global restart");
+    mcl_->initGlobal();
+    last_odom_.reset();
+    last_processed_ = ros::Time();
+  }
+  last_stamp_ = msg->header.stamp;
+  if (!last_processed_.isZero() &&
+      (msg->header.stamp - last_processed_).toSec() < 1.0 / max_rate_hz_)
+    return;
+  cv::Mat bgr;
+  try {
+    bgr = ros_conv::imageToBgr8(*msg);
+  } catch (const ros_conv::ImageFormatError& e) {
+    ROS_ERROR_THROTTLE(10.0, "appearance_localizer: image dropped: %s", e.what());
+    ++bad_images_;
+    return;
+  }
+  last_processed_ = msg->header.stamp;
+  const cv::Mat desc = places::extractSift(bgr, classifier_config_.sift);
+  const auto sims = classifier_->index().topFrames(desc, classifier_config_.index.candidates);
+  std::optional<math::SE2> delta;
+  std::optional<math::SE2> odom_pose;
+  if (odom_) {
+    odom_pose = ros_conv::toSE2(odom_->pose.pose);
+    if (last_odom_) delta = math::between(*last_odom_, *odom_pose);
+    last_odom_ = odom_pose;
+  }
+  const localization::AppearanceEstimate e = mcl_->step(delta, sims);
+  ++frames_;
+  reinits_ += e.reinitialized;
+  stable_ = e.stable;
+  freq_->tick();
+
+  std_msgs::Header h = msg->header;
+  h.frame_id = map_frame_;
+  pose_pub_.publish(ros_conv::toPoseWithCovariance(e.pose, e.covariance, h));
+  if (particles_pub_.getNumSubscribers() > 0) {
+    geometry_msgs::PoseArray pa;
+    pa.header = h;
+    for (const math::SE2& p : mcl_->particles()) pa.poses.push_back(ros_conv::toPose(p));
+    particles_pub_.publish(pa);
+  }
+  PlaceRecognition room;
+  room.header = msg->header;
+  room.method = "sift_mcl";
+  room.places = classifier_->rooms();
+  room.belief = e.room_weights;
+  room.images = 1;
+  if (e.unknown_room) {
+    room.place = "unknown";
+  } else if (e.room < 0) {
+    room.place = "not classified";
+  } else {
+    room.place = classifier_->rooms()[e.room];
+    room.confidence = e.room_weights[e.room];
+    ++classified_;
+  }
+  last_room_ = room.place;
+  room_pub_.publish(room);
+  if (publish_tf_ && odom_pose) {
+    geometry_msgs::TransformStamped t =
+        ros_conv::toTransform(ros_conv::mapToOdom(e.pose, world::planarToIsometry(*odom_pose)),
+                              map_frame_, odom_frame_, msg->header.stamp);
+    tf_.sendTransform(t);
+  }
+  diagnostics_.update();
+}
+
+void AppearanceLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  if (stable_)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "stable");
+  else
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "unstable: frames not classified");
+  stat.add("frames", frames_);
+  stat.add("classified", classified_);
+  stat.add("re-initialisations", reinits_);
+  stat.add("images dropped (bad)", bad_images_);
+  stat.add("last room", last_room_);
+}
+
+}  // namespace adaptive_perception
