@@ -8,7 +8,7 @@
 // frame SIFT extraction, the indexed matcher (candidates verified) and one MCL step.
 // The paper (papers/002) needed about 3 minutes per image for single-image classification over
 // 1,690 frames and 56 minutes for a 960-frame sequence with 24 particles (3.5 s per frame).
-// Last line: `bench_appearance: ms_per_frame=.. frames_per_s=.. extract_ms=.. match_ms=..
+// OpenCV runs single-threaded here. Last line: `bench_appearance: ms_per_frame=.. frames_per_s=.. extract_ms=.. match_ms=..
 // mcl_ms=.. training_frames=N particles=P speedup_vs_paper_single=.. speedup_vs_paper_mcl=..`.
 #include <chrono>
 #include <cstdio>
@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   args.finish();
   if (frames < 10 || frames > 100000) args.fail("--frames must be in 10..100000");
   if (test_frames < 1 || test_frames > 10000) args.fail("--test_frames must be in 1..10000");
+  cv::setNumThreads(1);  // one core, as the target says (OpenCV would parallelise SIFT)
   try {
     const sim::IndoorWorld world = sim::IndoorWorld::loadYaml(
         ros_params::resolvePackagePath("config/worlds/indoor_building.yaml"));
