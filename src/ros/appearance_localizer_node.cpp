@@ -31,7 +31,8 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
   m.unknown_fraction = P::getInRange(pnh, "unknown_fraction", m.unknown_fraction, 0.01, 1.0);
   m.known_radius_m = P::getInRange(pnh, "known_radius_m", m.known_radius_m, 0.01, 100.0);
   use_odom_ = P::get<bool>(pnh, "use_odom", true);
-  max_rate_hz_ = P::getInRange(pnh, "max_rate_hz", max_rate_hz_, 0.01, 1000.0);
+  gate_ = ros_conv::ImageGate("appearance_localizer",
+                              P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0));
   publish_tf_ = P::get<bool>(pnh, "publish_tf", false);
   map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
@@ -70,7 +71,7 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
 
 AppearanceLocalizerNode::~AppearanceLocalizerNode() {
   std::printf("appearance_localizer: frames=%ld classified=%ld reinitializations=%ld dropped=%ld\n",
-              frames_, classified_, reinits_, bad_images_);
+              frames_, classified_, reinits_, gate_.badImages());
   std::fflush(stdout);
 }
 
@@ -84,25 +85,14 @@ bool AppearanceLocalizerNode::onGlobalLocalization(std_srvs::Empty::Request&,
 }
 
 void AppearanceLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
-  if (!last_stamp_.isZero() && msg->header.stamp < last_stamp_) {
-    ROS_WARN("appearance_localizer: image time went backwards (bag looped?): global restart");
+  cv::Mat bgr;
+  bool restart = false;
+  const auto verdict = gate_.accept(*msg, &bgr, &restart);
+  if (restart) {
     mcl_->initGlobal();
     last_odom_.reset();
-    last_processed_ = ros::Time();
   }
-  last_stamp_ = msg->header.stamp;
-  if (!last_processed_.isZero() &&
-      (msg->header.stamp - last_processed_).toSec() < 1.0 / max_rate_hz_)
-    return;
-  cv::Mat bgr;
-  try {
-    bgr = ros_conv::imageToBgr8(*msg);
-  } catch (const ros_conv::ImageFormatError& e) {
-    ROS_ERROR_THROTTLE(10.0, "appearance_localizer: image dropped: %s", e.what());
-    ++bad_images_;
-    return;
-  }
-  last_processed_ = msg->header.stamp;
+  if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   const cv::Mat desc = places::extractSift(bgr, classifier_config_.sift);
   const auto sims = classifier_->index().topFrames(desc, classifier_config_.index.candidates);
   std::optional<math::SE2> delta;
@@ -161,7 +151,7 @@ void AppearanceLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapp
   stat.add("frames", frames_);
   stat.add("classified", classified_);
   stat.add("re-initialisations", reinits_);
-  stat.add("images dropped (bad)", bad_images_);
+  stat.add("images dropped (bad)", gate_.badImages());
   stat.add("last room", last_room_);
 }
 

@@ -42,7 +42,8 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
       P::getInRange(pnh, "teleport_probability", rc.filter.teleport_probability, 0.0, 1.0);
   rc.filter.likelihood_sharpness =
       P::getInRange(pnh, "likelihood_sharpness", rc.filter.likelihood_sharpness, 1e-3, 1e3);
-  max_rate_hz_ = P::getInRange(pnh, "max_rate_hz", max_rate_hz_, 0.01, 1000.0);
+  gate_ = ros_conv::ImageGate("histogram_place_recognizer",
+                              P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0));
   train_batch_ = P::getInRange(pnh, "train_batch", train_batch_, 1, 100000);
   train_every_n_ = P::getInRange(pnh, "train_every_n", train_every_n_, 1, 100000);
   try {
@@ -92,7 +93,7 @@ HistogramPlaceRecognizerNode::~HistogramPlaceRecognizerNode() {
   std::printf(
       "histogram_place_recognizer: images=%ld dropped=%ld results=%ld labelled=%ld "
       "window_accuracy=%.3f filter_accuracy=%.3f\n",
-      images_, bad_images_, results_, labelled_,
+      images_, bad_images_ + gate_.badImages(), results_, labelled_,
       labelled_ > 0 ? static_cast<double>(window_right_) / labelled_ : -1.0,
       labelled_ > 0 ? static_cast<double>(filter_right_) / labelled_ : -1.0);
   std::fflush(stdout);
@@ -145,25 +146,11 @@ void HistogramPlaceRecognizerNode::onLabel(const std_msgs::StringConstPtr& msg) 
 }
 
 void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
-  if (!last_stamp_.isZero() && msg->header.stamp < last_stamp_) {
-    ROS_WARN(
-        "histogram_place_recognizer: image time went backwards (bag looped?): window and "
-        "filter reset");
-    recognizer_->reset();
-    last_processed_ = ros::Time();
-  }
-  last_stamp_ = msg->header.stamp;
-  if (!last_processed_.isZero() &&
-      (msg->header.stamp - last_processed_).toSec() < 1.0 / max_rate_hz_)
-    return;
   cv::Mat bgr;
-  try {
-    bgr = ros_conv::imageToBgr8(*msg);
-  } catch (const ros_conv::ImageFormatError& e) {
-    ROS_ERROR_THROTTLE(10.0, "histogram_place_recognizer: image dropped: %s", e.what());
-    ++bad_images_;
-    return;
-  }
+  bool restart = false;
+  const auto verdict = gate_.accept(*msg, &bgr, &restart);
+  if (restart) recognizer_->reset();
+  if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   places::ImageHistograms h;
   try {
     h = places::computeHistograms(bgr, histograms_);
@@ -172,7 +159,6 @@ void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg
     ++bad_images_;
     return;
   }
-  last_processed_ = msg->header.stamp;
   ++images_;
   freq_->tick();
 
@@ -357,7 +343,7 @@ void HistogramPlaceRecognizerNode::diagnose(diagnostic_updater::DiagnosticStatus
   stat.add("database", db_->path());
   stat.add("places", index.numPlaces());
   stat.add("images processed", images_);
-  stat.add("images dropped (bad)", bad_images_);
+  stat.add("images dropped (bad)", bad_images_ + gate_.badImages());
   stat.add("last place", last_place_);
   stat.add("last confidence", last_confidence_);
   if (labelled_ > 0)

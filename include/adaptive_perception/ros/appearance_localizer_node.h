@@ -32,6 +32,7 @@
 
 #include "adaptive_perception/localization/appearance_mcl.h"
 #include "adaptive_perception/places/room_classifier.h"
+#include "adaptive_perception/ros/image_gate.h"
 
 namespace adaptive_perception {
 
@@ -50,7 +51,7 @@ class AppearanceLocalizerNode {
   std::unique_ptr<localization::AppearanceMcl> mcl_;
   places::RoomClassifierConfig classifier_config_;
   bool use_odom_ = true, publish_tf_ = false;
-  double max_rate_hz_ = 5.0;
+  ros_conv::ImageGate gate_{"appearance_localizer", 5.0};
   std::string map_frame_, odom_frame_;
   std::optional<nav_msgs::Odometry> odom_;  // latest
   std::optional<math::SE2> last_odom_;      // at the last processed image
@@ -61,8 +62,7 @@ class AppearanceLocalizerNode {
   diagnostic_updater::Updater diagnostics_;
   double min_freq_ = 0.1, max_freq_ = 100.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
-  ros::Time last_stamp_, last_processed_;
-  long frames_ = 0, classified_ = 0, reinits_ = 0, bad_images_ = 0;
+  long frames_ = 0, classified_ = 0, reinits_ = 0;
   bool stable_ = false;
   std::string last_room_;
 };

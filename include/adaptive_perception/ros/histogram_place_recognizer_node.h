@@ -40,6 +40,7 @@
 #include "adaptive_perception/SetPlaceAdjacency.h"
 #include "adaptive_perception/places/place_database.h"
 #include "adaptive_perception/places/place_recognizer.h"
+#include "adaptive_perception/ros/image_gate.h"
 
 namespace adaptive_perception {
 
@@ -66,7 +67,7 @@ class HistogramPlaceRecognizerNode {
   places::HistogramConfig histograms_;
   std::unique_ptr<places::PlaceRecognizer> recognizer_;
   bool train_mode_ = false;
-  double max_rate_hz_ = 5.0;
+  ros_conv::ImageGate gate_{"histogram_place_recognizer", 5.0};
   int train_batch_ = 15, train_every_n_ = 1;
   long train_seen_ = 0;
   std::string label_;  // latest ground_truth/place
@@ -89,7 +90,6 @@ class HistogramPlaceRecognizerNode {
   diagnostic_updater::Updater diagnostics_;
   double min_freq_ = 0.1, max_freq_ = 100.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
-  ros::Time last_stamp_, last_processed_;
   long images_ = 0, bad_images_ = 0, results_ = 0;
   // Evaluation aid: results against the latest ground_truth/place when one is heard.
   long labelled_ = 0, window_right_ = 0, filter_right_ = 0;
