@@ -7,3 +7,9 @@ AP_WS="${AP_WS:-$AP_ROOT/.ws}"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
 export PYTHONNOUSERSITE=1
 unset PYTHONPATH PYENV_VERSION
+# The indoor-simulator experiments (evaluate_places.sh, evaluate_room_classification.sh): the three
+# lighting conditions and the seed base of each (training run base + 1, test run base + 2).
+INDOOR_LIGHTS="night cloudy sunny"
+indoor_seed_base() { case "$1" in night) echo 0 ;; cloudy) echo 10 ;; sunny) echo 20 ;; esac; }
+# The value of KEY in a tool's `tool: key=value ...` summary line: summary_value "$line" KEY
+summary_value() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }

@@ -19,10 +19,9 @@ OUT="$AP_ROOT/results/places/$CAMERA"
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
 mkdir -p "$OUT"
-LIGHTS="night cloudy sunny"
-seed_of() { case "$1" in night) echo 0 ;; cloudy) echo 10 ;; sunny) echo 20 ;; esac; }
+LIGHTS="$INDOOR_LIGHTS"
 for L in $LIGHTS; do
-  s=$(seed_of "$L")
+  s=$(indoor_seed_base "$L")
   "$BIN/simulate_indoor" --lighting "$L" --seed $((s + 1)) --camera "$CAMERA" --camera_rate_hz "$RATE" \
     --output "$TMP/train.bag" --overwrite 2> /dev/null | tail -n 1
   rm -f "$OUT/$L.sqlite"
@@ -33,7 +32,7 @@ done
 csv="$OUT/lighting.csv"
 echo "train,test,accuracy,mean_confidence,best_space,best_method,single_image_accuracy,window_accuracy,filter_accuracy,queries_per_s" > "$csv"
 for T in $LIGHTS; do
-  s=$(seed_of "$T")
+  s=$(indoor_seed_base "$T")
   "$BIN/simulate_indoor" --lighting "$T" --seed $((s + 2)) --camera "$CAMERA" --camera_rate_hz "$RATE" \
     --output "$TMP/test.bag" --overwrite 2> /dev/null | tail -n 1
   for L in $LIGHTS; do
@@ -42,9 +41,8 @@ for T in $LIGHTS; do
     "$BIN/evaluate_places" --database "$OUT/$L.sqlite" --bag "$TMP/test.bag" --images_per_place 15 \
       --output "$dir" > "$dir/log.txt" 2>&1
     line="$(tail -n 1 "$dir/log.txt")"
-    get() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
-    echo "$L,$T,$(get accuracy),$(get mean_confidence),$(get best_space),$(get best_method),$(get single_image_accuracy),$(get window_accuracy),$(get filter_accuracy),$(get queries_per_s)" >> "$csv"
-    echo "places_lighting: camera=$CAMERA train=$L test=$T accuracy=$(get accuracy) single_image_accuracy=$(get single_image_accuracy) window_accuracy=$(get window_accuracy) filter_accuracy=$(get filter_accuracy)"
+    echo "$L,$T,$(summary_value "$line" accuracy),$(summary_value "$line" mean_confidence),$(summary_value "$line" best_space),$(summary_value "$line" best_method),$(summary_value "$line" single_image_accuracy),$(summary_value "$line" window_accuracy),$(summary_value "$line" filter_accuracy),$(summary_value "$line" queries_per_s)" >> "$csv"
+    echo "places_lighting: camera=$CAMERA train=$L test=$T accuracy=$(summary_value "$line" accuracy) single_image_accuracy=$(summary_value "$line" single_image_accuracy) window_accuracy=$(summary_value "$line" window_accuracy) filter_accuracy=$(summary_value "$line" filter_accuracy)"
   done
   rm -f "$TMP/test.bag"
 done

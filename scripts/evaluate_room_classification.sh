@@ -18,11 +18,10 @@ OUT="$AP_ROOT/results/room_classification"
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
 mkdir -p "$OUT"
-LIGHTS="night cloudy sunny"
-seed_of() { case "$1" in night) echo 0 ;; cloudy) echo 10 ;; sunny) echo 20 ;; esac; }
+LIGHTS="$INDOOR_LIGHTS"
 for L in $LIGHTS; do
   [ -f "$OUT/$L.sqlite" ] && continue
-  "$BIN/simulate_indoor" --lighting "$L" --seed $(($(seed_of "$L") + 1)) --camera_rate_hz "$RATE" \
+  "$BIN/simulate_indoor" --lighting "$L" --seed $(($(indoor_seed_base "$L") + 1)) --camera_rate_hz "$RATE" \
     --output "$TMP/train.bag" --overwrite 2> /dev/null > /dev/null
   "$BIN/train_places" --bag "$TMP/train.bag" --database "$OUT/$L.sqlite" --images_per_place 0 \
     --features --spaces hsv 2> /dev/null | tail -n 1
@@ -31,7 +30,7 @@ done
 csv="$OUT/table.csv"
 [ -f "$csv" ] || echo "mode,train,test,score,correct,misclassified,not_classified,frames,score_per_frame,frames_per_s" > "$csv"
 for T in $LIGHTS; do
-  "$BIN/simulate_indoor" --lighting "$T" --seed $(($(seed_of "$T") + 2)) --camera_rate_hz "$RATE" \
+  "$BIN/simulate_indoor" --lighting "$T" --seed $(($(indoor_seed_base "$T") + 2)) --camera_rate_hz "$RATE" \
     --output "$TMP/test.bag" --overwrite 2> /dev/null > /dev/null
   for M in $MODES; do
     for L in $LIGHTS; do
@@ -40,9 +39,8 @@ for T in $LIGHTS; do
       "$BIN/evaluate_room_classification" --database "$OUT/$L.sqlite" --bag "$TMP/test.bag" \
         --mode "$M" --output "$dir" > "$dir/log.txt" 2>&1
       line="$(tail -n 1 "$dir/log.txt")"
-      get() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
-      echo "$M,$L,$T,$(get score),$(get correct),$(get misclassified),$(get not_classified),$(get frames),$(get score_per_frame),$(get frames_per_s)" >> "$csv"
-      echo "room_classification: mode=$M train=$L test=$T score=$(get score) correct=$(get correct) misclassified=$(get misclassified) not_classified=$(get not_classified) frames=$(get frames) frames_per_s=$(get frames_per_s)"
+      echo "$M,$L,$T,$(summary_value "$line" score),$(summary_value "$line" correct),$(summary_value "$line" misclassified),$(summary_value "$line" not_classified),$(summary_value "$line" frames),$(summary_value "$line" score_per_frame),$(summary_value "$line" frames_per_s)" >> "$csv"
+      echo "room_classification: mode=$M train=$L test=$T score=$(summary_value "$line" score) correct=$(summary_value "$line" correct) misclassified=$(summary_value "$line" misclassified) not_classified=$(summary_value "$line" not_classified) frames=$(summary_value "$line" frames) frames_per_s=$(summary_value "$line" frames_per_s)"
     done
   done
   rm -f "$TMP/test.bag"
