@@ -8,12 +8,18 @@
 # prints one line per mode and pair:
 #   room_classification: mode=M train=L test=L score=.. correct=.. misclassified=.. not_classified=.. frames=.. frames_per_s=..
 # Usage: scripts/evaluate_room_classification.sh [CAMERA_RATE_HZ=2] [MODES="single mcl"]
+#            [STRUCTURE_WEIGHT=0]
+# STRUCTURE_WEIGHT > 0 joins the line-structure cues (section 4.1.2) to SIFT; its runs go to
+# <mode>_structure<W>/ and the table's `mode` column reads e.g. single+structure0.3.
 # (~20 minutes on two cores for both modes)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 BIN="$AP_WS/devel/lib/adaptive_perception"
 RATE="${1:-2}"
 MODES="${2:-single mcl}"
+SW="${3:-0}"
+SUFFIX=""
+if [ "$SW" != "0" ]; then SUFFIX="+structure$SW"; fi
 OUT="$AP_ROOT/results/room_classification"
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
@@ -34,13 +40,13 @@ for T in $LIGHTS; do
     --output "$TMP/test.bag" --overwrite 2> /dev/null > /dev/null
   for M in $MODES; do
     for L in $LIGHTS; do
-      dir="$OUT/$M/${L}_$T"
+      dir="$OUT/$M${SUFFIX/+/_}/${L}_$T"
       mkdir -p "$dir"
       "$BIN/evaluate_room_classification" --database "$OUT/$L.sqlite" --bag "$TMP/test.bag" \
-        --mode "$M" --output "$dir" > "$dir/log.txt" 2>&1
+        --mode "$M" --structure_weight "$SW" --output "$dir" > "$dir/log.txt" 2>&1
       line="$(tail -n 1 "$dir/log.txt")"
-      echo "$M,$L,$T,$(summary_value "$line" score),$(summary_value "$line" correct),$(summary_value "$line" misclassified),$(summary_value "$line" not_classified),$(summary_value "$line" frames),$(summary_value "$line" score_per_frame),$(summary_value "$line" frames_per_s)" >> "$csv"
-      echo "room_classification: mode=$M train=$L test=$T score=$(summary_value "$line" score) correct=$(summary_value "$line" correct) misclassified=$(summary_value "$line" misclassified) not_classified=$(summary_value "$line" not_classified) frames=$(summary_value "$line" frames) frames_per_s=$(summary_value "$line" frames_per_s)"
+      echo "$M$SUFFIX,$L,$T,$(summary_value "$line" score),$(summary_value "$line" correct),$(summary_value "$line" misclassified),$(summary_value "$line" not_classified),$(summary_value "$line" frames),$(summary_value "$line" score_per_frame),$(summary_value "$line" frames_per_s)" >> "$csv"
+      echo "room_classification: mode=$M$SUFFIX train=$L test=$T score=$(summary_value "$line" score) correct=$(summary_value "$line" correct) misclassified=$(summary_value "$line" misclassified) not_classified=$(summary_value "$line" not_classified) frames=$(summary_value "$line" frames) frames_per_s=$(summary_value "$line" frames_per_s)"
     done
   done
   rm -f "$TMP/test.bag"

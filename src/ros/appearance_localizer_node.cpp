@@ -20,6 +20,8 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
   c.min_share = P::getInRange(pnh, "min_share", c.min_share, 0.0, 0.999);
   c.sift.max_features = P::getInRange(pnh, "max_features", c.sift.max_features, 10, 5000);
   c.index.candidates = P::getInRange(pnh, "candidates", c.index.candidates, 1, 10000);
+  c.structure.weight = P::getInRange(pnh, "structure_weight", c.structure.weight, 0.0, 1.0);
+  c.structure.floor = P::getInRange(pnh, "structure_floor", c.structure.floor, 0.0, 0.999);
   localization::AppearanceMclConfig m;
   m.particles = P::getInRange(pnh, "particles", m.particles, 10, 100000);
   m.translation_noise_m =
@@ -93,8 +95,8 @@ void AppearanceLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     last_odom_.reset();
   }
   if (verdict != ros_conv::ImageGate::Result::kProcess) return;
-  const cv::Mat desc = places::extractSift(bgr, classifier_config_.sift);
-  const auto sims = classifier_->index().topFrames(desc, classifier_config_.index.candidates);
+  const auto sims = classifier_->frameSimilarities(classifier_->extract(bgr),
+                                                   classifier_config_.index.candidates);
   std::optional<math::SE2> delta;
   std::optional<math::SE2> odom_pose;
   if (odom_) {

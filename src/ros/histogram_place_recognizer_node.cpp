@@ -173,7 +173,7 @@ void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg
   if (!target.empty()) {
     char src[64];
     std::snprintf(src, sizeof(src), "%s@%.3f", ros_topics::kCameraImage, msg->header.stamp.toSec());
-    pending_[target].push_back({src, msg->header.stamp.toSec(), h, {}, {}});
+    pending_[target].push_back({src, msg->header.stamp.toSec(), h, {}, {}, {}});
     bool done = false;
     if (collect_) {
       if (collect_->started.isZero()) {

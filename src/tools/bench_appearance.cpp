@@ -1,11 +1,13 @@
 // bench_appearance: speed of SIFT room classification and appearance MCL on one core, with a
 // training set the size of the paper's (1,700 frames) rendered from the indoor simulator.
 //
-//   bench_appearance [--frames 1700] [--particles 100] [--test_frames 100] [--seed N]
+//   bench_appearance [--frames 1700] [--particles 100] [--test_frames 100]
+//                    [--structure_weight 0] [--seed N]
 //
 // Training frames: a cloudy run of the indoor building at the camera rate that gives --frames
 // images (309 x 240), their SIFT features indexed. Test: --test_frames images of another run; per
-// frame SIFT extraction, the indexed matcher (candidates verified) and one MCL step.
+// frame SIFT extraction (and the line-structure descriptor when --structure_weight > 0), the
+// indexed matcher (candidates verified, joined with the structural similarity) and one MCL step.
 // The paper (papers/002) needed about 3 minutes per image for single-image classification over
 // 1,690 frames and 56 minutes for a 960-frame sequence with 24 particles (3.5 s per frame).
 // OpenCV runs single-threaded here. Last line: `bench_appearance: ms_per_frame=.. frames_per_s=.. extract_ms=.. match_ms=..
@@ -50,11 +52,14 @@ void renderRun(const sim::IndoorWorld& world, const sim::IndoorRenderer& rendere
 
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
-                   "bench_appearance [--frames N] [--particles N] [--test_frames N] [--seed N]");
+                   "bench_appearance [--frames N] [--particles N] [--test_frames N] "
+                   "[--structure_weight W] [--seed N]");
   const long frames = args.getInt("frames", 1700);
   const long particles = args.getInt("particles", 100);
   const long test_frames = args.getInt("test_frames", 100);
   const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
+  places::RoomClassifierConfig cfg;
+  cfg.structure.weight = args.getDouble("structure_weight", 0.0);
   args.finish();
   if (frames < 10 || frames > 100000) args.fail("--frames must be in 10..100000");
   if (test_frames < 1 || test_frames > 10000) args.fail("--test_frames must be in 1..10000");
@@ -70,13 +75,14 @@ int main(int argc, char** argv) {
               &train_place);
     renderRun(world, renderer, static_cast<int>(test_frames), seed + 1, &test_img, &test_pose,
               &test_place);
-    places::RoomClassifierConfig cfg;
+    cfg.validate();
     std::vector<places::TrainingFrame> tf;
     for (size_t i = 0; i < train_img.size(); ++i) {
       places::TrainingFrame f;
       f.image_id = static_cast<long>(i);
       f.place = train_place[i];
       f.features = places::extractSift(train_img[i], cfg.sift);
+      if (cfg.structure.enabled()) f.structure = places::lineStructure(train_img[i], cfg.lines);
       f.has_pose = true;
       f.x_m = train_pose[i].x_m;
       f.y_m = train_pose[i].y_m;
@@ -97,10 +103,10 @@ int main(int argc, char** argv) {
     double extract = 0.0, match = 0.0, step = 0.0;
     for (size_t i = 0; i < test_img.size(); ++i) {
       auto t0 = Clock::now();
-      const cv::Mat d = places::extractSift(test_img[i], cfg.sift);
+      const places::ImageCues cues = classifier.extract(test_img[i]);
       extract += msSince(t0);
       t0 = Clock::now();
-      const auto sims = classifier.index().topFrames(d, cfg.index.candidates);
+      const auto sims = classifier.frameSimilarities(cues, cfg.index.candidates);
       match += msSince(t0);
       t0 = Clock::now();
       mcl.step(std::nullopt, sims);

@@ -4,7 +4,8 @@
 //
 //   evaluate_room_classification --database DB.sqlite (--bag FILE | --list CSV)
 //       [--mode single|mcl] [--particles 100] [--best_frames 20] [--min_share 0.6]
-//       [--max_features 200] [--candidates 30] [--seed 1] [--max_images N] [--output DIR]
+//       [--max_features 200] [--candidates 30] [--structure_weight 0] [--structure_floor 0.6]
+//       [--seed 1] [--max_images N] [--output DIR]
 //
 // The database needs training frames with features (train_places --features; poses too for mcl).
 // Mode `single` classifies every image alone (the paper's obligatory track, Table 3). Mode `mcl`
@@ -12,6 +13,9 @@
 // Table 5) from a global start: particle weights from the similarities of the indexed matcher's
 // verified frames, motion from the bag's odom (or the training run's average step for image
 // lists); a frame is classified only while the filter is stable.
+// --structure_weight W > 0 joins the line-structure similarity (places/line_structure.h, section
+// 4.1.2) to the SIFT similarity in both modes; the database must hold the descriptors (train_places
+// --features stores them).
 // Writes DIR/results.yaml (counts, confusion) and DIR/images.csv (image, truth, predicted, share,
 // features, ms). Last line: `evaluate_room_classification: mode=single score=.. correct=..
 // misclassified=.. not_classified=.. frames=.. score_per_frame=.. frames_per_s=..`.
@@ -37,7 +41,8 @@ int main(int argc, char** argv) {
       argc, argv,
       "evaluate_room_classification --database DB.sqlite (--bag FILE | --list CSV) "
       "[--mode single|mcl] [--particles N] [--best_frames N] [--min_share S] "
-      "[--max_features N] [--candidates N] [--seed N] [--max_images N] [--output DIR]");
+      "[--max_features N] [--candidates N] [--structure_weight W] [--structure_floor F] "
+      "[--seed N] [--max_images N] [--output DIR]");
   const std::string db_path = args.get("database", "");
   const std::string bag = args.get("bag", "");
   const std::string list = args.get("list", "");
@@ -47,6 +52,8 @@ int main(int argc, char** argv) {
   cfg.min_share = args.getDouble("min_share", cfg.min_share);
   cfg.sift.max_features = static_cast<int>(args.getInt("max_features", cfg.sift.max_features));
   cfg.index.candidates = static_cast<int>(args.getInt("candidates", cfg.index.candidates));
+  cfg.structure.weight = args.getDouble("structure_weight", cfg.structure.weight);
+  cfg.structure.floor = args.getDouble("structure_floor", cfg.structure.floor);
   const long max_images = args.getInt("max_images", 0);
   localization::AppearanceMclConfig mcl_cfg;
   mcl_cfg.particles = static_cast<int>(args.getInt("particles", mcl_cfg.particles));
@@ -93,14 +100,14 @@ int main(int argc, char** argv) {
     tools::forEachLabelledImage(bag, list, [&](const tools::LabelledImage& li) {
       if (max_images > 0 && n >= max_images) return;
       const auto t0 = Clock::now();
-      const cv::Mat desc = places::extractSift(li.bgr, cfg.sift);
+      const places::ImageCues cues = classifier.extract(li.bgr);
       places::RoomClassification r;
       if (!mcl) {
-        r = classifier.classifyDescriptors(desc);
+        r = classifier.classifyCues(cues);
       } else {
         // Particle weights from every verified candidate frame, not only the best n.
-        const auto sims = classifier.index().topFrames(desc, cfg.index.candidates);
-        r.features = desc.rows;
+        const auto sims = classifier.frameSimilarities(cues, cfg.index.candidates);
+        r.features = cues.sift.rows;
         std::optional<math::SE2> delta;
         if (li.odom) {
           const math::SE2 o((*li.odom)[0], (*li.odom)[1], (*li.odom)[2]);
@@ -132,6 +139,8 @@ int main(int argc, char** argv) {
     y << YAML::Key << "training_frames" << YAML::Value << classifier.frames().size();
     y << YAML::Key << "best_frames" << YAML::Value << cfg.best_frames;
     y << YAML::Key << "min_share" << YAML::Value << cfg.min_share;
+    y << YAML::Key << "structure_weight" << YAML::Value << cfg.structure.weight;
+    y << YAML::Key << "structure_floor" << YAML::Value << cfg.structure.floor;
     y << YAML::Key << "score" << YAML::Value << score.score();
     y << YAML::Key << "correct" << YAML::Value << score.correct;
     y << YAML::Key << "misclassified" << YAML::Value << score.misclassified;

@@ -10,8 +10,9 @@
 // database takes --bins/--spaces/--mask (defaults 256, all eight spaces, no mask); an existing one
 // keeps its own, and explicit options that differ are refused. Adjacency: consecutive images with
 // different places make the two places adjacent (the route walked), unless --no_adjacency.
-// --features also stores each image's SIFT descriptors and, from bags, its ground_truth/pose (the
-// training frames of the room classifier and the appearance localizer, papers/002).
+// --features also stores each image's SIFT descriptors, its line-structure descriptor (default
+// LineStructureConfig) and, from bags, its ground_truth/pose (the training frames of the room
+// classifier and the appearance localizer, papers/002).
 // Each place is written in one transaction. Last line:
 // `train_places: database=DB places=N images_added=M images_total=T edges=E seconds=S`.
 #include <chrono>
@@ -21,6 +22,7 @@
 #include <set>
 
 #include "adaptive_perception/places/feature_index.h"
+#include "adaptive_perception/places/line_structure.h"
 #include "adaptive_perception/places/place_database.h"
 #include "labelled_images.h"
 #include "tool_args.h"
@@ -77,6 +79,7 @@ int main(int argc, char** argv) {
       ti.histograms = places::computeHistograms(li.bgr, use);
       if (features) {
         ti.features = places::extractSift(li.bgr, sift);
+        ti.structure = places::lineStructure(li.bgr, places::LineStructureConfig{});
         ti.pose = li.pose;
       }
       by_place[li.label].push_back(std::move(ti));

@@ -12,7 +12,8 @@
 // Schema (version 1): meta(key, value); places(id, name UNIQUE); adjacency(a, b) with a < b;
 // images(id, place_id, source, stamp_s); histograms(image_id, space, data BLOB of 3 * bins
 // little-endian float32); features(image_id, rows, data BLOB of rows x 128 uint8 SIFT
-// descriptors); poses(image_id, x_m, y_m, yaw_rad). The last two are optional per image (SIFT room
+// descriptors); poses(image_id, x_m, y_m, yaw_rad); structure(image_id, data BLOB of D
+// little-endian float32, line_structure.h). The last three are optional per image (room
 // classification, papers/002) and are added to an older file when it is opened for writing.
 #include <array>
 #include <memory>
@@ -49,6 +50,7 @@ struct TrainingImage {
   double stamp_s = 0.0;
   ImageHistograms histograms;  // must have every space of the settings
   cv::Mat features;            // optional: N x 128 CV_32F SIFT descriptors (stored as uint8)
+  cv::Mat structure;           // optional: 1 x D CV_32F line-structure descriptor
   std::optional<std::array<double, 3>> pose;  // optional: x_m, y_m, yaw_rad in map
 };
 
@@ -56,7 +58,8 @@ struct TrainingImage {
 struct TrainingFrame {
   long image_id = 0;
   std::string place;
-  cv::Mat features;  // N x 128 CV_32F
+  cv::Mat features;   // N x 128 CV_32F
+  cv::Mat structure;  // 1 x D CV_32F line-structure descriptor; empty when not stored
   bool has_pose = false;
   double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;
 };

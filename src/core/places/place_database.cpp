@@ -22,7 +22,8 @@ constexpr const char* kOptionalTables =
     "CREATE TABLE IF NOT EXISTS features (image_id INTEGER PRIMARY KEY, rows INTEGER NOT NULL, "
     "data BLOB NOT NULL);"
     "CREATE TABLE IF NOT EXISTS poses (image_id INTEGER PRIMARY KEY, x_m REAL NOT NULL, y_m REAL "
-    "NOT NULL, yaw_rad REAL NOT NULL);";
+    "NOT NULL, yaw_rad REAL NOT NULL);"
+    "CREATE TABLE IF NOT EXISTS structure (image_id INTEGER PRIMARY KEY, data BLOB NOT NULL);";
 
 // A prepared statement that finalizes itself.
 class Statement {
@@ -317,6 +318,10 @@ int PlaceDatabase::addImages(const std::string& place, const std::vector<Trainin
     if (!f.empty() && (f.cols != 128 || f.type() != CV_32F))
       throw std::invalid_argument("addImages: image " + images[i].source +
                                   " has features that are not N x 128 CV_32F");
+    const cv::Mat& st = images[i].structure;
+    if (!st.empty() && (st.rows != 1 || st.type() != CV_32F))
+      throw std::invalid_argument("addImages: image " + images[i].source +
+                                  " has a line-structure descriptor that is not 1 x D CV_32F");
   }
   Transaction t(db_, path_);
   const int pid = placeId(place, true);
@@ -324,6 +329,7 @@ int PlaceDatabase::addImages(const std::string& place, const std::vector<Trainin
   Statement hist(db_, "INSERT INTO histograms (image_id, space, data) VALUES (?, ?, ?)", path_);
   Statement feat(db_, "INSERT INTO features (image_id, rows, data) VALUES (?, ?, ?)", path_);
   Statement pose(db_, "INSERT INTO poses (image_id, x_m, y_m, yaw_rad) VALUES (?, ?, ?, ?)", path_);
+  Statement structure(db_, "INSERT INTO structure (image_id, data) VALUES (?, ?)", path_);
   for (const TrainingImage& ti : images) {
     img.bind(1, static_cast<long long>(pid)).bind(2, ti.source).bind(3, ti.stamp_s);
     img.step();
@@ -344,6 +350,12 @@ int PlaceDatabase::addImages(const std::string& place, const std::vector<Trainin
       feat.step();
       feat.reset();
     }
+    if (!ti.structure.empty()) {
+      const cv::Mat st = ti.structure.isContinuous() ? ti.structure : ti.structure.clone();
+      structure.bind(1, iid).bindBlob(2, st.data, static_cast<int>(st.total() * sizeof(float)));
+      structure.step();
+      structure.reset();
+    }
     if (ti.pose) {
       pose.bind(1, iid).bind(2, (*ti.pose)[0]).bind(3, (*ti.pose)[1]).bind(4, (*ti.pose)[2]);
       pose.step();
@@ -362,6 +374,9 @@ bool PlaceDatabase::removePlace(const std::string& place) {
   exec("DELETE FROM features WHERE image_id IN (SELECT id FROM images WHERE place_id = " + id +
        ");"
        "DELETE FROM poses WHERE image_id IN (SELECT id FROM images WHERE place_id = " +
+       id +
+       ");"
+       "DELETE FROM structure WHERE image_id IN (SELECT id FROM images WHERE place_id = " +
        id +
        ");"
        "DELETE FROM histograms WHERE image_id IN (SELECT id FROM images WHERE place_id = " +
@@ -467,17 +482,21 @@ PlaceIndex PlaceDatabase::loadIndex(const std::vector<int>& spaces_in) const {
 
 std::vector<TrainingFrame> PlaceDatabase::loadFrames() const {
   std::vector<TrainingFrame> out;
-  {
-    Statement q(db_,
-                "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = 'features'",
-                path_);
+  const auto has_table = [&](const char* name) {
+    Statement q(db_, "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND name = ?", path_);
+    q.bind(1, std::string(name));
     q.step();
-    if (q.integer(0) == 0) return out;  // an older file opened read-only: no features
-  }
+    return q.integer(0) > 0;
+  };
+  if (!has_table("features")) return out;  // an older file opened read-only: no features
+  const bool structure = has_table("structure");
   Statement q(db_,
-              "SELECT i.id, p.name, f.rows, f.data, o.x_m, o.y_m, o.yaw_rad FROM features f JOIN "
-              "images i ON i.id = f.image_id JOIN places p ON p.id = i.place_id LEFT JOIN poses o "
-              "ON o.image_id = i.id ORDER BY i.id",
+              std::string("SELECT i.id, p.name, f.rows, f.data, o.x_m, o.y_m, o.yaw_rad, ") +
+                  (structure ? "s.data" : "NULL") +
+                  " FROM features f JOIN images i ON i.id = f.image_id JOIN places p ON p.id = "
+                  "i.place_id LEFT JOIN poses o ON o.image_id = i.id " +
+                  (structure ? "LEFT JOIN structure s ON s.image_id = i.id " : "") +
+                  "ORDER BY i.id",
               path_);
   while (q.step()) {
     TrainingFrame f;
@@ -498,6 +517,14 @@ std::vector<TrainingFrame> PlaceDatabase::loadFrames() const {
       f.x_m = q.real(4);
       f.y_m = q.real(5);
       f.yaw_rad = q.real(6);
+    }
+    if (!q.isNull(7)) {
+      const int bytes = q.bytes(7);
+      if (bytes <= 0 || bytes % static_cast<int>(sizeof(float)) != 0)
+        throw std::runtime_error(path_ + ": image " + std::to_string(f.image_id) +
+                                 " has a damaged line-structure blob");
+      f.structure.create(1, bytes / static_cast<int>(sizeof(float)), CV_32F);
+      std::memcpy(f.structure.data, q.blob(7), bytes);
     }
     out.push_back(std::move(f));
   }

@@ -12,6 +12,8 @@ void RoomClassifierConfig::validate() const {
     throw std::invalid_argument("best_frames must be in 1..1000");
   if (!(min_share >= 0.0 && min_share < 1.0))
     throw std::invalid_argument("min_share must be in [0, 1)");
+  lines.validate();
+  structure.validate();
 }
 
 RoomClassifier::RoomClassifier(RoomClassifierConfig config)
@@ -34,6 +36,24 @@ void RoomClassifier::setFrames(std::vector<TrainingFrame> frames) {
     frame_room_.push_back(roomIndex(f.place));
   }
   index_.build();
+  structure_.release();
+  if (config_.structure.enabled()) {
+    const int dims = config_.lines.dims();
+    structure_.create(static_cast<int>(frames_.size()), dims, CV_32F);
+    for (size_t i = 0; i < frames_.size(); ++i) {
+      const cv::Mat& st = frames_[i].structure;
+      if (st.empty())
+        throw std::invalid_argument(
+            "structural cues are on but training image " + std::to_string(frames_[i].image_id) +
+            " has no line-structure descriptor (retrain with train_places --features)");
+      if (static_cast<int>(st.total()) != dims)
+        throw std::invalid_argument("training image " + std::to_string(frames_[i].image_id) +
+                                    " has a line-structure descriptor of " +
+                                    std::to_string(st.total()) + " values, the configuration " +
+                                    std::to_string(dims) + " (orientation_bins x bands)");
+      st.reshape(1, 1).copyTo(structure_.row(static_cast<int>(i)));
+    }
+  }
 }
 
 int RoomClassifier::roomIndex(const std::string& name) const {
@@ -41,14 +61,40 @@ int RoomClassifier::roomIndex(const std::string& name) const {
   return it != rooms_.end() && *it == name ? static_cast<int>(it - rooms_.begin()) : -1;
 }
 
+ImageCues RoomClassifier::extract(const cv::Mat& bgr8) const {
+  ImageCues cues;
+  cues.sift = extractSift(bgr8, config_.sift);
+  if (config_.structure.enabled()) cues.structure = lineStructure(bgr8, config_.lines);
+  return cues;
+}
+
+std::vector<FrameMatch> RoomClassifier::frameSimilarities(const ImageCues& cues, int n) const {
+  if (!config_.structure.enabled()) return index_.topFrames(cues.sift, n);
+  if (static_cast<int>(cues.structure.total()) != config_.lines.dims())
+    throw std::invalid_argument("frameSimilarities: the image has no line-structure descriptor");
+  // The SIFT list is the index's verified candidates; the structural list covers every frame.
+  const std::vector<FrameMatch> sift =
+      index_.topFrames(cues.sift, std::max(n, config_.index.candidates));
+  std::vector<double> st(frames_.size());
+  for (int i = 0; i < structure_.rows; ++i)
+    st[i] = structureSimilarity(structure_.row(i), cues.structure.reshape(1, 1));
+  return combineStructure(sift, st, config_.structure, n);
+}
+
 RoomClassification RoomClassifier::classify(const cv::Mat& bgr8) const {
-  return classifyDescriptors(extractSift(bgr8, config_.sift));
+  return classifyCues(extract(bgr8));
 }
 
 RoomClassification RoomClassifier::classifyDescriptors(const cv::Mat& descriptors) const {
+  if (config_.structure.enabled())
+    throw std::logic_error("classifyDescriptors: structural cues are on; use classifyCues");
+  return classifyCues({descriptors, cv::Mat()});
+}
+
+RoomClassification RoomClassifier::classifyCues(const ImageCues& cues) const {
   RoomClassification out;
-  out.features = descriptors.rows;
-  out.best = index_.topFrames(descriptors, config_.best_frames);
+  out.features = cues.sift.rows;
+  out.best = frameSimilarities(cues, config_.best_frames);
   const RoomVote v =
       voteRooms(out.best, frame_room_, static_cast<int>(rooms_.size()), config_.min_share);
   out.room = v.room;

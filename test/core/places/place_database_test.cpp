@@ -49,7 +49,7 @@ class PlaceDatabaseTest : public ::testing::Test {
   std::vector<TrainingImage> images(int first, int n) const {
     std::vector<TrainingImage> out;
     for (int i = first; i < first + n; ++i)
-      out.push_back({"image_" + std::to_string(i) + ".png", 0.5 * i, hist(i), {}, {}});
+      out.push_back({"image_" + std::to_string(i) + ".png", 0.5 * i, hist(i), {}, {}, {}});
     return out;
   }
   static std::string contents(const std::string& path) {
@@ -261,12 +261,17 @@ TEST_F(PlaceDatabaseTest, SiftFeaturesAndPosesRoundTrip) {
   imgs[0].features = f;
   imgs[0].pose = std::array<double, 3>{1.5, -2.0, 0.25};
   imgs[2].features = f.rowRange(0, 2).clone();  // no pose
+  const cv::Mat structure = (cv::Mat_<float>(1, 4) << 0.5f, 0.0f, 0.125f, 1e-3f);
+  imgs[0].structure = structure;  // only the first has a line-structure descriptor
   {
     PlaceDatabase db = PlaceDatabase::create(file("p.sqlite"), settings_);
     db.addImages("lab", imgs);
     cv::Mat bad(2, 64, CV_32F, cv::Scalar(1));
     std::vector<TrainingImage> wrong = images(5, 1);
     wrong[0].features = bad;
+    EXPECT_THROW(db.addImages("lab", wrong), std::invalid_argument);
+    wrong = images(6, 1);
+    wrong[0].structure = cv::Mat(2, 2, CV_32F, cv::Scalar(1));  // not one row
     EXPECT_THROW(db.addImages("lab", wrong), std::invalid_argument);
   }
   const PlaceDatabase db = PlaceDatabase::open(file("p.sqlite"), true);
@@ -277,7 +282,9 @@ TEST_F(PlaceDatabaseTest, SiftFeaturesAndPosesRoundTrip) {
   EXPECT_TRUE(frames[0].has_pose);
   EXPECT_DOUBLE_EQ(frames[0].x_m, 1.5);
   EXPECT_DOUBLE_EQ(frames[0].yaw_rad, 0.25);
+  EXPECT_EQ(cv::norm(frames[0].structure, structure, cv::NORM_INF), 0.0);
   EXPECT_EQ(frames[1].features.rows, 2);
   EXPECT_FALSE(frames[1].has_pose);
+  EXPECT_TRUE(frames[1].structure.empty());
   EXPECT_EQ(db.imageCount(), 3);
 }
