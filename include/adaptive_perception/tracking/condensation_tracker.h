@@ -19,10 +19,13 @@
 //  3. The contour is refined on the image's Canny edges masked by the dilated boundary of the best
 //     sample's blob (grad I* = grad I . dil(grad S)); C_t becomes the colours inside it.
 //
-// Deviation from the paper, for speed: samples segment a region around the predicted contour
-// (`roi_margin` times its size on each side), not the whole image; while the target is lost the
-// region is the whole frame and the largest blobs are tried with the snake re-placed on each
-// (re-acquisition).
+// Deviations from the paper: for speed, samples segment a region around the predicted contour
+// (`roi_margin` times its size on each side), not the whole image. While the target is lost the
+// region grows for `local_lost_frames` frames, then is the whole frame, where the largest blobs are
+// tried with the snake re-placed on each (re-acquisition). After each frame the samples' centroid
+// and magnitudes are pulled towards the measured C_t by `anchor_rate` (their velocities kept),
+// and magnitudes stay within `max_stretch` of C_t's, so the filter cannot wander off along a
+// colour direction that the current clutter happens not to test.
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -36,6 +39,10 @@ namespace adaptive_perception::tracking {
 
 /// Default propagation noise (sd per step): centroid 0.02, magnitudes 0.005, angles 0.03 rad.
 DistributionState defaultNoiseSd();
+/// The default dynamics: constant velocity for the centroid, a random walk (A1 = I, A0 = 0) for the
+/// magnitudes and the angles (a constant-velocity magnitude drifts without bound between the
+/// measurements that would check it), noise defaultNoiseSd(). learnAr2 replaces it.
+Ar2Model defaultDynamics();
 
 struct CondensationConfig {
   Quantizer quantizer{ColorSpace::kOpponent, 16};
@@ -57,7 +64,10 @@ struct CondensationConfig {
   double canny_low = 30.0, canny_high = 90.0;  // refinement edges (grey levels)
   int reacquire_blobs = 3;                     // largest blobs tried while lost, 1..50
   double contour_margin_px = 2.0;              // C_t: colours this far inside the contour, >= 0
-  Ar2Model dynamics = Ar2Model::constantVelocity(defaultNoiseSd());
+  double anchor_rate = 0.5;   // samples' m and lambda pulled this far to C_t, [0, 1]
+  double max_stretch = 4.0;   // a sample's lambda within [1/x, x] of C_t's, >= 1
+  int local_lost_frames = 5;  // lost: search around the last contour this long first
+  Ar2Model dynamics = defaultDynamics();
   AffineSnakeConfig snake;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
@@ -113,6 +123,7 @@ class CondensationTracker {
   std::vector<DistributionState> samples_, previous_;
   std::vector<double> weights_;
   bool lost_ = false;
+  int lost_count_ = 0;
 };
 
 }  // namespace adaptive_perception::tracking

@@ -16,6 +16,15 @@ DistributionState defaultNoiseSd() {
   return sd;
 }
 
+Ar2Model defaultDynamics() {
+  Ar2Model m = Ar2Model::constantVelocity(defaultNoiseSd());
+  for (int k = 3; k < kStateDim; ++k) {
+    m.a1(k, k) = 1.0;
+    m.a0(k, k) = 0.0;
+  }
+  return m;
+}
+
 void CondensationConfig::validate() const {
   quantizer.validate();
   snake.validate();
@@ -39,6 +48,9 @@ void CondensationConfig::validate() const {
   need(canny_low > 0.0 && canny_high >= canny_low, "need 0 < canny_low <= canny_high");
   need(reacquire_blobs >= 1 && reacquire_blobs <= 50, "reacquire_blobs must be in 1..50");
   need(contour_margin_px >= 0.0, "contour_margin_px must be >= 0");
+  need(anchor_rate >= 0.0 && anchor_rate <= 1.0, "anchor_rate must be in [0, 1]");
+  need(max_stretch >= 1.0, "max_stretch must be >= 1");
+  need(local_lost_frames >= 0, "local_lost_frames must be >= 0");
   need(dynamics.a1.allFinite() && dynamics.a0.allFinite() && dynamics.b.allFinite() &&
            dynamics.d.allFinite(),
        "dynamics must be finite");
@@ -220,12 +232,14 @@ TrackingResult CondensationTracker::track(const cv::Mat& bgr8) {
     for (auto& p : predicted) p += velocity_;
   const double predicted_area =
       std::max(config_.min_area_px, area1_ + config_.area_velocity * (area1_ - area2_));
+  // Lost for a few frames: a growing region around the last contour; then the whole frame.
+  const bool global = lost_ && lost_count_ > config_.local_lost_frames;
   cv::Rect roi = frame;
-  if (!lost_) {
+  if (!global) {
     const cv::Rect2d b = contourBox(predicted);
-    roi = cv::Rect(cv::Rect2d(
-              b.x - config_.roi_margin * b.width, b.y - config_.roi_margin * b.height,
-              b.width * (1 + 2 * config_.roi_margin), b.height * (1 + 2 * config_.roi_margin))) &
+    const double margin = config_.roi_margin * (1 + lost_count_);
+    roi = cv::Rect(cv::Rect2d(b.x - margin * b.width, b.y - margin * b.height,
+                              b.width * (1 + 2 * margin), b.height * (1 + 2 * margin))) &
           frame;
     if (roi.area() <= 0) roi = frame;
   }
@@ -249,7 +263,7 @@ TrackingResult CondensationTracker::track(const cv::Mat& bgr8) {
   blobs.offset = roi.tl();
   auto candidates = [&](std::vector<std::pair<int, Contour>>* out) {
     out->clear();
-    if (!lost_) {
+    if (!global) {
       std::vector<int> overlap(blobs.count, 0);
       for (int y = 0; y < roi.height; ++y) {
         const uchar* m = predicted_mask.ptr<uchar>(y);
@@ -339,7 +353,9 @@ TrackingResult CondensationTracker::track(const cv::Mat& bgr8) {
         refined = fit.contour;
       break;
     }
-    velocity_ = contourCentroid(refined) - contourCentroid(contour_);
+    // After a loss the old contour says nothing about the motion.
+    velocity_ = lost_ ? Eigen::Vector2d::Zero()
+                      : Eigen::Vector2d(contourCentroid(refined) - contourCentroid(contour_));
     contour_ = refined;
     area2_ = area1_;
     area1_ = std::max(config_.min_area_px, contourArea(contour_));
@@ -348,6 +364,7 @@ TrackingResult CondensationTracker::track(const cv::Mat& bgr8) {
     velocity_.setZero();
   }
   lost_ = !found;
+  lost_count_ = lost_ ? lost_count_ + 1 : 0;
   out.lost = lost_;
 
   // The new weighted set.
@@ -358,6 +375,16 @@ TrackingResult CondensationTracker::track(const cv::Mat& bgr8) {
     w.assign(w.size(), 1.0 / w.size());
   else
     for (double& v : w) v /= total;
+  if (found && config_.anchor_rate > 0.0) {
+    // Pull m and lambda towards the measured C_t, moving the previous state alike (velocity kept).
+    DistributionState target = stateOf(reference_stats_);
+    for (size_t i = 0; i < next.size(); ++i) {
+      DistributionState shift = DistributionState::Zero();
+      shift.head<6>() = config_.anchor_rate * (target.head<6>() - next[i].head<6>());
+      next[i] += shift;
+      prev[i] += shift;
+    }
+  }
   samples_ = next;
   previous_ = prev;
   weights_ = w;

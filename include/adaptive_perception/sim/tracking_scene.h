@@ -1,0 +1,68 @@
+#pragma once
+// Synthetic tracking sequences with ground truth (papers/001 section 3.4, Figs 8 and 13):
+//   circles               a circle moving around whose colour changes randomly (a random walk
+//                         in RGB), among other moving circles of other colours (experiment 1);
+//   lambertian_rectangle  a reddish Lambertian rectangle revolving around a light source: its
+//                         brightness and shading follow its angle to the light, and it turns in
+//                         the image as it goes round (experiment 2, Fig 8);
+//   distractor            a circle whose colour drifts slowly, and a square of the same colour
+//                         (another shape) crossing its path.
+// All scenes have a cluttered static background (boxes and blobs of muted colours) and camera
+// noise. The ground truth is the target's axis-aligned bounding box. The same seed gives the same
+// frames.
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "adaptive_perception/math/rng.h"
+
+namespace adaptive_perception::sim {
+
+enum class TrackingScenario { kCircles, kLambertianRectangle, kDistractor };
+/// "circles" | "lambertian_rectangle" | "distractor"; throws std::invalid_argument naming them.
+TrackingScenario parseTrackingScenario(const std::string& name);
+std::string trackingScenarioName(TrackingScenario s);
+std::vector<std::string> trackingScenarioNames();
+
+struct TrackingSceneConfig {
+  TrackingScenario scenario = TrackingScenario::kCircles;
+  int width = 320, height = 240;  // pixels, 64..4096
+  int frames = 300;               // 1..100000
+  double rate_hz = 30.0;          // frame rate, > 0
+  double noise_sd = 4.0;          // camera noise, grey levels, >= 0
+  bool clutter = true;            // background boxes and blobs
+  void validate() const;          // throws std::invalid_argument naming the bad field
+};
+
+struct SceneFrame {
+  cv::Mat bgr;       // bgr8
+  cv::Rect2d truth;  // target's bounding box, pixels
+};
+
+class TrackingScene {
+ public:
+  TrackingScene(TrackingSceneConfig config, std::uint64_t seed);
+  /// The next frame (frames are generated in order; at most config.frames of them).
+  SceneFrame next();
+  bool done() const { return index_ >= config_.frames; }
+  int index() const { return index_; }
+  const TrackingSceneConfig& config() const { return config_; }
+
+ private:
+  struct Mover {
+    cv::Point2d pos, vel;
+    double radius;
+  };
+  void move(Mover* m, double max_speed);
+  TrackingSceneConfig config_;
+  math::Rng rng_;
+  cv::Mat background_;
+  int index_ = 0;
+  Mover target_;
+  std::vector<Mover> others_;
+  std::vector<cv::Scalar> other_colors_;
+  cv::Vec3d target_rgb_;
+  Mover distractor_;
+};
+
+}  // namespace adaptive_perception::sim

@@ -1,0 +1,195 @@
+#include "adaptive_perception/sim/tracking_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+namespace adaptive_perception::sim {
+
+TrackingScenario parseTrackingScenario(const std::string& name) {
+  if (name == "circles") return TrackingScenario::kCircles;
+  if (name == "lambertian_rectangle") return TrackingScenario::kLambertianRectangle;
+  if (name == "distractor") return TrackingScenario::kDistractor;
+  throw std::invalid_argument("unknown scenario '" + name +
+                              "' (circles | lambertian_rectangle | distractor)");
+}
+
+std::string trackingScenarioName(TrackingScenario s) {
+  switch (s) {
+    case TrackingScenario::kCircles:
+      return "circles";
+    case TrackingScenario::kLambertianRectangle:
+      return "lambertian_rectangle";
+    case TrackingScenario::kDistractor:
+      return "distractor";
+  }
+  return "?";
+}
+
+std::vector<std::string> trackingScenarioNames() {
+  return {"circles", "lambertian_rectangle", "distractor"};
+}
+
+void TrackingSceneConfig::validate() const {
+  if (width < 64 || width > 4096 || height < 64 || height > 4096)
+    throw std::invalid_argument("width and height must be in 64..4096");
+  if (frames < 1 || frames > 100000) throw std::invalid_argument("frames must be in 1..100000");
+  if (!(rate_hz > 0.0)) throw std::invalid_argument("rate_hz must be > 0");
+  if (!(noise_sd >= 0.0)) throw std::invalid_argument("noise_sd must be >= 0");
+}
+
+TrackingScene::TrackingScene(TrackingSceneConfig config, std::uint64_t seed)
+    : config_(config), rng_(seed) {
+  config_.validate();
+  const int w = config_.width, h = config_.height;
+  const double s = std::min(w, h) / 240.0;  // sizes scale with the image
+  // Background: a soft vertical gradient and, with clutter, muted boxes and blobs.
+  background_.create(h, w, CV_8UC3);
+  for (int y = 0; y < h; ++y)
+    background_.row(y).setTo(cv::Scalar(70 + 40.0 * y / h, 80 + 20.0 * y / h, 75));
+  if (config_.clutter) {
+    for (int i = 0; i < 40; ++i) {
+      const cv::Scalar c(rng_.uniform(40, 200), rng_.uniform(60, 180), rng_.uniform(40, 150));
+      const cv::Point p(rng_.uniformInt(0, w - 1), rng_.uniformInt(0, h - 1));
+      const int a = static_cast<int>(rng_.uniform(5, 30) * s),
+                b = static_cast<int>(rng_.uniform(5, 30) * s);
+      if (rng_.bernoulli(0.5))
+        cv::rectangle(background_, cv::Rect(p.x, p.y, a, b), c, cv::FILLED);
+      else
+        cv::ellipse(background_, p, cv::Size(a / 2 + 1, b / 2 + 1), rng_.uniform(0, 180), 0, 360, c,
+                    cv::FILLED);
+    }
+    cv::GaussianBlur(background_, background_, cv::Size(3, 3), 0);
+  }
+  const double r = 22 * s;
+  target_ = {{w * 0.3, h * 0.5}, {rng_.uniform(-2, 2) * s, rng_.uniform(-2, 2) * s}, r};
+  target_rgb_ = {200, 60, 50};  // reddish to start
+  if (config_.scenario == TrackingScenario::kCircles) {
+    const cv::Scalar colors[3] = {{200, 120, 40}, {60, 180, 60}, {180, 180, 190}};  // bgr
+    for (int i = 0; i < 3; ++i) {
+      others_.push_back({{rng_.uniform(0.2, 0.8) * w, rng_.uniform(0.2, 0.8) * h},
+                         {rng_.uniform(-2, 2) * s, rng_.uniform(-2, 2) * s},
+                         rng_.uniform(14, 24) * s});
+      other_colors_.push_back(colors[i]);
+    }
+  }
+  if (config_.scenario == TrackingScenario::kDistractor) {
+    // The square enters from the right and crosses the whole image in the run's middle half.
+    const double speed = (w + 4 * r) / (0.5 * config_.frames);
+    distractor_ = {{w + 2 * r - speed * (-0.25 * config_.frames), h * 0.5}, {-speed, 0.0}, r * 0.9};
+  }
+}
+
+void TrackingScene::move(Mover* m, double max_speed) {
+  // A smoothly wandering velocity, bouncing off the borders.
+  m->vel += cv::Point2d(rng_.gaussian(0, 0.3), rng_.gaussian(0, 0.3));
+  const double v = std::hypot(m->vel.x, m->vel.y);
+  if (v > max_speed) m->vel *= max_speed / v;
+  m->pos += m->vel;
+  const double lo = m->radius + 2, hx = config_.width - m->radius - 2,
+               hy = config_.height - m->radius - 2;
+  if (m->pos.x < lo || m->pos.x > hx) m->vel.x = -m->vel.x;
+  if (m->pos.y < lo || m->pos.y > hy) m->vel.y = -m->vel.y;
+  m->pos.x = std::clamp(m->pos.x, lo, hx);
+  m->pos.y = std::clamp(m->pos.y, lo, hy);
+}
+
+SceneFrame TrackingScene::next() {
+  if (done()) throw std::out_of_range("TrackingScene::next: past the last frame");
+  const double s = std::min(config_.width, config_.height) / 240.0;
+  SceneFrame f;
+  f.bgr = background_.clone();
+  const int k = index_++;
+  auto pt = [](const cv::Point2d& p) {
+    return cv::Point(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
+  };
+  switch (config_.scenario) {
+    case TrackingScenario::kCircles: {
+      for (size_t i = 0; i < others_.size(); ++i) {
+        move(&others_[i], 3.0 * s);
+        cv::circle(f.bgr, pt(others_[i].pos), static_cast<int>(others_[i].radius), other_colors_[i],
+                   cv::FILLED, cv::LINE_AA);
+      }
+      move(&target_, 3.0 * s);
+      for (int c = 0; c < 3; ++c)  // the colour changes randomly
+        target_rgb_[c] = std::clamp(target_rgb_[c] + rng_.gaussian(0, 3.0), 30.0, 235.0);
+      cv::circle(f.bgr, pt(target_.pos), static_cast<int>(target_.radius),
+                 cv::Scalar(target_rgb_[2], target_rgb_[1], target_rgb_[0]), cv::FILLED,
+                 cv::LINE_AA);
+      const double r = static_cast<int>(target_.radius);
+      f.truth = {target_.pos.x - r, target_.pos.y - r, 2 * r + 1, 2 * r + 1};
+      break;
+    }
+    case TrackingScenario::kLambertianRectangle: {
+      // The light at the image centre; the rectangle on an orbit around it, facing it.
+      const cv::Point2d light(config_.width / 2.0, config_.height / 2.0);
+      cv::circle(f.bgr, pt(light), static_cast<int>(10 * s), cv::Scalar(200, 245, 255), cv::FILLED,
+                 cv::LINE_AA);
+      const double period = 240.0;
+      const double a = 2 * M_PI * k / period;
+      const double orbit = 75 * s;
+      const cv::Point2d c = light + orbit * cv::Point2d(std::cos(a), 0.8 * std::sin(a));
+      // Its normal turns away from the light and back once per orbit: the reflected light runs
+      // from 0.25 to 1 of full, and the colour of the light warms as it dims.
+      const double facing = 0.25 + 0.75 * (0.5 + 0.5 * std::cos(a));
+      const cv::Vec3d albedo(0.85, 0.3, 0.22);  // reddish (r, g, b)
+      const cv::Vec3d light_rgb(1.0, 0.85 + 0.15 * facing, 0.7 + 0.3 * facing);
+      const cv::Size2d size(64 * s, 38 * s);
+      const cv::RotatedRect rr(cv::Point2f(c), cv::Size2f(size),
+                               static_cast<float>(a * 180 / M_PI));
+      cv::Point2f corners[4];
+      rr.points(corners);
+      std::vector<cv::Point> poly(corners, corners + 4);
+      cv::Mat mask = cv::Mat::zeros(f.bgr.size(), CV_8U);
+      cv::fillConvexPoly(mask, poly, cv::Scalar(255), cv::LINE_AA);
+      const cv::Rect box = cv::boundingRect(poly) & cv::Rect(0, 0, f.bgr.cols, f.bgr.rows);
+      for (int y = box.y; y < box.y + box.height; ++y)
+        for (int x = box.x; x < box.x + box.width; ++x) {
+          const double m = mask.at<uchar>(y, x) / 255.0;
+          if (m <= 0) continue;
+          // Shading across the surface: brighter nearer the light.
+          const double d = std::hypot(x - light.x, y - light.y);
+          const double shade = std::clamp(1.25 - 0.5 * d / orbit, 0.5, 1.2);
+          cv::Vec3b& px = f.bgr.at<cv::Vec3b>(y, x);
+          for (int ch = 0; ch < 3; ++ch) {
+            const double v = 255.0 * albedo[2 - ch] * light_rgb[2 - ch] * facing * shade;
+            px[ch] = cv::saturate_cast<uchar>(m * v + (1 - m) * px[ch]);
+          }
+        }
+      const cv::Rect2f bb = rr.boundingRect2f();
+      f.truth = bb;
+      break;
+    }
+    case TrackingScenario::kDistractor: {
+      move(&target_, 2.0 * s);
+      for (int c = 0; c < 3; ++c)  // a slow drift
+        target_rgb_[c] = std::clamp(target_rgb_[c] + rng_.gaussian(0, 1.0), 30.0, 235.0);
+      const cv::Scalar color(target_rgb_[2], target_rgb_[1], target_rgb_[0]);
+      // The square follows the target's height so it passes close by, drawn behind it.
+      distractor_.pos += distractor_.vel;
+      distractor_.pos.y += 0.1 * (target_.pos.y + 2.1 * target_.radius - distractor_.pos.y);
+      const double h = distractor_.radius;
+      cv::rectangle(f.bgr,
+                    cv::Rect(pt(distractor_.pos - cv::Point2d(h, h)),
+                             cv::Size(static_cast<int>(2 * h), static_cast<int>(2 * h))),
+                    color, cv::FILLED);
+      cv::circle(f.bgr, pt(target_.pos), static_cast<int>(target_.radius), color, cv::FILLED,
+                 cv::LINE_AA);
+      const double r = static_cast<int>(target_.radius);
+      f.truth = {target_.pos.x - r, target_.pos.y - r, 2 * r + 1, 2 * r + 1};
+      break;
+    }
+  }
+  if (config_.noise_sd > 0) {
+    cv::Mat noise(f.bgr.size(), CV_16SC3), wide;
+    cv::RNG cv_rng(rng_.split());  // seeded from the scene's stream, not OpenCV's global one
+    cv_rng.fill(noise, cv::RNG::NORMAL, 0, config_.noise_sd);
+    f.bgr.convertTo(wide, CV_16SC3);
+    wide += noise;
+    wide.convertTo(f.bgr, CV_8UC3);
+  }
+  return f;
+}
+
+}  // namespace adaptive_perception::sim

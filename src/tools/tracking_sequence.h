@@ -1,0 +1,126 @@
+#pragma once
+// Tracking sequences for the tracking tools (simulate_tracking writes them; evaluate_tracking and
+// bench_tracker read them): a bag (camera/image_raw with ground_truth/box, a PolygonStamped of the
+// box's 4 corners at the image's stamp) or a video file (anything cv::VideoCapture opens) with an
+// optional ground-truth CSV `frame,x,y,w,h` (frame counted from 0; frames without a row have no
+// truth).
+#include <geometry_msgs/PolygonStamped.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/Image.h>
+
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <opencv2/videoio.hpp>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/topics.h"
+
+namespace adaptive_perception::tools {
+
+struct TrackingFrameIn {
+  int index = 0;
+  double stamp_s = 0.0;
+  cv::Mat bgr;
+  std::optional<cv::Rect2d> truth;
+};
+
+/// The box of a polygon's points (its bounding box).
+inline cv::Rect2d polygonBox(const geometry_msgs::Polygon& p) {
+  if (p.points.empty()) return {};
+  double x0 = p.points[0].x, x1 = x0, y0 = p.points[0].y, y1 = y0;
+  for (const auto& q : p.points) {
+    x0 = std::min<double>(x0, q.x);
+    x1 = std::max<double>(x1, q.x);
+    y0 = std::min<double>(y0, q.y);
+    y1 = std::max<double>(y1, q.y);
+  }
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+/// Reads `frame,x,y,w,h` rows (a header line is allowed). Throws std::runtime_error naming the
+/// file and line of a bad row.
+inline std::map<int, cv::Rect2d> readGroundTruthCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open the ground-truth CSV");
+  std::map<int, cv::Rect2d> out;
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    if (line.empty() || line[0] == '#' || (n == 1 && line.rfind("frame", 0) == 0)) continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream s(line);
+    int f;
+    double x, y, w, h;
+    if (!(s >> f >> x >> y >> w >> h) || f < 0 || !(w >= 0) || !(h >= 0))
+      throw std::runtime_error(path + ":" + std::to_string(n) +
+                               ": expected frame,x,y,w,h with frame >= 0 and w, h >= 0");
+    out[f] = {x, y, w, h};
+  }
+  return out;
+}
+
+/// Calls `fn` per frame in order (at most `max_frames` when > 0); returns the count. Throws
+/// std::runtime_error when the input cannot be opened.
+inline int forEachTrackingFrame(const std::string& bag_path, const std::string& video_path,
+                                const std::string& truth_csv, int max_frames,
+                                const std::function<void(const TrackingFrameIn&)>& fn) {
+  int n = 0;
+  if (!bag_path.empty()) {
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
+    const std::string image_topic = std::string("/") + ros_topics::kCameraImage;
+    const std::string box_topic = std::string("/") + ros_topics::kGroundTruthBox;
+    std::map<std::int64_t, cv::Rect2d> boxes;
+    rosbag::View bv(bag, rosbag::TopicQuery(std::vector<std::string>{box_topic}));
+    for (const rosbag::MessageInstance& m : bv)
+      if (const auto p = m.instantiate<geometry_msgs::PolygonStamped>())
+        boxes[p->header.stamp.toNSec()] = polygonBox(p->polygon);
+    rosbag::View v(bag, rosbag::TopicQuery(std::vector<std::string>{image_topic}));
+    if (v.size() == 0) throw std::runtime_error(bag_path + ": no " + image_topic + " message");
+    for (const rosbag::MessageInstance& m : v) {
+      if (max_frames > 0 && n >= max_frames) break;
+      const auto img = m.instantiate<sensor_msgs::Image>();
+      if (!img) continue;
+      TrackingFrameIn f;
+      f.index = n;
+      f.stamp_s = img->header.stamp.toSec();
+      f.bgr = ros_conv::imageToBgr8(*img);
+      const auto it = boxes.find(img->header.stamp.toNSec());
+      if (it != boxes.end()) f.truth = it->second;
+      fn(f);
+      ++n;
+    }
+    return n;
+  }
+  cv::VideoCapture cap(video_path);
+  if (!cap.isOpened()) throw std::runtime_error(video_path + ": cannot open the video");
+  const std::map<int, cv::Rect2d> truth =
+      truth_csv.empty() ? std::map<int, cv::Rect2d>{} : readGroundTruthCsv(truth_csv);
+  double fps = cap.get(cv::CAP_PROP_FPS);
+  if (!(fps > 0)) fps = 30.0;
+  cv::Mat frame;
+  while ((max_frames <= 0 || n < max_frames) && cap.read(frame)) {
+    TrackingFrameIn f;
+    f.index = n;
+    f.stamp_s = n / fps;
+    if (frame.type() == CV_8UC1)
+      cv::cvtColor(frame, f.bgr, cv::COLOR_GRAY2BGR);
+    else
+      f.bgr = frame.clone();
+    const auto it = truth.find(n);
+    if (it != truth.end()) f.truth = it->second;
+    fn(f);
+    ++n;
+  }
+  if (n == 0) throw std::runtime_error(video_path + ": no frame could be read");
+  return n;
+}
+
+}  // namespace adaptive_perception::tools
