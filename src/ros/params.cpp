@@ -1,5 +1,7 @@
 #include "adaptive_perception/ros/params.h"
 
+#include <sstream>
+
 #include <ros/package.h>
 
 #include <filesystem>
@@ -59,10 +61,51 @@ void loadMotionModel(const ros::NodeHandle& pnh, localization::MotionModelConfig
       getInRange(pnh, "odom_min_rotation_std_rad", m->min_rotation_std_rad, 0.0, 1.0);
 }
 
+std::vector<double> getNumbers(const ros::NodeHandle& nh, const std::string& name,
+                               const std::vector<double>& def) {
+  XmlRpc::XmlRpcValue v;
+  if (!nh.getParam(name, v)) return def;
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    // rosrun's `_name:="[1, 2.5]"` arrives as a string: numbers separated by commas or spaces.
+    std::string text = static_cast<std::string>(v);
+    for (char& c : text)
+      if (c == '[' || c == ']' || c == ',') c = ' ';
+    std::istringstream in(text);
+    std::vector<double> out;
+    std::string word;
+    while (in >> word) {
+      std::size_t used = 0;
+      double x = 0.0;
+      try {
+        x = std::stod(word, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != word.size())
+        throw ParamError("parameter " + nh.resolveName(name) + ": '" + word + "' is not a number");
+      out.push_back(x);
+    }
+    return out;
+  }
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeArray)
+    throw ParamError("parameter " + nh.resolveName(name) + " must be a list of numbers");
+  std::vector<double> out;
+  for (int i = 0; i < v.size(); ++i) {
+    if (v[i].getType() == XmlRpc::XmlRpcValue::TypeInt)
+      out.push_back(static_cast<int>(v[i]));
+    else if (v[i].getType() == XmlRpc::XmlRpcValue::TypeDouble)
+      out.push_back(static_cast<double>(v[i]));
+    else
+      throw ParamError("parameter " + nh.resolveName(name) + " entry " + std::to_string(i) +
+                       " is not a number");
+  }
+  return out;
+}
+
 bool loadInitialPose(const ros::NodeHandle& pnh, const std::vector<double>& default_std,
                      math::SE2* pose, Eigen::Matrix3d* cov) {
-  const auto initial = get<std::vector<double>>(pnh, "initial_pose", {});
-  const auto sd = get<std::vector<double>>(pnh, "initial_pose_std", default_std);
+  const auto initial = getNumbers(pnh, "initial_pose", {});
+  const auto sd = getNumbers(pnh, "initial_pose_std", default_std);
   if (!initial.empty() && initial.size() != 3)
     throw ParamError("parameter " + pnh.resolveName("initial_pose") +
                      " must be [x_m, y_m, yaw_rad] or empty");

@@ -42,6 +42,11 @@ T getInRange(const ros::NodeHandle& nh, const std::string& name, const T& def, c
   return v;
 }
 
+/// A list of numbers; integers and reals may be mixed (YAML `[10, 20.5]`). Throws ParamError naming
+/// the parameter when it is not a list of numbers.
+std::vector<double> getNumbers(const ros::NodeHandle& nh, const std::string& name,
+                               const std::vector<double>& def);
+
 /// A frame id or topic: must be non-empty.
 std::string getName(const ros::NodeHandle& nh, const std::string& name, const std::string& def);
 

@@ -1,0 +1,70 @@
+#pragma once
+// condensation_tracker: tracks one object by its colour distribution (papers/001 section 3):
+// CONDENSATION over the distribution fused with an affine snake (mode condensation), or the
+// elliptical head tracker alone (mode ellipse).
+//
+// Parameters (private; config/condensation_tracker.yaml documents defaults and ranges):
+//   ~mode (condensation | ellipse), ~samples (100), ~color_space (opponent | rgb), ~bins (16),
+//   ~contour_points (48), ~sigma (0.35), ~lost_weight (0.1), ~roi_margin (0.75),
+//   ~dynamics (YAML from learn_tracking_dynamics; empty = the default model), ~initial_roi
+//   ([x, y, w, h] pixels of the first image; empty = wait for a target), ~ellipse_search_radius_px
+//   (10), ~ellipse_update_rate (0.1), ~ellipse_update_threshold (0.65), ~ellipse_lost_threshold
+//   (0.35), ~max_rate_hz (30), ~publish_overlay (true), ~seed (1).
+// Subscribed: camera/image_raw (bgr8, rgb8, mono8, yuv422), condensation_tracker/target
+//   (geometry_msgs/PolygonStamped: the box of its points becomes the target on the next image).
+// Published: tracked_object (TrackedObject), condensation_tracker/segmentation (mono8, the best
+//   sample's target-coloured pixels), condensation_tracker/overlay (bgr8: contour green, red when
+//   lost; the region the samples searched magenta; confidence), /diagnostics (rate, confidence, lost frames). A
+//   lost target is reported (lost flag + throttled warning) and searched for, first around its
+//   last place, then over the whole image. On shutdown one line `condensation_tracker: frames=..
+//   lost=.. reacquired=..` on stdout.
+// Services: condensation_tracker/set_target (SetTarget): the roi of the next image is the target.
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/update_functions.h>
+#include <geometry_msgs/PolygonStamped.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+
+#include <memory>
+#include <optional>
+
+#include "adaptive_perception/SetTarget.h"
+#include "adaptive_perception/ros/image_gate.h"
+#include "adaptive_perception/tracking/condensation_tracker.h"
+#include "adaptive_perception/tracking/ellipse_tracker.h"
+
+namespace adaptive_perception {
+
+class CondensationTrackerNode {
+ public:
+  CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~CondensationTrackerNode();
+
+ private:
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onTarget(const geometry_msgs::PolygonStampedConstPtr& msg);
+  bool onSetTarget(SetTarget::Request& req, SetTarget::Response& res);
+  bool requestTarget(const cv::Rect2d& roi, std::string* why);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  bool ellipse_mode_ = false;
+  tracking::CondensationConfig config_;
+  tracking::EllipseTrackerConfig ellipse_config_;
+  std::uint64_t seed_ = 1;
+  std::unique_ptr<tracking::CondensationTracker> tracker_;
+  std::unique_ptr<tracking::EllipseTracker> ellipse_;
+  std::optional<cv::Rect2d> pending_target_;
+  bool publish_overlay_ = true;
+  ros_conv::ImageGate gate_{"condensation_tracker", 30.0};
+  ros::Subscriber image_sub_, target_sub_;
+  ros::Publisher object_pub_, segmentation_pub_, overlay_pub_;
+  ros::ServiceServer target_srv_;
+  diagnostic_updater::Updater diagnostics_;
+  double min_freq_ = 1.0, max_freq_ = 1000.0;
+  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+  long frames_ = 0, lost_frames_ = 0, reacquired_ = 0;
+  bool lost_ = false;
+  double confidence_ = 0.0;
+};
+
+}  // namespace adaptive_perception

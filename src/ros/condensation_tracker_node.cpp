@@ -1,0 +1,237 @@
+#include "adaptive_perception/ros/condensation_tracker_node.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <cstdio>
+
+#include "adaptive_perception/TrackedObject.h"
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+
+namespace adaptive_perception {
+
+CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+  namespace P = ros_params;
+  const std::string mode = P::get<std::string>(pnh, "mode", "condensation");
+  if (mode != "condensation" && mode != "ellipse")
+    throw P::ParamError("parameter " + pnh.resolveName("mode") + " = '" + mode +
+                        "' must be condensation or ellipse");
+  ellipse_mode_ = mode == "ellipse";
+  tracking::CondensationConfig& c = config_;
+  c.samples = P::getInRange(pnh, "samples", c.samples, 1, 100000);
+  try {
+    c.quantizer.space = tracking::parseColorSpace(P::get<std::string>(pnh, "color_space", "opponent"));
+  } catch (const std::invalid_argument& e) {
+    throw P::ParamError("parameter " + pnh.resolveName("color_space") + ": " + e.what());
+  }
+  c.quantizer.bins = P::getInRange(pnh, "bins", c.quantizer.bins, 2, 64);
+  c.contour_points = P::getInRange(pnh, "contour_points", c.contour_points, 8, 1000);
+  c.sigma = P::getInRange(pnh, "sigma", c.sigma, 1e-3, 100.0);
+  c.lost_weight = P::getInRange(pnh, "lost_weight", c.lost_weight, 0.0, 0.999);
+  c.roi_margin = P::getInRange(pnh, "roi_margin", c.roi_margin, 0.0, 20.0);
+  const std::string dynamics = P::get<std::string>(pnh, "dynamics", "");
+  if (!dynamics.empty()) c.dynamics = tracking::Ar2Model::loadYaml(P::resolvePackagePath(dynamics));
+  c.validate();
+  tracking::EllipseTrackerConfig& e = ellipse_config_;
+  e.quantizer.space = c.quantizer.space;
+  e.search_radius_px = P::getInRange(pnh, "ellipse_search_radius_px", e.search_radius_px, 1, 200);
+  e.update_rate = P::getInRange(pnh, "ellipse_update_rate", e.update_rate, 0.0, 1.0);
+  e.update_threshold =
+      P::getInRange(pnh, "ellipse_update_threshold", e.update_threshold, 0.0, 1.0);
+  e.lost_threshold = P::getInRange(pnh, "ellipse_lost_threshold", e.lost_threshold, 0.0, 1.0);
+  e.validate();
+  publish_overlay_ = P::get<bool>(pnh, "publish_overlay", true);
+  gate_ = ros_conv::ImageGate("condensation_tracker",
+                              P::getInRange(pnh, "max_rate_hz", 30.0, 0.01, 1000.0));
+  seed_ = static_cast<std::uint64_t>(P::getInRange(pnh, "seed", 1, 0, 1 << 30));
+  const std::vector<double> roi = P::getNumbers(pnh, "initial_roi", {});
+  if (!roi.empty()) {
+    std::string why;
+    if (roi.size() != 4 || !requestTarget({roi[0], roi[1], roi[2], roi[3]}, &why))
+      throw P::ParamError("parameter " + pnh.resolveName("initial_roi") +
+                          " must be [x, y, w, h] with w, h >= 4 pixels" +
+                          (why.empty() ? "" : ": " + why));
+  }
+
+  object_pub_ = nh.advertise<TrackedObject>(ros_topics::kTrackedObject, 10);
+  segmentation_pub_ = nh.advertise<sensor_msgs::Image>("condensation_tracker/segmentation", 2);
+  overlay_pub_ = nh.advertise<sensor_msgs::Image>("condensation_tracker/overlay", 2);
+  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &CondensationTrackerNode::onImage, this);
+  target_sub_ =
+      nh.subscribe("condensation_tracker/target", 2, &CondensationTrackerNode::onTarget, this);
+  target_srv_ = nh.advertiseService("condensation_tracker/set_target",
+                                    &CondensationTrackerNode::onSetTarget, this);
+  diagnostics_.setHardwareID("condensation_tracker");
+  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
+      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
+  diagnostics_.add(*freq_);
+  diagnostics_.add("tracking", this, &CondensationTrackerNode::diagnose);
+  ROS_INFO("condensation_tracker: mode %s, %d samples, colour space %s, %s", mode.c_str(),
+           c.samples, tracking::colorSpaceName(c.quantizer.space).c_str(),
+           pending_target_ ? "target from ~initial_roi" : "waiting for a target");
+}
+
+CondensationTrackerNode::~CondensationTrackerNode() {
+  std::printf("condensation_tracker: frames=%ld lost=%ld reacquired=%ld dropped=%ld\n", frames_,
+              lost_frames_, reacquired_, gate_.badImages());
+  std::fflush(stdout);
+}
+
+bool CondensationTrackerNode::requestTarget(const cv::Rect2d& roi, std::string* why) {
+  if (!(roi.width >= 4 && roi.height >= 4) || !std::isfinite(roi.x) || !std::isfinite(roi.y)) {
+    *why = "the region must be at least 4 x 4 pixels";
+    return false;
+  }
+  pending_target_ = roi;
+  return true;
+}
+
+void CondensationTrackerNode::onTarget(const geometry_msgs::PolygonStampedConstPtr& msg) {
+  if (msg->polygon.points.empty()) {
+    ROS_ERROR("condensation_tracker: target polygon has no point; ignored");
+    return;
+  }
+  double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
+  for (const auto& p : msg->polygon.points) {
+    x0 = std::min<double>(x0, p.x);
+    y0 = std::min<double>(y0, p.y);
+    x1 = std::max<double>(x1, p.x);
+    y1 = std::max<double>(y1, p.y);
+  }
+  std::string why;
+  if (!requestTarget({x0, y0, x1 - x0, y1 - y0}, &why))
+    ROS_ERROR("condensation_tracker: target polygon ignored: %s", why.c_str());
+}
+
+bool CondensationTrackerNode::onSetTarget(SetTarget::Request& req, SetTarget::Response& res) {
+  std::string why;
+  res.success = requestTarget({static_cast<double>(req.roi.x_offset),
+                               static_cast<double>(req.roi.y_offset),
+                               static_cast<double>(req.roi.width),
+                               static_cast<double>(req.roi.height)},
+                              &why);
+  res.message = res.success ? "target set on the next image" : why;
+  return true;
+}
+
+void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+  cv::Mat bgr;
+  bool restart = false;
+  if (gate_.accept(*msg, &bgr, &restart) != ros_conv::ImageGate::Result::kProcess) return;
+  if (pending_target_) {
+    const cv::Rect2d roi = *pending_target_;
+    pending_target_.reset();
+    try {
+      if (ellipse_mode_) {
+        ellipse_ = std::make_unique<tracking::EllipseTracker>(ellipse_config_);
+        ellipse_->init(bgr, tracking::Ellipse::inscribed(roi));
+      } else {
+        tracker_ = std::make_unique<tracking::CondensationTracker>(config_, seed_);
+        tracker_->init(bgr, cv::Rect(roi));
+      }
+      lost_ = false;
+      ROS_INFO("condensation_tracker: target at %.0f, %.0f (%.0f x %.0f)", roi.x, roi.y,
+               roi.width, roi.height);
+    } catch (const std::invalid_argument& e) {
+      ROS_ERROR("condensation_tracker: cannot start on the target: %s", e.what());
+      tracker_.reset();
+      ellipse_.reset();
+    }
+    return;
+  }
+  if (!tracker_ && !ellipse_) return;
+  TrackedObject out;
+  out.header = msg->header;
+  out.mode = ellipse_mode_ ? "ellipse" : "condensation";
+  out.color_space = tracking::colorSpaceName(config_.quantizer.space);
+  tracking::Contour contour;
+  cv::Mat segmentation;
+  cv::Rect search;
+  bool lost = false;
+  if (ellipse_) {
+    const tracking::EllipseResult r = ellipse_->track(bgr);
+    lost = r.lost;
+    out.confidence = r.intersection;
+    contour = tracking::ellipseContour(r.ellipse.cx, r.ellipse.cy, r.ellipse.ax, r.ellipse.ay,
+                                       config_.contour_points);
+  } else {
+    const tracking::TrackingResult r = tracker_->track(bgr);
+    lost = r.lost;
+    out.confidence = r.best.weight;
+    contour = r.contour;
+    segmentation = r.segmentation;
+    search = r.roi;
+    out.samples = static_cast<std::uint32_t>(r.samples.size());
+    for (int k = 0; k < 3; ++k) {
+      out.color_mean[k] = r.distribution.mean[k];
+      out.color_magnitudes[k] = r.distribution.magnitudes[k];
+      for (int j = 0; j < 3; ++j) out.color_axes[3 * k + j] = r.distribution.axes(k, j);
+    }
+  }
+  out.lost = lost;
+  for (const auto& p : contour) {
+    geometry_msgs::Point32 q;
+    q.x = static_cast<float>(p.x());
+    q.y = static_cast<float>(p.y());
+    out.contour.points.push_back(q);
+  }
+  const cv::Rect box = cv::Rect(tracking::contourBox(contour)) & cv::Rect(0, 0, bgr.cols, bgr.rows);
+  out.box.x_offset = static_cast<std::uint32_t>(std::max(0, box.x));
+  out.box.y_offset = static_cast<std::uint32_t>(std::max(0, box.y));
+  out.box.width = static_cast<std::uint32_t>(std::max(0, box.width));
+  out.box.height = static_cast<std::uint32_t>(std::max(0, box.height));
+  std::vector<cv::Point2f> pts;
+  for (const auto& p : contour) pts.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
+  if (pts.size() >= 5) {
+    const cv::RotatedRect e = cv::fitEllipse(pts);
+    out.ellipse_cx = e.center.x;
+    out.ellipse_cy = e.center.y;
+    out.ellipse_width = e.size.width;
+    out.ellipse_height = e.size.height;
+    out.ellipse_angle = e.angle * M_PI / 180.0;
+  }
+  object_pub_.publish(out);
+  ++frames_;
+  if (lost) {
+    ++lost_frames_;
+    ROS_WARN_THROTTLE(2.0, "condensation_tracker: target lost; searching");
+  } else if (lost_) {
+    ++reacquired_;
+    ROS_INFO("condensation_tracker: target re-acquired");
+  }
+  lost_ = lost;
+  confidence_ = out.confidence;
+  if (!segmentation.empty() && segmentation_pub_.getNumSubscribers() > 0)
+    segmentation_pub_.publish(ros_conv::mono8ToImage(segmentation, msg->header));
+  if (publish_overlay_ && overlay_pub_.getNumSubscribers() > 0) {
+    cv::Mat over = bgr.clone();
+    std::vector<cv::Point> poly;
+    for (const auto& p : contour)
+      poly.emplace_back(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
+    if (search.area() > 0) cv::rectangle(over, search, cv::Scalar(200, 0, 200), 1);
+    if (!poly.empty())
+      cv::polylines(over, poly, true, lost ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 220, 0), 2);
+    cv::putText(over, cv::format("%s %.2f", lost ? "LOST" : "tracking", out.confidence), {5, 18},
+                cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+    overlay_pub_.publish(ros_conv::bgr8ToImage(over, msg->header));
+  }
+  freq_->tick();
+  diagnostics_.update();
+}
+
+void CondensationTrackerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  if (!tracker_ && !ellipse_)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "waiting for a target");
+  else if (lost_)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "target lost");
+  else
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "tracking");
+  stat.add("frames", frames_);
+  stat.add("lost frames", lost_frames_);
+  stat.add("re-acquired", reacquired_);
+  stat.add("confidence", confidence_);
+  stat.add("bad images", gate_.badImages());
+}
+
+}  // namespace adaptive_perception

@@ -1,0 +1,89 @@
+// rostest: condensation_tracker on a simulated tracking sequence, scored against the ground-truth
+// box of every frame (IoU >= 0.5 is a success).
+#include <geometry_msgs/PolygonStamped.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+#include <opencv2/core.hpp>
+
+#include "adaptive_perception/TrackedObject.h"
+
+namespace ap = adaptive_perception;
+
+namespace {
+cv::Rect2d boxOf(const geometry_msgs::Polygon& p) {
+  double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
+  for (const auto& q : p.points) {
+    x0 = std::min<double>(x0, q.x);
+    y0 = std::min<double>(y0, q.y);
+    x1 = std::max<double>(x1, q.x);
+    y1 = std::max<double>(y1, q.y);
+  }
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+}  // namespace
+
+TEST(CondensationTrackerSim, TracksTheTarget) {
+  ros::NodeHandle nh, p("~");
+  const double min_success = p.param("min_success_rate", 0.9);
+  const double min_output = p.param("min_output_fraction", 0.9);
+  std::mutex mutex;
+  std::string phase;
+  std::map<ros::Time, cv::Rect2d> truth;
+  std::map<ros::Time, ap::TrackedObject> objects;
+  auto a = nh.subscribe<std_msgs::String>("test_phase", 5, [&](const std_msgs::StringConstPtr& m) {
+    std::lock_guard<std::mutex> l(mutex);
+    phase = m->data;
+  });
+  auto b = nh.subscribe<geometry_msgs::PolygonStamped>(
+      "ground_truth/box", 10000, [&](const geometry_msgs::PolygonStampedConstPtr& m) {
+        std::lock_guard<std::mutex> l(mutex);
+        truth[m->header.stamp] = boxOf(m->polygon);
+      });
+  auto c = nh.subscribe<ap::TrackedObject>("tracked_object", 10000,
+                                           [&](const ap::TrackedObjectConstPtr& m) {
+                                             std::lock_guard<std::mutex> l(mutex);
+                                             objects[m->header.stamp] = *m;
+                                           });
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(170.0);
+  while (ros::ok() && ros::WallTime::now() < deadline) {
+    {
+      std::lock_guard<std::mutex> l(mutex);
+      if (phase == "done") break;
+    }
+    ros::WallDuration(0.2).sleep();
+  }
+  std::lock_guard<std::mutex> l(mutex);
+  ASSERT_EQ(phase, "done") << "the player did not finish";
+  ASSERT_GT(truth.size(), 50u);
+  // Every image but the first (the initialisation) should give a tracked object.
+  EXPECT_GE(objects.size(), min_output * (truth.size() - 1));
+  int scored = 0, success = 0, lost = 0;
+  for (const auto& [stamp, o] : objects) {
+    const auto t = truth.find(stamp);
+    if (t == truth.end()) continue;
+    ++scored;
+    lost += o.lost;
+    const cv::Rect2d box(o.box.x_offset, o.box.y_offset, o.box.width, o.box.height);
+    const double inter = (box & t->second).area();
+    const double iou = inter / (box.area() + t->second.area() - inter);
+    success += !o.lost && iou >= 0.5;
+    EXPECT_EQ(o.contour.points.size(), 48u);  // ~contour_points
+  }
+  ASSERT_GT(scored, 0);
+  const double rate = static_cast<double>(success) / scored;
+  std::printf("condensation_tracker_sim: frames=%d success_rate=%.3f lost=%d\n", scored, rate, lost);
+  EXPECT_GE(rate, min_success);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "condensation_tracker_sim");
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# rostest helper for condensation_tracker_sim.test: simulates a tracking sequence (scenario $1,
+# seed 1, $2 frames) as a bag, reads the target's first box from the same sequence written as a
+# video + CSV, starts condensation_tracker with it as ~initial_roi, announces /test_phase (test,
+# done) and plays the bag. Fixed seed: the same frames every run.
+# Usage (as a launch node): tracking_test_player.sh SCENARIO FRAMES MODE [roslaunch args]
+set -euo pipefail
+SCENARIO="${1:-distractor}"
+FRAMES="${2:-150}"
+MODE="${3:-condensation}"
+OUT="$(mktemp -d)"
+NODE=""
+cleanup() { [ -n "$NODE" ] && kill "$NODE" 2> /dev/null; wait 2> /dev/null; rm -rf "$OUT"; }
+trap cleanup EXIT
+rosrun adaptive_perception simulate_tracking --scenario "$SCENARIO" --seed 1 --frames "$FRAMES" \
+  --output "$OUT/seq.bag" > /dev/null 2>&1
+rosrun adaptive_perception simulate_tracking --scenario "$SCENARIO" --seed 1 --frames 1 \
+  --video "$OUT/first.avi" > /dev/null 2>&1
+ROI="[$(sed -n 2p "$OUT/first.csv" | cut -d, -f2-5)]"
+rosrun adaptive_perception condensation_tracker __name:=condensation_tracker _mode:="$MODE" \
+  _initial_roi:="$ROI" _max_rate_hz:=1000 > "$OUT/node.log" 2>&1 &
+NODE=$!
+sleep 3
+rostopic pub -1 /test_phase std_msgs/String "data: 'test'" > /dev/null
+# Half speed: the test checks tracking, not keeping up on a loaded CI machine.
+rosbag play --quiet --delay 2 --rate 0.5 "$OUT/seq.bag"
+sleep 2
+rostopic pub -1 /test_phase std_msgs/String "data: 'done'" > /dev/null
