@@ -20,6 +20,8 @@ PACKAGES=(
   python3-diagnostic-msgs python3-std-msgs
   # core libraries
   libeigen3-dev libopencv-dev libyaml-cpp-dev libbz2-dev libsqlite3-dev
+  # sample videos (a face sequence) for the tracking evaluation
+  opencv-doc
   # tests and benchmarks
   libgtest-dev googletest libbenchmark-dev
   # plots, rviz under a virtual display

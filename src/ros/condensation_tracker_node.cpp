@@ -1,8 +1,7 @@
 #include "adaptive_perception/ros/condensation_tracker_node.h"
 
-#include <opencv2/imgproc.hpp>
-
 #include <cstdio>
+#include <opencv2/imgproc.hpp>
 
 #include "adaptive_perception/TrackedObject.h"
 #include "adaptive_perception/ros/msg_conversion.h"
@@ -21,7 +20,8 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   tracking::CondensationConfig& c = config_;
   c.samples = P::getInRange(pnh, "samples", c.samples, 1, 100000);
   try {
-    c.quantizer.space = tracking::parseColorSpace(P::get<std::string>(pnh, "color_space", "opponent"));
+    c.quantizer.space =
+        tracking::parseColorSpace(P::get<std::string>(pnh, "color_space", "opponent"));
   } catch (const std::invalid_argument& e) {
     throw P::ParamError("parameter " + pnh.resolveName("color_space") + ": " + e.what());
   }
@@ -37,8 +37,7 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   e.quantizer.space = c.quantizer.space;
   e.search_radius_px = P::getInRange(pnh, "ellipse_search_radius_px", e.search_radius_px, 1, 200);
   e.update_rate = P::getInRange(pnh, "ellipse_update_rate", e.update_rate, 0.0, 1.0);
-  e.update_threshold =
-      P::getInRange(pnh, "ellipse_update_threshold", e.update_threshold, 0.0, 1.0);
+  e.update_threshold = P::getInRange(pnh, "ellipse_update_threshold", e.update_threshold, 0.0, 1.0);
   e.lost_threshold = P::getInRange(pnh, "ellipse_lost_threshold", e.lost_threshold, 0.0, 1.0);
   e.validate();
   publish_overlay_ = P::get<bool>(pnh, "publish_overlay", true);
@@ -106,11 +105,10 @@ void CondensationTrackerNode::onTarget(const geometry_msgs::PolygonStampedConstP
 
 bool CondensationTrackerNode::onSetTarget(SetTarget::Request& req, SetTarget::Response& res) {
   std::string why;
-  res.success = requestTarget({static_cast<double>(req.roi.x_offset),
-                               static_cast<double>(req.roi.y_offset),
-                               static_cast<double>(req.roi.width),
-                               static_cast<double>(req.roi.height)},
-                              &why);
+  res.success =
+      requestTarget({static_cast<double>(req.roi.x_offset), static_cast<double>(req.roi.y_offset),
+                     static_cast<double>(req.roi.width), static_cast<double>(req.roi.height)},
+                    &why);
   res.message = res.success ? "target set on the next image" : why;
   return true;
 }
@@ -131,8 +129,8 @@ void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
         tracker_->init(bgr, cv::Rect(roi));
       }
       lost_ = false;
-      ROS_INFO("condensation_tracker: target at %.0f, %.0f (%.0f x %.0f)", roi.x, roi.y,
-               roi.width, roi.height);
+      ROS_INFO("condensation_tracker: target at %.0f, %.0f (%.0f x %.0f)", roi.x, roi.y, roi.width,
+               roi.height);
     } catch (const std::invalid_argument& e) {
       ROS_ERROR("condensation_tracker: cannot start on the target: %s", e.what());
       tracker_.reset();
@@ -182,7 +180,8 @@ void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   out.box.width = static_cast<std::uint32_t>(std::max(0, box.width));
   out.box.height = static_cast<std::uint32_t>(std::max(0, box.height));
   std::vector<cv::Point2f> pts;
-  for (const auto& p : contour) pts.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
+  for (const auto& p : contour)
+    pts.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
   if (pts.size() >= 5) {
     const cv::RotatedRect e = cv::fitEllipse(pts);
     out.ellipse_cx = e.center.x;

@@ -1,11 +1,10 @@
 #include "adaptive_perception/ros/params.h"
 
-#include <sstream>
-
 #include <ros/package.h>
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace adaptive_perception::ros_params {
 

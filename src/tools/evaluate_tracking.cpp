@@ -4,24 +4,26 @@
 //
 //   evaluate_tracking (--bag FILE | --video FILE [--ground_truth CSV]) [--init x,y,w,h]
 //       [--mode condensation|ellipse] [--samples 100] [--color_space rgb|opponent] [--bins 16]
-//       [--dynamics FILE.yaml] [--seed 1] [--max_frames N] [--output DIR] [--video_out]
+//       [--dynamics FILE.yaml] [--seed 1] [--start_frame 0] [--max_frames N] [--output DIR]
+//       [--video_out]
 //
 // A video's ground truth defaults to the CSV beside it (same name, .csv) when there is one.
-// The target starts from --init, else from the first frame's ground truth. Per frame: IoU of the
-// tracker's box (condensation: the contour's box; ellipse: the ellipse's box) and of CamShift's
-// (hue histogram of the initial box, pixels with saturation > 60 and value in 32..255, as in
-// OpenCV's sample) with the truth; a frame succeeds when IoU >= 0.5. The first frame (the
-// initialisation) is not scored. CamShift's time is not in the tracker's.
-// Writes DIR/frames.csv (frame, iou, camshift_iou, lost, confidence), DIR/iou.png (IoU over time,
-// both trackers), DIR/strip.png (six frames: truth white, tracker green, CamShift magenta) and,
-// with --video_out, DIR/overlay.avi. Last line: `evaluate_tracking: mode=.. mean_iou=..
-// success_rate=.. lost_frames=.. fps=.. camshift_mean_iou=.. camshift_success_rate=..
-// camshift_fps=.. frames=..`.
+// The target starts at --start_frame from --init, else from that frame's ground truth. Without any
+// ground truth (a plain video) the IoU keys print nan; speed and lost frames are still measured.
+// Per frame: IoU of the tracker's box (condensation: the contour's box; ellipse: the ellipse's box)
+// and of CamShift's (hue histogram of the initial box, pixels with saturation > 60 and value
+// in 32..255, as in OpenCV's sample) with the truth; a frame succeeds when IoU >= 0.5. The first
+// frame (the initialisation) is not scored. CamShift's time is not in the tracker's. Writes
+// DIR/frames.csv (frame, iou, camshift_iou, lost, confidence), DIR/iou.png (IoU over time, both
+// trackers), DIR/strip.png (six frames: truth white, tracker green, CamShift magenta) and, with
+// --video_out, DIR/overlay.avi. Last line: `evaluate_tracking: mode=.. mean_iou=.. success_rate=..
+// lost_frames=.. fps=.. camshift_mean_iou=.. camshift_success_rate=.. camshift_fps=.. frames=..`.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -124,7 +126,7 @@ int main(int argc, char** argv) {
                    "evaluate_tracking (--bag FILE | --video FILE [--ground_truth CSV]) "
                    "[--init x,y,w,h] [--mode condensation|ellipse] [--samples N] "
                    "[--color_space rgb|opponent] [--bins N] [--dynamics FILE.yaml] [--seed N] "
-                   "[--max_frames N] [--output DIR] [--video_out]");
+                   "[--start_frame N] [--max_frames N] [--output DIR] [--video_out]");
   const std::string bag = args.get("bag", "");
   const std::string video = args.get("video", "");
   std::string truth_csv = args.get("ground_truth", "");
@@ -135,11 +137,13 @@ int main(int argc, char** argv) {
   const long bins = args.getInt("bins", 16);
   const std::string dynamics = args.get("dynamics", "");
   const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
+  const long start_frame = args.getInt("start_frame", 0);
   const long max_frames = args.getInt("max_frames", 0);
   const std::string output = args.get("output", "results/evaluate_tracking");
   const bool video_out = args.has("video_out");
   args.finish();
   if (bag.empty() == video.empty()) args.fail("give exactly one of --bag FILE and --video FILE");
+  if (start_frame < 0) args.fail("--start_frame must be >= 0");
   if (!video.empty() && truth_csv.empty()) {  // simulate_tracking's CSV beside the video
     const fs::path beside = fs::path(video).replace_extension(".csv");
     if (fs::exists(beside)) truth_csv = beside.string();
@@ -182,9 +186,11 @@ int main(int argc, char** argv) {
     std::vector<double> plot_a, plot_b;
     std::vector<cv::Mat> overlays;
     const int total = tools::forEachTrackingFrame(
-        bag, video, truth_csv, static_cast<int>(max_frames), [&](const tools::TrackingFrameIn& f) {
+        bag, video, truth_csv, max_frames > 0 ? static_cast<int>(start_frame + max_frames) : 0,
+        [&](const tools::TrackingFrameIn& f) {
+          if (f.index < start_frame) return;
           ++frames;
-          if (f.index == 0) {
+          if (f.index == start_frame) {
             const std::optional<cv::Rect2d> start = init ? init : f.truth;
             if (!start)
               throw std::runtime_error("no --init and no ground truth on the first frame");
@@ -256,7 +262,9 @@ int main(int argc, char** argv) {
           if (overlays.size() > 2000) overlays.erase(overlays.begin() + 1);  // bound memory
         });
     (void)total;
-    if (scored == 0) throw std::runtime_error("no frame with ground truth after the first");
+    if (frames < 2) throw std::runtime_error("fewer than two frames from --start_frame on");
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double scored_d = scored > 0 ? static_cast<double>(scored) : nan;
     // Six frames evenly over the run.
     std::vector<cv::Mat> picks;
     for (int k = 0; k < 6 && !overlays.empty(); ++k)
@@ -277,8 +285,8 @@ int main(int argc, char** argv) {
     std::printf(
         "evaluate_tracking: mode=%s mean_iou=%.3f success_rate=%.3f lost_frames=%ld fps=%.1f "
         "camshift_mean_iou=%.3f camshift_success_rate=%.3f camshift_fps=%.1f frames=%ld\n",
-        mode.c_str(), iou_sum / scored, static_cast<double>(success) / scored, lost, fps,
-        cam_sum / scored, static_cast<double>(cam_success) / scored, cam_fps, frames);
+        mode.c_str(), iou_sum / scored_d, success / scored_d, lost, fps, cam_sum / scored_d,
+        cam_success / scored_d, cam_fps, frames);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_tracking: error: " << e.what() << "\n";
     return 1;

@@ -78,7 +78,8 @@ TEST(CondensationTrackerSim, TracksTheTarget) {
   }
   ASSERT_GT(scored, 0);
   const double rate = static_cast<double>(success) / scored;
-  std::printf("condensation_tracker_sim: frames=%d success_rate=%.3f lost=%d\n", scored, rate, lost);
+  std::printf("condensation_tracker_sim: frames=%d success_rate=%.3f lost=%d\n", scored, rate,
+              lost);
   EXPECT_GE(rate, min_success);
 }
 

@@ -14,10 +14,10 @@
 //   (geometry_msgs/PolygonStamped: the box of its points becomes the target on the next image).
 // Published: tracked_object (TrackedObject), condensation_tracker/segmentation (mono8, the best
 //   sample's target-coloured pixels), condensation_tracker/overlay (bgr8: contour green, red when
-//   lost; the region the samples searched magenta; confidence), /diagnostics (rate, confidence, lost frames). A
-//   lost target is reported (lost flag + throttled warning) and searched for, first around its
-//   last place, then over the whole image. On shutdown one line `condensation_tracker: frames=..
-//   lost=.. reacquired=..` on stdout.
+//   lost; the region the samples searched magenta; confidence), /diagnostics (rate, confidence,
+//   lost frames). A lost target is reported (lost flag + throttled warning) and searched for, first
+//   around its last place, then over the whole image. On shutdown one line `condensation_tracker:
+//   frames=.. lost=.. reacquired=..` on stdout.
 // Services: condensation_tracker/set_target (SetTarget): the roi of the next image is the target.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
