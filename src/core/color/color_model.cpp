@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/io/yaml_file.h"
 #include "adaptive_perception/world/color_class.h"
 
@@ -170,17 +171,12 @@ void LightingPrior::saveYaml(const std::string& path) const {
     out << YAML::Flow << row;
   }
   out << YAML::EndSeq << YAML::EndMap;
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    if (!f) throw std::runtime_error(path + ": cannot write (" + tmp + ")");
-    f << "# Lighting prior over the colour means (YUV, 8-bit levels): mean and cov over the 3M "
-         "vector\n"
-         "# [Y U V] per colour in the order of `colors`; pixel_noise_var is nu (eq. 1).\n";
-    f << out.c_str() << "\n";
-    if (!f) throw std::runtime_error(path + ": write failed");
-  }
-  std::filesystem::rename(tmp, path);
+  io::writeTextFileAtomically(
+      path,
+      "# Lighting prior over the colour means (YUV, 8-bit levels): mean and cov over the 3M "
+      "vector\n"
+      "# [Y U V] per colour in the order of `colors`; pixel_noise_var is nu (eq. 1).\n" +
+          std::string(out.c_str()) + "\n");
 }
 
 LightingPrior LightingPrior::independent() const {

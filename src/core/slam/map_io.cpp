@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "adaptive_perception/io/atomic_file.h"
+
 namespace adaptive_perception::slam {
 
 namespace {
@@ -65,23 +67,9 @@ void writeLineMapYaml(const std::string& path, const LineEkfSlam& slam) {
   root["state_covariance"]["dim"] = static_cast<int>(p.rows());
   root["state_covariance"]["data"] = data;
 
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error(path + ": cannot write (directory missing or read-only?)");
-    out << "# line-landmark map written by adaptive_perception (see slam/map_io.h)\n"
-        << YAML::Dump(root) << "\n";
-    if (!out) {
-      std::filesystem::remove(tmp);
-      throw std::runtime_error(path + ": write failed (disk full?)");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp);
-    throw std::runtime_error(path + ": cannot replace: " + ec.message());
-  }
+  io::writeTextFileAtomically(
+      path, "# line-landmark map written by adaptive_perception (see slam/map_io.h)\n" +
+                YAML::Dump(root) + "\n");
 }
 
 }  // namespace adaptive_perception::slam
