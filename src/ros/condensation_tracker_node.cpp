@@ -91,15 +91,9 @@ void CondensationTrackerNode::onTarget(const geometry_msgs::PolygonStampedConstP
     ROS_ERROR("condensation_tracker: target polygon has no point; ignored");
     return;
   }
-  double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
-  for (const auto& p : msg->polygon.points) {
-    x0 = std::min<double>(x0, p.x);
-    y0 = std::min<double>(y0, p.y);
-    x1 = std::max<double>(x1, p.x);
-    y1 = std::max<double>(y1, p.y);
-  }
+  const cv::Rect2d box = ros_conv::polygonBox(msg->polygon);
   std::string why;
-  if (!requestTarget({x0, y0, x1 - x0, y1 - y0}, &why))
+  if (!requestTarget(box, &why))
     ROS_ERROR("condensation_tracker: target polygon ignored: %s", why.c_str());
 }
 

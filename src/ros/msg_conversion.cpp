@@ -293,4 +293,16 @@ Eigen::Isometry3d mapToOdom(const math::SE2& map_to_base, const Eigen::Isometry3
   return world::planarToIsometry(map_to_base) * odom_planar.inverse();
 }
 
+cv::Rect2d polygonBox(const geometry_msgs::Polygon& polygon) {
+  if (polygon.points.empty()) return {};
+  double x0 = polygon.points[0].x, x1 = x0, y0 = polygon.points[0].y, y1 = y0;
+  for (const auto& q : polygon.points) {
+    x0 = std::min<double>(x0, q.x);
+    x1 = std::max<double>(x1, q.x);
+    y0 = std::min<double>(y0, q.y);
+    y1 = std::max<double>(y1, q.y);
+  }
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
 }  // namespace adaptive_perception::ros_conv

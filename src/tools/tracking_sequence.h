@@ -32,19 +32,6 @@ struct TrackingFrameIn {
   std::optional<cv::Rect2d> truth;
 };
 
-/// The box of a polygon's points (its bounding box).
-inline cv::Rect2d polygonBox(const geometry_msgs::Polygon& p) {
-  if (p.points.empty()) return {};
-  double x0 = p.points[0].x, x1 = x0, y0 = p.points[0].y, y1 = y0;
-  for (const auto& q : p.points) {
-    x0 = std::min<double>(x0, q.x);
-    x1 = std::max<double>(x1, q.x);
-    y0 = std::min<double>(y0, q.y);
-    y1 = std::max<double>(y1, q.y);
-  }
-  return {x0, y0, x1 - x0, y1 - y0};
-}
-
 /// Reads `frame,x,y,w,h` rows (a header line is allowed). Throws std::runtime_error naming the
 /// file and line of a bad row.
 inline std::map<int, cv::Rect2d> readGroundTruthCsv(const std::string& path) {
@@ -82,7 +69,7 @@ inline int forEachTrackingFrame(const std::string& bag_path, const std::string& 
     rosbag::View bv(bag, rosbag::TopicQuery(std::vector<std::string>{box_topic}));
     for (const rosbag::MessageInstance& m : bv)
       if (const auto p = m.instantiate<geometry_msgs::PolygonStamped>())
-        boxes[p->header.stamp.toNSec()] = polygonBox(p->polygon);
+        boxes[p->header.stamp.toNSec()] = ros_conv::polygonBox(p->polygon);
     rosbag::View v(bag, rosbag::TopicQuery(std::vector<std::string>{image_topic}));
     if (v.size() == 0) throw std::runtime_error(bag_path + ": no " + image_topic + " message");
     for (const rosbag::MessageInstance& m : v) {

@@ -11,21 +11,9 @@
 #include <opencv2/core.hpp>
 
 #include "adaptive_perception/TrackedObject.h"
+#include "adaptive_perception/ros/msg_conversion.h"
 
 namespace ap = adaptive_perception;
-
-namespace {
-cv::Rect2d boxOf(const geometry_msgs::Polygon& p) {
-  double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
-  for (const auto& q : p.points) {
-    x0 = std::min<double>(x0, q.x);
-    y0 = std::min<double>(y0, q.y);
-    x1 = std::max<double>(x1, q.x);
-    y1 = std::max<double>(y1, q.y);
-  }
-  return {x0, y0, x1 - x0, y1 - y0};
-}
-}  // namespace
 
 TEST(CondensationTrackerSim, TracksTheTarget) {
   ros::NodeHandle nh, p("~");
@@ -42,7 +30,7 @@ TEST(CondensationTrackerSim, TracksTheTarget) {
   auto b = nh.subscribe<geometry_msgs::PolygonStamped>(
       "ground_truth/box", 10000, [&](const geometry_msgs::PolygonStampedConstPtr& m) {
         std::lock_guard<std::mutex> l(mutex);
-        truth[m->header.stamp] = boxOf(m->polygon);
+        truth[m->header.stamp] = ap::ros_conv::polygonBox(m->polygon);
       });
   auto c = nh.subscribe<ap::TrackedObject>("tracked_object", 10000,
                                            [&](const ap::TrackedObjectConstPtr& m) {

@@ -1,5 +1,6 @@
 #pragma once
 // Message <-> core conversion. The ONLY place that touches cv_bridge and message layouts of images.
+#include <geometry_msgs/Polygon.h>
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
@@ -43,6 +44,8 @@ sensor_msgs::Image uyvyToImage(const cv::Mat& uyvy, const std_msgs::Header& head
 /// mono8 (CV_8UC1) / bgr8 (CV_8UC3) image messages.
 sensor_msgs::Image mono8ToImage(const cv::Mat& mono, const std_msgs::Header& header);
 sensor_msgs::Image bgr8ToImage(const cv::Mat& bgr, const std_msgs::Header& header);
+/// The axis-aligned bounding box of a polygon's points (pixels); empty for no point.
+cv::Rect2d polygonBox(const geometry_msgs::Polygon& polygon);
 /// A mono8 image as CV_8UC1 (shares no memory with the message); throws ImageFormatError otherwise.
 cv::Mat imageToMono8(const sensor_msgs::Image& msg);
 
