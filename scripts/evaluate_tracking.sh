@@ -8,11 +8,11 @@
 # Writes results/tracking/<scenario>_<seed>_<tracker>/ (frames.csv, iou.png, strip.png) and
 # results/tracking/table.csv; prints one line per run:
 #   tracking: scenario=S seed=N tracker=T mean_iou=.. success_rate=.. lost_frames=.. fps=.. camshift_mean_iou=.. camshift_success_rate=..
-# Usage: scripts/evaluate_tracking.sh [SEEDS="1 2 3"]   (~5 minutes on two cores)
+# Usage: scripts/evaluate_tracking.sh [SEEDS="1 2 3 4 5 6"]   (~10 minutes on two cores)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 BIN="$AP_WS/devel/lib/adaptive_perception"
-SEEDS="${1:-1 2 3}"
+SEEDS="${1:-1 2 3 4 5 6}"
 OUT="$AP_ROOT/results/tracking"
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT

@@ -1,5 +1,6 @@
 #include "adaptive_perception/ros/condensation_tracker_node.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
@@ -140,6 +141,8 @@ void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   tracking::Contour contour;
   cv::Mat segmentation;
   cv::Rect search;
+  std::vector<tracking::Contour> sample_contours;
+  std::vector<double> sample_weights;
   bool lost = false;
   if (ellipse_) {
     const tracking::EllipseResult r = ellipse_->track(bgr);
@@ -153,6 +156,8 @@ void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     out.confidence = r.best.weight;
     contour = r.contour;
     segmentation = r.segmentation;
+    sample_contours = r.sample_contours;
+    sample_weights = r.weights;
     search = r.roi;
     out.samples = static_cast<std::uint32_t>(r.samples.size());
     for (int k = 0; k < 3; ++k) {
@@ -203,6 +208,18 @@ void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     for (const auto& p : contour)
       poly.emplace_back(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
     if (search.area() > 0) cv::rectangle(over, search, cv::Scalar(200, 0, 200), 1);
+    // The samples' snakes, brighter with weight (the best sample is the brightest).
+    const double wmax = sample_weights.empty()
+                            ? 0.0
+                            : *std::max_element(sample_weights.begin(), sample_weights.end());
+    for (size_t i = 0; i < sample_contours.size() && wmax > 0.0; ++i) {
+      if (sample_contours[i].size() < 3) continue;
+      const double level = 0.25 + 0.75 * sample_weights[i] / wmax;
+      std::vector<cv::Point> s;
+      for (const auto& p : sample_contours[i])
+        s.emplace_back(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
+      cv::polylines(over, s, true, cv::Scalar(255 * level, 255 * level, 0), 1);
+    }
     if (!poly.empty())
       cv::polylines(over, poly, true, lost ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 220, 0), 2);
     cv::putText(over, cv::format("%s %.2f", lost ? "LOST" : "tracking", out.confidence), {5, 18},

@@ -91,7 +91,8 @@ struct TrackingResult {
   cv::Rect roi;          // region the samples segmented
   cv::Mat segmentation;  // CV_8U frame-sized, 255 = target colour (best sample, inside roi)
   std::vector<DistributionState> samples;
-  std::vector<double> weights;  // normalised
+  std::vector<double> weights;           // normalised
+  std::vector<Contour> sample_contours;  // each sample's fitted snake (empty: no blob), as samples
 };
 
 class CondensationTracker {

@@ -205,8 +205,11 @@ void CondensationTracker::init(const cv::Mat& bgr8, const cv::Rect& roi) {
     const auto largest = std::max_element(
         contours.begin(), contours.end(),
         [](const auto& a, const auto& b) { return cv::contourArea(a) < cv::contourArea(b); });
+    // A blob much larger than the region leaks into similar-coloured surroundings: keep the
+    // region's ellipse then.
     if (largest != contours.end() && largest->size() >= 3 &&
-        cv::contourArea(*largest) >= config_.min_area_px)
+        cv::contourArea(*largest) >= config_.min_area_px &&
+        cv::contourArea(*largest) <= 1.5 * contourArea(contour_))
       contour_ = resampleContour(*largest, config_.contour_points);
   }
   setReference(bgr8, contour_);
@@ -375,12 +378,20 @@ TrackingResult CondensationTracker::track(const cv::Mat& bgr8) {
     w.assign(w.size(), 1.0 / w.size());
   else
     for (double& v : w) v /= total;
-  if (found && config_.anchor_rate > 0.0) {
-    // Pull m and lambda towards the measured C_t, moving the previous state alike (velocity kept).
-    DistributionState target = stateOf(reference_stats_);
+  {
+    // Pull m and lambda towards the measured C_t (the last one while lost, so the samples do not
+    // drift away from the appearance to re-acquire), moving the previous state alike (velocity
+    // kept), and keep lambda within max_stretch of C_t's.
+    const DistributionState target = stateOf(reference_stats_);
     for (size_t i = 0; i < next.size(); ++i) {
       DistributionState shift = DistributionState::Zero();
       shift.head<6>() = config_.anchor_rate * (target.head<6>() - next[i].head<6>());
+      for (int k = 3; k < 6; ++k) {
+        const double moved = next[i][k] + shift[k];
+        shift[k] +=
+            std::clamp(moved, target[k] / config_.max_stretch, target[k] * config_.max_stretch) -
+            moved;
+      }
       next[i] += shift;
       prev[i] += shift;
     }
@@ -390,6 +401,8 @@ TrackingResult CondensationTracker::track(const cv::Mat& bgr8) {
   weights_ = w;
   out.samples = samples_;
   out.weights = weights_;
+  out.sample_contours.reserve(scores.size());
+  for (auto& s : scores) out.sample_contours.push_back(std::move(s.contour));
   out.contour = contour_;
   out.box = contourBox(contour_);
   std::vector<cv::Point2f> pts;
