@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Sets up (apt + build), builds and runs every gtest and rostest, and ends with one line
-# `tests: N passed, M failed`. Exits non-zero when any test failed or did not run.
+# Sets up (apt + build), builds and runs every gtest and rostest, then the sanitizer build of the core
+# (scripts/check_core.sh), and ends with one line `tests: N passed, M failed` (N: the catkin test
+# cases plus the sanitizer build's test programs). Exits non-zero when any test failed or did not run.
 # catkin_make run_tests itself exits 0 on failures, so the verdict comes from the result XML files.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -17,4 +18,17 @@ if ! catkin_make -j"$JOBS" tests > "$AP_WS/tests_build.log" 2>&1; then
 fi
 catkin_make -j1 run_tests 2>&1 | tee "$AP_WS/run_tests.log" | \
   grep -E '^\[ *(RUN|  +OK|  FAILED|  PASSED) |^\[ROSTEST\]|^ *\[(passed|FAILURE|ERROR)\]|^-- run_tests' || true
-python3 "$AP_ROOT/scripts/summarize_test_results.py" "$results"
+summary="$(python3 "$AP_ROOT/scripts/summarize_test_results.py" "$results")"
+echo "$summary" | sed '$d'
+catkin_line="$(echo "$summary" | tail -n 1)"
+echo "catkin $catkin_line"
+# The core and its unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer, with the
+# fuzz targets' corpus replays (scripts/check_core.sh); each test program counts once.
+san_line="$("$AP_ROOT/scripts/check_core.sh" | tee /dev/stderr | tail -n 1)"
+num() { echo "$1" | sed -n "s/.* \([0-9]*\) $2.*/\1/p"; }
+p1=$(num "$catkin_line" passed); f1=$(num "$catkin_line" failed)
+p2=$(num "$san_line" passed); f2=$(num "$san_line" failed)
+p=$(( ${p1:-0} + ${p2:-0} )); f=$(( ${f1:-0} + ${f2:-0} ))
+[ -z "$p1" ] || [ -z "$p2" ] && f=$((f + 1))  # a part that printed no verdict counts as a failure
+echo "tests: $p passed, $f failed"
+[ "$f" -eq 0 ] && [ "$p" -gt 0 ]

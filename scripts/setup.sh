@@ -24,6 +24,8 @@ PACKAGES=(
   opencv-doc
   # tests and benchmarks
   libgtest-dev googletest libbenchmark-dev
+  # clang with its sanitizer and libFuzzer runtimes (scripts/fuzz.sh; gcc's sanitizers come with build-essential)
+  clang libclang-rt-14-dev
   # plots, rviz under a virtual display
   python3-matplotlib python3-yaml python3-numpy rviz xvfb xauth
 )

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The core library and its unit tests built alone (test/standalone: no catkin, no ROS) with
+# AddressSanitizer + UndefinedBehaviorSanitizer, then every unit test and every fuzz target's replay
+# of its seed corpus and regression inputs (test/fuzz) run under them. Any sanitizer report fails
+# the test that caused it. Ends with `sanitizers: N passed, M failed`; exits non-zero on a failure.
+# Part of scripts/run_tests.sh. Build in .ws/sanitize (git-ignored).
+# Usage: scripts/check_core.sh   (~15 minutes on two cores from scratch)
+set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+BUILD="$AP_WS/sanitize"
+JOBS="${AP_JOBS:-$(nproc)}"
+mkdir -p "$BUILD"
+log="$BUILD/build.log"
+if ! { cmake -S "$AP_ROOT/test/standalone" -B "$BUILD" -DCMAKE_BUILD_TYPE=None -DAP_SANITIZE=ON &&
+       cmake --build "$BUILD" -j"$JOBS"; } > "$log" 2>&1; then
+  tail -n 40 "$log"; echo "check_core: sanitizer build FAILED (log: $log)"
+  echo "sanitizers: 0 passed, 1 failed"; exit 1
+fi
+# Leaks count as failures; a report stops the process (halt_on_error) with a stack trace.
+export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+ctest --test-dir "$BUILD" -j"$JOBS" --output-on-failure --timeout 900 > "$BUILD/ctest.log" 2>&1
+passed=$(grep -E '^ *[0-9]+/[0-9]+ Test +#[0-9]+: ' "$BUILD/ctest.log" | grep -cE ' Passed +[0-9.]+ sec')
+failed=$(grep -E '^ *[0-9]+/[0-9]+ Test +#[0-9]+: ' "$BUILD/ctest.log" | grep -vcE ' Passed +[0-9.]+ sec')
+grep -E '^ *[0-9]+/[0-9]+ Test' "$BUILD/ctest.log" | grep -v ' Passed' || true
+[ "$failed" -gt 0 ] && echo "check_core: failures in $BUILD/ctest.log"
+echo "sanitizers: $passed passed, $failed failed"
+[ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]
