@@ -23,9 +23,10 @@
 // (`roi_margin` times its size on each side), not the whole image. While the target is lost the
 // region grows for `local_lost_frames` frames, then is the whole frame, where the largest blobs are
 // tried with the snake re-placed on each (re-acquisition). After each frame the samples' centroid
-// and magnitudes are pulled towards the measured C_t by `anchor_rate` (their velocities kept),
-// and magnitudes stay within `max_stretch` of C_t's, so the filter cannot wander off along a
-// colour direction that the current clutter happens not to test.
+// and magnitudes are pulled towards the measured C_t (while lost: the last one measured) by
+// `anchor_rate` (their velocities kept), and magnitudes stay within `max_stretch` of C_t's, so the
+// filter cannot wander off along a colour direction that the current clutter happens not to test,
+// nor drift away from the appearance it has to re-acquire.
 #include <opencv2/core.hpp>
 #include <vector>
 
