@@ -24,7 +24,8 @@ catkin_line="$(echo "$summary" | tail -n 1)"
 echo "catkin $catkin_line"
 # The core and its unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer, with the
 # fuzz targets' corpus replays (scripts/check_core.sh); each test program counts once.
-san_line="$("$AP_ROOT/scripts/check_core.sh" | tee /dev/stderr | tail -n 1)"
+"$AP_ROOT/scripts/check_core.sh" | tee "$AP_WS/check_core.log"
+san_line="$(tail -n 1 "$AP_WS/check_core.log")"
 num() { echo "$1" | sed -n "s/.* \([0-9]*\) $2.*/\1/p"; }
 p1=$(num "$catkin_line" passed); f1=$(num "$catkin_line" failed)
 p2=$(num "$san_line" passed); f2=$(num "$san_line" failed)
