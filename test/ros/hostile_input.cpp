@@ -1,0 +1,586 @@
+// rostest harness: hostile input, then good input, for one node (test/ros/hostile_*.test).
+//
+// The test plays a bag itself (with /clock; the launch sets use_sim_time) so it controls every phase:
+//   A      the bag at `rate`: the node's reference output;
+//   hostile  malformed messages on the node's inputs (unsupported encodings, zero-size and
+//            mismatched-step images, NaN / inf / negative ranges, zero-beam scans, frames with no tf,
+//            stale stamps, non-finite line covariances, ...), all stamped after the bag's end;
+//   storm  the bag again at `storm_factor` x `rate` (time jumps backwards at its start): every
+//          output's latency (wall time from the input with its stamp to the output) must stay bounded;
+//   B      the bag once more at `rate` (time jumps backwards again): the output must be correct,
+//          judged by `compare` against A or against the bag's ground truth.
+// At the end the node must still answer over XML-RPC (a crashed node stays registered).
+//
+// Parameters (private):
+//   bag (string)                 the good input; `bag_command` (string) makes it first: a shell
+//                                command run with $BAG set to a temporary path
+//   replay_topics (string list)  bag topics to publish (tf_static latched); /clock is added
+//   trigger_topic (string)       the input whose stamp an output carries (latency, output fraction)
+//   output_topic (string)        the output watched; its message must start with a Header
+//   node (string)                the node's name, checked with the master at the end
+//   image_topic / scan_topic / lines_topic (string, "" = none): where hostile input goes
+//   rate (1.0), storm_factor (10.0), max_storm_latency_s (2.0), min_output_fraction (0.5: outputs
+//   per trigger in pass B), settle_s (2.0: wall time after each phase)
+//   compare: identical  | min_identical_fraction (outputs with the same stamp in A and B that are
+//                          byte-identical after the header)
+//            image      | min_pixel_agreement (mean share of equal pixels, same-stamp images)
+//            pose_truth | truth_topic (PoseStamped in the bag), max_final_position_error_m,
+//                          max_final_heading_error_deg (last output of B)
+//            box        | min_box_iou_fraction (TrackedObject: share of same-stamp frames whose boxes
+//                          in A and B overlap with IoU >= 0.5)
+//            place      | min_place_agreement (PlaceRecognition: share of same-stamp results naming
+//                          the same place)
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/LaserScan.h>
+#include <tf2/utils.h>
+#include <ros/network.h>
+#include <topic_tools/shape_shifter.h>
+#include <xmlrpcpp/XmlRpc.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/PlaceRecognition.h"
+#include "adaptive_perception/TrackedObject.h"
+#include "rostest_support.h"
+
+namespace ap = adaptive_perception;
+namespace support = adaptive_perception::rostest_support;
+using topic_tools::ShapeShifter;
+
+namespace {
+
+struct Recorded {
+  ros::Time stamp;
+  ros::WallTime received;
+  ShapeShifter::ConstPtr msg;
+  std::vector<uint8_t> payload;  // bytes after the header
+};
+
+/// Records every output with its stamp and arrival time, in the phase it arrived in.
+class OutputRecorder {
+ public:
+  void onMessage(const ShapeShifter::ConstPtr& m) {
+    Recorded r;
+    r.received = ros::WallTime::now();
+    r.msg = m;
+    std_msgs::Header h;
+    std::size_t header_bytes = 0;
+    std::vector<uint8_t> buf(m->size());
+    ros::serialization::OStream out(buf.data(), static_cast<uint32_t>(buf.size()));
+    m->write(out);
+    if (!support::leadingHeader(*m, &h, &header_bytes)) return;
+    r.stamp = h.stamp;
+    r.payload.assign(buf.begin() + static_cast<long>(header_bytes), buf.end());
+    std::lock_guard<std::mutex> l(mutex_);
+    phases_[phase_].push_back(std::move(r));
+  }
+  void setPhase(const std::string& p) {
+    std::lock_guard<std::mutex> l(mutex_);
+    phase_ = p;
+  }
+  std::vector<Recorded> phase(const std::string& p) {
+    std::lock_guard<std::mutex> l(mutex_);
+    return phases_[p];
+  }
+
+ private:
+  std::mutex mutex_;
+  std::string phase_ = "startup";
+  std::map<std::string, std::vector<Recorded>> phases_;
+};
+
+struct BagMessage {
+  std::string topic;
+  ros::Time time;
+  ShapeShifter::ConstPtr msg;
+};
+
+/// Publishes a bag's messages (and /clock) paced on the wall clock, remembering when each trigger
+/// stamp was sent.
+class Replayer {
+ public:
+  Replayer(ros::NodeHandle& nh, const std::string& bag_path, const std::vector<std::string>& topics,
+           std::string trigger)
+      : trigger_(std::move(trigger)) {
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
+    std::vector<std::string> query = topics;
+    for (const std::string& t : topics) query.push_back("/" + t);
+    rosbag::View view(bag, rosbag::TopicQuery(query));
+    for (const rosbag::MessageInstance& m : view) {
+      std::string topic = m.getTopic();
+      if (!topic.empty() && topic[0] == '/') topic.erase(0, 1);
+      auto s = m.instantiate<ShapeShifter>();
+      if (!pubs_.count(topic)) pubs_[topic] = s->advertise(nh, topic, 1000, topic == "tf_static");
+      messages_.push_back({topic, m.getTime(), s});
+    }
+    clock_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  }
+  bool empty() const { return messages_.empty(); }
+  ros::Time begin() const { return messages_.front().time; }
+  ros::Time end() const { return messages_.back().time; }
+  const std::vector<BagMessage>& messages() const { return messages_; }
+  ros::Publisher& publisher(const std::string& topic) { return pubs_.at(topic); }
+  std::size_t triggerSubscribers() const {
+    auto it = pubs_.find(trigger_);
+    return it == pubs_.end() ? 0 : it->second.getNumSubscribers();
+  }
+  void publishClock(const ros::Time& t) {
+    rosgraph_msgs::Clock c;
+    c.clock = t;
+    clock_.publish(c);
+  }
+  /// Plays the whole bag at `rate`; returns the number of trigger messages sent.
+  int play(double rate) {
+    const ros::WallTime start = ros::WallTime::now();
+    int triggers = 0;
+    for (const BagMessage& m : messages_) {
+      if (!ros::ok()) break;
+      const ros::WallTime due = start + ros::WallDuration((m.time - begin()).toSec() / rate);
+      const ros::WallDuration wait = due - ros::WallTime::now();
+      if (wait > ros::WallDuration(0)) wait.sleep();
+      publishClock(m.time);
+      if (m.topic == trigger_) {
+        std_msgs::Header h;
+        std::size_t n = 0;
+        if (support::leadingHeader(*m.msg, &h, &n)) {
+          std::lock_guard<std::mutex> l(mutex_);
+          sent_[h.stamp] = ros::WallTime::now();
+        }
+        ++triggers;
+      }
+      pubs_.at(m.topic).publish(*m.msg);
+    }
+    return triggers;
+  }
+  /// Wall time at which the trigger with this stamp was last sent (zero when never).
+  ros::WallTime sentAt(const ros::Time& stamp) {
+    std::lock_guard<std::mutex> l(mutex_);
+    auto it = sent_.find(stamp);
+    return it == sent_.end() ? ros::WallTime() : it->second;
+  }
+
+ private:
+  std::string trigger_;
+  std::vector<BagMessage> messages_;
+  std::map<std::string, ros::Publisher> pubs_;
+  ros::Publisher clock_;
+  std::mutex mutex_;
+  std::map<ros::Time, ros::WallTime> sent_;
+};
+
+template <typename T>
+boost::shared_ptr<T> firstOf(const Replayer& r, const std::string& topic) {
+  for (const BagMessage& m : r.messages())
+    if (m.topic == topic) return m.msg->instantiate<T>();
+  return nullptr;
+}
+
+// ---- hostile messages ----------------------------------------------------------------------------
+
+std::vector<std::pair<std::string, sensor_msgs::Image>> hostileImages(const sensor_msgs::Image& good,
+                                                                      const ros::Time& stamp) {
+  std::vector<std::pair<std::string, sensor_msgs::Image>> cases;
+  auto add = [&](const std::string& name, sensor_msgs::Image m) {
+    m.header.stamp = stamp + ros::Duration(0.01 * static_cast<double>(cases.size() + 1));
+    cases.emplace_back(name, std::move(m));
+  };
+  sensor_msgs::Image m = good;
+  m.encoding = "32FC1";
+  add("unsupported encoding 32FC1", m);
+  m = good;
+  m.encoding = "no_such_encoding";
+  add("unknown encoding", m);
+  m = good;
+  m.width = m.height = m.step = 0;
+  m.data.clear();
+  add("zero-size image", m);
+  m = good;
+  m.step = m.step / 2;
+  add("step smaller than a row", m);
+  m = good;
+  m.data.resize(m.data.size() / 2);
+  add("data shorter than step x height", m);
+  m = good;
+  m.width = m.height = 100000;
+  add("dimensions far larger than the data", m);
+  m = good;
+  m.step = std::numeric_limits<uint32_t>::max();
+  add("step overflowing step x height", m);
+  m = good;
+  m.width = good.width / 2;
+  m.height = good.height / 2;
+  m.step = good.step / 2;
+  m.data.assign(static_cast<std::size_t>(m.step) * m.height, 128);
+  add("valid image of another size", m);
+  if (good.encoding == "yuv422") {
+    m = good;
+    m.width = good.width - 1;
+    add("yuv422 with an odd width", m);
+  }
+  m = good;
+  m.header.frame_id = "no_such_frame";
+  add("frame with no tf", m);
+  m = good;
+  m.header.frame_id.clear();
+  add("empty frame id", m);
+  m = good;
+  cases.emplace_back("stale stamp (1,000 s old, no tf)", m);
+  cases.back().second.header.stamp = stamp - ros::Duration(1000.0);
+  return cases;
+}
+
+std::vector<std::pair<std::string, sensor_msgs::LaserScan>> hostileScans(
+    const sensor_msgs::LaserScan& good, const ros::Time& stamp) {
+  std::vector<std::pair<std::string, sensor_msgs::LaserScan>> cases;
+  auto add = [&](const std::string& name, sensor_msgs::LaserScan m) {
+    m.header.stamp = stamp + ros::Duration(0.01 * static_cast<double>(cases.size() + 1));
+    cases.emplace_back(name, std::move(m));
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  sensor_msgs::LaserScan m = good;
+  std::fill(m.ranges.begin(), m.ranges.end(), nan);
+  add("all ranges NaN", m);
+  m = good;
+  std::fill(m.ranges.begin(), m.ranges.end(), inf);
+  add("all ranges +inf", m);
+  m = good;
+  std::fill(m.ranges.begin(), m.ranges.end(), -1.0f);
+  add("all ranges negative", m);
+  m = good;
+  for (std::size_t i = 0; i < m.ranges.size(); ++i)
+    if (i % 3 == 0) m.ranges[i] = (i % 2) ? nan : -inf;
+  add("every third range NaN or -inf", m);
+  m = good;
+  m.ranges.clear();
+  m.intensities.clear();
+  add("zero beams", m);
+  m = good;
+  m.ranges.resize(m.ranges.size() * 3, 1.0f);
+  add("more ranges than the angles cover", m);
+  m = good;
+  m.angle_increment = 0.0f;
+  add("zero angle increment", m);
+  m = good;
+  m.angle_increment = nan;
+  add("NaN angle increment", m);
+  m = good;
+  m.angle_min = inf;
+  add("infinite angle_min", m);
+  m = good;
+  m.range_max = 0.0f;
+  add("zero range_max", m);
+  m = good;
+  m.range_min = m.range_max + 1.0f;
+  add("range_min above range_max", m);
+  m = good;
+  m.intensities.assign(3, 1.0f);
+  add("intensities of another length", m);
+  m = good;
+  m.header.frame_id = "no_such_frame";
+  add("frame with no tf", m);
+  return cases;
+}
+
+std::vector<std::pair<std::string, ap::LineSegmentArray>> hostileLines(const std::string& frame,
+                                                                       const ros::Time& stamp) {
+  std::vector<std::pair<std::string, ap::LineSegmentArray>> cases;
+  auto add = [&](const std::string& name, std::vector<ap::LineSegment> segments,
+                 const std::string& f) {
+    ap::LineSegmentArray m;
+    m.header.frame_id = f;
+    m.header.stamp = stamp + ros::Duration(0.01 * static_cast<double>(cases.size() + 1));
+    m.segments = std::move(segments);
+    cases.emplace_back(name, std::move(m));
+  };
+  ap::LineSegment s;
+  s.rho = 2.0;
+  s.alpha = 0.3;
+  s.covariance = {1e-4, 0.0, 0.0, 1e-4};
+  s.start.x = 2.0;
+  s.start.y = -1.0;
+  s.end.x = 1.5;
+  s.end.y = 2.0;
+  s.num_points = 50;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  add("no segments", {}, frame);
+  ap::LineSegment b = s;
+  b.rho = nan;
+  add("NaN rho", {b}, frame);
+  b = s;
+  b.alpha = inf;
+  add("infinite alpha", {b}, frame);
+  b = s;
+  b.rho = -3.0;
+  add("negative rho", {b}, frame);
+  b = s;
+  b.covariance = {-1e-4, 0.0, 0.0, 1e-4};
+  add("negative variance", {b}, frame);
+  b = s;
+  b.covariance = {1e-4, 1.0, 1.0, 1e-4};
+  add("covariance not positive definite", {b}, frame);
+  b = s;
+  b.covariance = {0.0, 0.0, 0.0, 0.0};
+  add("zero covariance", {b}, frame);
+  b = s;
+  b.covariance = {nan, 0.0, 0.0, nan};
+  add("NaN covariance", {b}, frame);
+  b = s;
+  b.start.x = inf;
+  add("infinite endpoint", {b}, frame);
+  add("a thousand identical segments", std::vector<ap::LineSegment>(1000, s), frame);
+  add("frame with no tf", {s}, "no_such_frame");
+  add("empty frame id", {s}, "");
+  cases.emplace_back("stale stamp (1,000 s old, no tf)", cases.front().second);
+  cases.back().second.segments = {s};
+  cases.back().second.header.stamp = stamp - ros::Duration(1000.0);
+  return cases;
+}
+
+double yawOf(const geometry_msgs::Quaternion& q) {
+  return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+}
+
+double iou(const sensor_msgs::RegionOfInterest& a, const sensor_msgs::RegionOfInterest& b) {
+  const double x0 = std::max(a.x_offset, b.x_offset), y0 = std::max(a.y_offset, b.y_offset);
+  const double x1 = std::min(a.x_offset + a.width, b.x_offset + b.width);
+  const double y1 = std::min(a.y_offset + a.height, b.y_offset + b.height);
+  const double inter = std::max(0.0, x1 - x0) * std::max(0.0, y1 - y0);
+  const double uni = static_cast<double>(a.width) * a.height +
+                     static_cast<double>(b.width) * b.height - inter;
+  return uni > 0.0 ? inter / uni : 0.0;
+}
+
+std::map<ros::Time, const Recorded*> byStamp(const std::vector<Recorded>& v) {
+  std::map<ros::Time, const Recorded*> m;
+  for (const Recorded& r : v) m[r.stamp] = &r;
+  return m;
+}
+
+TEST(HostileInput, KeepsPublishingCorrectOutput) {
+  ros::NodeHandle nh, p("~");
+  std::string bag_path = p.param<std::string>("bag", "");
+  const std::string bag_command = p.param<std::string>("bag_command", "");
+  std::filesystem::path temp_dir;
+  if (!bag_command.empty()) {
+    temp_dir = std::filesystem::temp_directory_path() /
+               ("hostile_input_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(temp_dir);
+    bag_path = (temp_dir / "input.bag").string();
+    const std::string cmd = "BAG='" + bag_path + "' bash -c '" + bag_command + "' > /dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << "bag_command failed: " << bag_command;
+  }
+  std::vector<std::string> topics;
+  p.getParam("replay_topics", topics);
+  const std::string trigger = p.param<std::string>("trigger_topic", "");
+  const std::string output = p.param<std::string>("output_topic", "");
+  const std::string node = p.param<std::string>("node", "");
+  const std::string image_topic = p.param<std::string>("image_topic", "");
+  const std::string scan_topic = p.param<std::string>("scan_topic", "");
+  const std::string lines_topic = p.param<std::string>("lines_topic", "");
+  const double rate = p.param("rate", 1.0), storm_factor = p.param("storm_factor", 10.0);
+  const double max_storm_latency = p.param("max_storm_latency_s", 2.0);
+  const double min_output_fraction = p.param("min_output_fraction", 0.5);
+  const double settle = p.param("settle_s", 2.0);
+  const std::string compare = p.param<std::string>("compare", "identical");
+  ASSERT_FALSE(topics.empty() || trigger.empty() || output.empty() || node.empty())
+      << "set replay_topics, trigger_topic, output_topic and node";
+
+  Replayer replay(nh, bag_path, topics, trigger);
+  ASSERT_FALSE(replay.empty()) << "no messages of the replay topics in " << bag_path;
+  OutputRecorder recorder;
+  ros::Subscriber out_sub = nh.subscribe<ShapeShifter>(
+      output, 1000, [&](const ShapeShifter::ConstPtr& m) { recorder.onMessage(m); });
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  replay.publishClock(replay.begin());
+  ASSERT_TRUE(support::waitUntil([&] { return replay.triggerSubscribers() > 0; }, 60.0))
+      << node << " never subscribed to " << trigger;
+  ros::WallDuration(1.0).sleep();  // the node's tf listener and publishers connect
+
+  // Pass A: the reference.
+  recorder.setPhase("A");
+  const int triggers = replay.play(rate);
+  ros::WallDuration(settle).sleep();
+  const std::vector<Recorded> a = recorder.phase("A");
+  std::printf("hostile_input: %s pass A: %d inputs, %zu outputs\n", node.c_str(), triggers,
+              a.size());
+  ASSERT_GT(a.size(), 0u) << node << " published nothing on " << output << " for good input";
+
+  // Hostile input, stamped after the bag's end.
+  recorder.setPhase("hostile");
+  int hostile_cases = 0;
+  const ros::Time after = replay.end() + ros::Duration(1.0);
+  replay.publishClock(after);
+  auto send = [&](ros::Publisher& pub, const auto& cases) {
+    for (const auto& [name, msg] : cases) {
+      std::printf("hostile_input: %s <- %s\n", node.c_str(), name.c_str());
+      for (int k = 0; k < 3; ++k) {
+        pub.publish(msg);
+        ros::WallDuration(0.05).sleep();
+      }
+      ++hostile_cases;
+    }
+  };
+  if (!image_topic.empty()) {
+    auto good = firstOf<sensor_msgs::Image>(replay, image_topic);
+    ASSERT_TRUE(good) << "no " << image_topic << " in the bag";
+    send(replay.publisher(image_topic), hostileImages(*good, after));
+  }
+  if (!scan_topic.empty()) {
+    auto good = firstOf<sensor_msgs::LaserScan>(replay, scan_topic);
+    ASSERT_TRUE(good) << "no " << scan_topic << " in the bag";
+    send(replay.publisher(scan_topic), hostileScans(*good, after));
+  }
+  ros::Publisher lines_pub;
+  if (!lines_topic.empty()) {
+    lines_pub = nh.advertise<ap::LineSegmentArray>(lines_topic, 100);
+    support::waitUntil([&] { return lines_pub.getNumSubscribers() > 0; }, 10.0);
+    send(lines_pub, hostileLines(p.param<std::string>("lines_frame", "laser"), after));
+  }
+  ros::WallDuration(settle).sleep();
+
+  // The storm: the bag at storm_factor x the rate; time jumps backwards at its start.
+  recorder.setPhase("storm");
+  const int storm_triggers = replay.play(rate * storm_factor);
+  ros::WallDuration(settle).sleep();
+  const std::vector<Recorded> storm = recorder.phase("storm");
+  double max_latency = 0.0;
+  int timed = 0;
+  for (const Recorded& r : storm) {
+    const ros::WallTime sent = replay.sentAt(r.stamp);
+    if (sent.isZero()) continue;
+    max_latency = std::max(max_latency, (r.received - sent).toSec());
+    ++timed;
+  }
+  std::printf("hostile_input: %s storm: %d inputs at %.0fx, %zu outputs, max latency %.3f s\n",
+              node.c_str(), storm_triggers, storm_factor, storm.size(), max_latency);
+  EXPECT_GT(timed, 0) << node << " published nothing during the storm";
+  EXPECT_LE(max_latency, max_storm_latency) << node << " fell behind the storm";
+
+  // Pass B: good input again, from the start.
+  recorder.setPhase("B");
+  replay.play(rate);
+  ros::WallDuration(settle).sleep();
+  recorder.setPhase("end");
+  const std::vector<Recorded> b = recorder.phase("B");
+  std::printf("hostile_input: %s survived %d hostile cases; pass B: %zu outputs for %d inputs\n",
+              node.c_str(), hostile_cases, b.size(), triggers);
+  EXPECT_GE(static_cast<double>(b.size()), min_output_fraction * triggers)
+      << node << " stopped publishing after the hostile input";
+
+  const auto ma = byStamp(a), mb = byStamp(b);
+  if (compare == "identical" || compare == "image" || compare == "box" || compare == "place") {
+    int both = 0, agree = 0;
+    double pixel_agreement = 0.0;
+    for (const auto& [stamp, rb] : mb) {
+      auto it = ma.find(stamp);
+      if (it == ma.end()) continue;
+      const Recorded& ra = *it->second;
+      ++both;
+      if (compare == "identical") {
+        agree += ra.payload == rb->payload;
+      } else if (compare == "image") {
+        auto ia = ra.msg->instantiate<sensor_msgs::Image>();
+        auto ib = rb->msg->instantiate<sensor_msgs::Image>();
+        if (ia->data.size() != ib->data.size() || ia->data.empty()) continue;
+        std::size_t same = 0;
+        for (std::size_t i = 0; i < ia->data.size(); ++i) same += ia->data[i] == ib->data[i];
+        pixel_agreement += static_cast<double>(same) / static_cast<double>(ia->data.size());
+      } else if (compare == "box") {
+        auto oa = ra.msg->instantiate<ap::TrackedObject>();
+        auto ob = rb->msg->instantiate<ap::TrackedObject>();
+        agree += !oa->lost && !ob->lost && iou(oa->box, ob->box) >= 0.5;
+      } else {
+        agree += ra.msg->instantiate<ap::PlaceRecognition>()->place ==
+                 rb->msg->instantiate<ap::PlaceRecognition>()->place;
+      }
+    }
+    ASSERT_GT(both, 0) << "no stamp has an output in both passes";
+    if (compare == "image") {
+      const double mean = pixel_agreement / both;
+      std::printf("hostile_input: %s A vs B: %d frames, mean pixel agreement %.4f\n", node.c_str(),
+                  both, mean);
+      EXPECT_GE(mean, p.param("min_pixel_agreement", 0.95));
+    } else {
+      const double frac = static_cast<double>(agree) / both;
+      std::printf("hostile_input: %s A vs B (%s): %d of %d outputs agree (%.3f)\n", node.c_str(),
+                  compare.c_str(), agree, both, frac);
+      const std::string key = compare == "identical" ? "min_identical_fraction"
+                              : compare == "box"     ? "min_box_iou_fraction"
+                                                     : "min_place_agreement";
+      EXPECT_GE(frac, p.param(key, 0.9));
+    }
+  } else if (compare == "pose_truth") {
+    const std::string truth_topic = p.param<std::string>("truth_topic", "ground_truth/pose");
+    std::map<ros::Time, geometry_msgs::Pose> truth;
+    {
+      rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
+      for (const rosbag::MessageInstance& m :
+           rosbag::View(bag, rosbag::TopicQuery({truth_topic, "/" + truth_topic})))
+        if (auto t = m.instantiate<geometry_msgs::PoseStamped>()) truth[t->header.stamp] = t->pose;
+    }
+    ASSERT_FALSE(truth.empty()) << "no " << truth_topic << " in the bag";
+    auto finalError = [&](const std::vector<Recorded>& pass, double* pos_m, double* yaw_deg) {
+      if (pass.empty()) return false;
+      auto est = pass.back().msg->instantiate<geometry_msgs::PoseWithCovarianceStamped>();
+      auto t = truth.lower_bound(est->header.stamp);
+      if (t == truth.end()) t = std::prev(t);
+      const auto& e = est->pose.pose;
+      *pos_m = std::hypot(e.position.x - t->second.position.x, e.position.y - t->second.position.y);
+      double d = yawOf(e.orientation) - yawOf(t->second.orientation);
+      *yaw_deg = std::abs(std::remainder(d, 2.0 * M_PI)) * 180.0 / M_PI;
+      return true;
+    };
+    double pa = 0, ya = 0, pb = 0, yb = 0;
+    ASSERT_TRUE(finalError(a, &pa, &ya));
+    ASSERT_TRUE(finalError(b, &pb, &yb));
+    std::printf("hostile_input: %s final error: pass A %.3f m %.2f deg, pass B %.3f m %.2f deg\n",
+                node.c_str(), pa, ya, pb, yb);
+    EXPECT_LE(pb, p.param("max_final_position_error_m", 0.2));
+    EXPECT_LE(yb, p.param("max_final_heading_error_deg", 10.0));
+  } else {
+    FAIL() << "unknown compare '" << compare << "'";
+  }
+
+  // Still alive: the master knows it and its process answers (a dead node stays registered).
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  args[1] = node;
+  ASSERT_TRUE(ros::master::execute("lookupNode", args, result, payload, false))
+      << node << " is not registered";
+  std::string host;
+  uint32_t port = 0;
+  ASSERT_TRUE(ros::network::splitURI(static_cast<std::string>(payload), host, port));
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue pid_args, pid;
+  pid_args[0] = ros::this_node::getName();
+  EXPECT_TRUE(client.execute("getPid", pid_args, pid)) << node << " does not answer: it died";
+  if (!temp_dir.empty()) std::filesystem::remove_all(temp_dir);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "hostile_input");
+  return RUN_ALL_TESTS();
+}

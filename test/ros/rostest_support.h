@@ -1,0 +1,69 @@
+#pragma once
+// Small pieces shared by the rostests in test/ros: waiting on the wall clock (the tests run under
+// use_sim_time, where ros::Time stands still between bags) and reading the std_msgs/Header that
+// starts most messages without knowing their type.
+#include <ros/ros.h>
+#include <ros/serialization.h>
+#include <std_msgs/Header.h>
+#include <std_msgs/String.h>
+#include <topic_tools/shape_shifter.h>
+
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace adaptive_perception::rostest_support {
+
+/// Polls `done` every `poll_s` seconds of wall time until it returns true, ROS shuts down or
+/// `timeout_s` passes; returns the last value of `done`.
+inline bool waitUntil(const std::function<bool()>& done, double timeout_s, double poll_s = 0.05) {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < deadline) {
+    if (done()) return true;
+    ros::WallDuration(poll_s).sleep();
+  }
+  return done();
+}
+
+/// The string last published on `topic` (a player script's /test_phase), thread-safe.
+class PhaseListener {
+ public:
+  explicit PhaseListener(ros::NodeHandle& nh, const std::string& topic = "test_phase")
+      : sub_(nh.subscribe<std_msgs::String>(topic, 5, [this](const std_msgs::StringConstPtr& m) {
+          std::lock_guard<std::mutex> l(mutex_);
+          phase_ = m->data;
+        })) {}
+  std::string phase() const {
+    std::lock_guard<std::mutex> l(mutex_);
+    return phase_;
+  }
+  /// True when `phase` was announced within `timeout_s` seconds of wall time.
+  bool waitFor(const std::string& phase, double timeout_s) const {
+    return waitUntil([&] { return this->phase() == phase; }, timeout_s, 0.2);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::string phase_;
+  ros::Subscriber sub_;
+};
+
+/// The header at the start of a serialised message and its length in bytes; false when the
+/// message is too short to hold one. Valid for every message type whose first field is a Header.
+inline bool leadingHeader(const topic_tools::ShapeShifter& m, std_msgs::Header* header,
+                          std::size_t* header_bytes) {
+  std::vector<uint8_t> buf(m.size());
+  ros::serialization::OStream out(buf.data(), static_cast<uint32_t>(buf.size()));
+  m.write(out);
+  try {
+    ros::serialization::IStream in(buf.data(), static_cast<uint32_t>(buf.size()));
+    ros::serialization::deserialize(in, *header);
+  } catch (const ros::serialization::StreamOverrunException&) {
+    return false;
+  }
+  *header_bytes = ros::serialization::serializationLength(*header);
+  return true;
+}
+
+}  // namespace adaptive_perception::rostest_support
