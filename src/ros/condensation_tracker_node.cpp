@@ -84,6 +84,7 @@ bool CondensationTrackerNode::requestTarget(const cv::Rect2d& roi, std::string* 
     return false;
   }
   pending_target_ = roi;
+  last_target_ = roi;
   return true;
 }
 
@@ -112,6 +113,11 @@ void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat bgr;
   bool restart = false;
   if (gate_.accept(*msg, &bgr, &restart) != ros_conv::ImageGate::Result::kProcess) return;
+  if (restart && last_target_ && !pending_target_) {
+    // A looped bag: start again from the last target given, on this image.
+    ROS_WARN("condensation_tracker: restarting from the last target given");
+    pending_target_ = last_target_;
+  }
   if (pending_target_) {
     const cv::Rect2d roi = *pending_target_;
     pending_target_.reset();

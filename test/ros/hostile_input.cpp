@@ -12,8 +12,10 @@
 // At the end the node must still answer over XML-RPC (a crashed node stays registered).
 //
 // Parameters (private):
-//   bag (string)                 the good input; `bag_command` (string) makes it first: a shell
-//                                command run with $BAG set to a temporary path
+//   bag (string)                 the good input, waited for up to startup_timeout_s (60) when a
+//                                launch node makes it (remove_bag_dir: delete its folder at the end);
+//                                or `bag_command` (string) makes it first: a shell command run with
+//                                $BAG set to a temporary path
 //   replay_topics (string list)  bag topics to publish (tf_static latched); /clock is added
 //   trigger_topic (string)       the input whose stamp an output carries (latency, output fraction)
 //   output_topic (string)        the output watched; its message must start with a Header
@@ -404,6 +406,12 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
   ASSERT_FALSE(topics.empty() || trigger.empty() || output.empty() || node.empty())
       << "set replay_topics, trigger_topic, output_topic and node";
 
+  // A launch node may still be making the bag (and the node's database) when the test starts.
+  const double startup_timeout = p.param("startup_timeout_s", 60.0);
+  ASSERT_TRUE(support::waitUntil([&] { return std::filesystem::exists(bag_path); },
+                                 startup_timeout, 0.5))
+      << bag_path << " did not appear within " << startup_timeout << " s";
+  if (p.param("remove_bag_dir", false)) temp_dir = std::filesystem::path(bag_path).parent_path();
   Replayer replay(nh, bag_path, topics, trigger);
   ASSERT_FALSE(replay.empty()) << "no messages of the replay topics in " << bag_path;
   OutputRecorder recorder;
@@ -412,7 +420,7 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
   ros::AsyncSpinner spinner(2);
   spinner.start();
   replay.publishClock(replay.begin());
-  ASSERT_TRUE(support::waitUntil([&] { return replay.triggerSubscribers() > 0; }, 60.0))
+  ASSERT_TRUE(support::waitUntil([&] { return replay.triggerSubscribers() > 0; }, startup_timeout))
       << node << " never subscribed to " << trigger;
   ros::WallDuration(1.0).sleep();  // the node's tf listener and publishers connect
 

@@ -53,7 +53,8 @@ class CondensationTrackerNode {
   std::uint64_t seed_ = 1;
   std::unique_ptr<tracking::CondensationTracker> tracker_;
   std::unique_ptr<tracking::EllipseTracker> ellipse_;
-  std::optional<cv::Rect2d> pending_target_;
+  std::optional<cv::Rect2d> pending_target_;  // started on the next image
+  std::optional<cv::Rect2d> last_target_;     // started again when time goes backwards
   bool publish_overlay_ = true;
   ros_conv::ImageGate gate_{"condensation_tracker", 30.0};
   ros::Subscriber image_sub_, target_sub_;
