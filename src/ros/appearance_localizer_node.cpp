@@ -50,8 +50,12 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
                                " has no pose (train from a bag with ground_truth/pose)");
     posed.push_back({math::SE2(f.x_m, f.y_m, f.yaw_rad), classifier_->roomIndex(f.place)});
   }
-  mcl_ = std::make_unique<localization::AppearanceMcl>(
-      posed, static_cast<int>(classifier_->rooms().size()), m, static_cast<std::uint64_t>(seed));
+  // Kept to start the filter again, with the same seed, when a bag loops.
+  make_filter_ = [this, posed, m, seed] {
+    mcl_ = std::make_unique<localization::AppearanceMcl>(
+        posed, static_cast<int>(classifier_->rooms().size()), m, static_cast<std::uint64_t>(seed));
+  };
+  make_filter_();
 
   pose_pub_ =
       nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("appearance_localizer/pose", 5);
@@ -90,8 +94,8 @@ void AppearanceLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat bgr;
   bool restart = false;
   const auto verdict = gate_.accept(*msg, &bgr, &restart);
-  if (restart) {
-    mcl_->initGlobal();
+  if (restart) {  // a looped bag: the filter starts again as at start-up (same seed, same output)
+    make_filter_();
     last_odom_.reset();
   }
   if (verdict != ros_conv::ImageGate::Result::kProcess) return;

@@ -27,6 +27,7 @@
 #include <std_srvs/Empty.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -49,6 +50,7 @@ class AppearanceLocalizerNode {
 
   std::unique_ptr<places::RoomClassifier> classifier_;
   std::unique_ptr<localization::AppearanceMcl> mcl_;
+  std::function<void()> make_filter_;  // (re)creates mcl_ as at start-up
   places::RoomClassifierConfig classifier_config_;
   bool use_odom_ = true, publish_tf_ = false;
   ros_conv::ImageGate gate_{"appearance_localizer", 5.0};

@@ -1,0 +1,147 @@
+// rostest: every node given an empty, corrupt or foreign file (field map, colour priors, place
+// database, tracking dynamics) must stop at start-up with an error naming the file, and leave the
+// file byte for byte as it was.
+#include <gtest/gtest.h>
+#include <ros/package.h>
+#include <ros/ros.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string readAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void writeAll(const fs::path& p, const std::string& s) {
+  std::ofstream out(p, std::ios::binary);
+  out << s;
+}
+
+struct Run {
+  int status = -1;  // exit status; -1 when killed by the timeout or a signal
+  std::string output;
+};
+
+/// Runs `rosrun adaptive_perception NODE ARGS` (stdout and stderr together) for at most 30 s.
+Run runNode(const std::string& node, const std::string& args) {
+  const std::string cmd = "timeout -s KILL 30 rosrun adaptive_perception " + node +
+                          " __name:=bad_files_" + node + " " + args + " 2>&1";
+  Run r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
+  const int st = ::pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  if (r.status == 137) r.status = -1;  // timeout's SIGKILL
+  return r;
+}
+
+struct Case {
+  std::string node, name;
+  std::string param;     // the node's parameter naming the file (or directory)
+  std::string file;      // the file written, relative to the case's directory
+  std::string contents;  // what it holds
+  bool pass_dir = false; // the parameter names the directory (priors_dir), not the file
+};
+
+class BadFiles : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("ap_bad_files_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    pkg_ = ros::package::getPath("adaptive_perception");
+    ASSERT_FALSE(pkg_.empty());
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  void check(const Case& c, const std::string& extra_args = "") {
+    SCOPED_TRACE(c.node + ": " + c.name);
+    const fs::path case_dir = dir_ / (c.node + "_" + std::to_string(counter_++));
+    fs::create_directories(case_dir);
+    const fs::path file = case_dir / c.file;
+    writeAll(file, c.contents);
+    const auto before = fs::last_write_time(file);
+    const std::string target = c.pass_dir ? case_dir.string() : file.string();
+    const Run r = runNode(c.node, "_" + c.param + ":=" + target + " " + extra_args);
+    std::printf("bad_files: %s, %s: exit %d: %s", c.node.c_str(), c.name.c_str(), r.status,
+                r.output.substr(r.output.rfind('\n', r.output.size() - 2) + 1).c_str());
+    EXPECT_EQ(r.status, 1) << "the node did not stop with an error; output:\n" << r.output;
+    EXPECT_NE(r.output.find(file.filename().string()), std::string::npos)
+        << "the error does not name the file; output:\n"
+        << r.output;
+    EXPECT_EQ(readAll(file), c.contents) << "the file was changed";
+    EXPECT_EQ(fs::last_write_time(file), before) << "the file was rewritten";
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(case_dir)) ++entries;
+    EXPECT_EQ(entries, 1u) << "the node left other files beside it";
+  }
+
+  fs::path dir_;
+  std::string pkg_;
+  int counter_ = 0;
+};
+
+const char kGarbage[] = "\x89PNG\r\n\x1a\n this is not what the node expects \x01\x02\x03\xff";
+
+TEST_F(BadFiles, FieldMaps) {
+  const std::string real = readAll(pkg_ + "/config/field_4legged.yaml");
+  ASSERT_GT(real.size(), 100u);
+  for (const std::string node : {"field_map_publisher", "color_estimator", "rbpf_localizer"}) {
+    check({node, "empty field map", "field_file", "field.yaml", ""});
+    check({node, "binary field map", "field_file", "field.yaml", std::string(kGarbage, sizeof kGarbage - 1)});
+    check({node, "truncated field map", "field_file", "field.yaml", real.substr(0, real.size() / 2)});
+  }
+}
+
+TEST_F(BadFiles, ColorPriors) {
+  const std::string real = readAll(pkg_ + "/config/color_priors/dark.yaml");
+  ASSERT_GT(real.size(), 100u);
+  for (const std::string node : {"color_estimator", "rbpf_localizer"}) {
+    // priors_dir names the directory; the node wants dark.yaml and bright.yaml in it.
+    check({node, "empty prior", "priors_dir", "dark.yaml", "", true},
+          "_filter:=single _single_prior:=dark");
+    check({node, "truncated prior", "priors_dir", "dark.yaml", real.substr(0, real.size() / 3), true},
+          "_filter:=single _single_prior:=dark");
+    check({node, "prior of another type", "priors_dir", "dark.yaml", "[1, 2, 3]\n", true},
+          "_filter:=single _single_prior:=dark");
+  }
+}
+
+TEST_F(BadFiles, PlaceDatabases) {
+  for (const std::string node : {"histogram_place_recognizer", "appearance_localizer"}) {
+    check({node, "corrupt database", "database", "places.sqlite",
+           std::string(kGarbage, sizeof kGarbage - 1) + std::string(4096, 'x')});
+    // An SQLite header over nonsense pages.
+    check({node, "truncated database", "database", "places.sqlite",
+           std::string("SQLite format 3\0", 16) + std::string(100, '\x07')});
+  }
+}
+
+TEST_F(BadFiles, TrackingDynamics) {
+  check({"condensation_tracker", "empty dynamics", "dynamics", "dynamics.yaml", ""});
+  check({"condensation_tracker", "dynamics of the wrong size", "dynamics", "dynamics.yaml",
+         "A1: [1, 2, 3]\nA0: [0]\nd: [0]\nB: [1]\n"});
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "bad_files");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
