@@ -1,17 +1,22 @@
 #!/usr/bin/env bash
-# The demo: sets up (apt + build), then replays every bundled bag in rosbag/ through every node that
-# exists, printing one summary line per bag. rviz opens when a display is present (or with rviz:=true);
-# rviz:=false keeps it closed. Usage: scripts/demo.sh [rviz:=true|false] [rate:=R]
+# The demo: sets up (apt + build), replays every bundled bag in rosbag/ through the nodes (field bags:
+# color_estimator + rbpf_localizer; laser bags: line_extractor + ekf_slam_mapper; a simulated indoor run:
+# histogram_place_recognizer), printing one summary line per bag, then runs a short version of every
+# paper's experiment and writes results/REPORT.md (scripts/make_report.sh; report:=false skips it).
+# rviz opens when a display is present (or with rviz:=true); rviz:=false keeps it closed.
+# Usage: scripts/demo.sh [rviz:=true|false] [rate:=R] [report:=true|false]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 RVIZ=false
 [ -n "${DISPLAY:-}" ] && RVIZ=true
 RATE=1.0
+REPORT=true
 for a in "$@"; do
   case "$a" in
     rviz:=*) RVIZ="${a#rviz:=}" ;;
     rate:=*) RATE="${a#rate:=}" ;;
-    *) echo "usage: $0 [rviz:=true|false] [rate:=R]" >&2; exit 2 ;;
+    report:=*) REPORT="${a#report:=}" ;;
+    *) echo "usage: $0 [rviz:=true|false] [rate:=R] [report:=true|false]" >&2; exit 2 ;;
   esac
 done
 "$AP_ROOT/scripts/setup.sh"
@@ -56,3 +61,7 @@ fi
 echo "indoor_places $line" | tee -a "$summary"
 rm -f "$places_dir/train.bag" "$places_dir/test.bag"
 echo "demo: summaries in results/demo/summary.txt, logs beside it"
+if [ "$REPORT" = true ]; then
+  echo "demo: running the papers' experiments for results/REPORT.md (about 20 minutes)"
+  "$AP_ROOT/scripts/make_report.sh"
+fi

@@ -97,6 +97,7 @@ void AppearanceLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   if (restart) {  // a looped bag: the filter starts again as at start-up (same seed, same output)
     make_filter_();
     last_odom_.reset();
+    odom_.reset();  // from before the jump: its pose would move every particle across the map
   }
   if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   const auto sims = classifier_->frameSimilarities(classifier_->extract(bgr),

@@ -1,10 +1,13 @@
 // demo_monitor: a ROS node for the demo and for people replaying a bag: counts what arrives and,
 // when it shuts down (the bag ended), prints one summary line
 //   demo_monitor: bag=NAME frames=N image_hz=F mean_luma=Y truth_path_m=D map_odom_tf=K
-//   field_markers=M
-// Parameters: ~name (string, label of the run). Subscribed: camera/image_raw, ground_truth/pose,
-// field_map, tf.
+//   field_markers=M classified_frames=C color_rate=R localizer_final_error_m=E   (camera bags)
+//   demo_monitor: bag=NAME scans=N line_messages=L segments_per_scan=S ... slam_final_error_m=E
+// (-1: not measured). Parameters: ~name (string, label of the run). Subscribed: camera/image_raw,
+// camera/labels, color_estimator/classified, ground_truth/pose, field_map, tf, scan, lines,
+// rbpf_localizer/pose, ekf_slam_mapper/pose.
 #include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/LaserScan.h>
@@ -14,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/ros/msg_conversion.h"
@@ -62,8 +66,26 @@ int main(int argc, char** argv) {
           ROS_WARN_THROTTLE(5.0, "demo_monitor: %s", e.what());
         }
       });
+  // Estimates of the localizer and of the SLAM mapper, scored at the end against the truth nearest
+  // in time to their last pose.
+  std::map<ros::Time, std::pair<double, double>> truth;
+  std::optional<geometry_msgs::PoseWithCovarianceStamped> last_rbpf, last_slam;
+  auto rbpf_sub = nh.subscribe<geometry_msgs::PoseWithCovarianceStamped>(
+      "rbpf_localizer/pose", 5,
+      [&](const geometry_msgs::PoseWithCovarianceStampedConstPtr& m) { last_rbpf = *m; });
+  auto slam_sub = nh.subscribe<geometry_msgs::PoseWithCovarianceStamped>(
+      "ekf_slam_mapper/pose", 5,
+      [&](const geometry_msgs::PoseWithCovarianceStampedConstPtr& m) { last_slam = *m; });
+  auto finalError = [&](const std::optional<geometry_msgs::PoseWithCovarianceStamped>& e) {
+    if (!e || truth.empty()) return -1.0;
+    auto t = truth.lower_bound(e->header.stamp);
+    if (t == truth.end()) t = std::prev(t);
+    return std::hypot(e->pose.pose.position.x - t->second.first,
+                      e->pose.pose.position.y - t->second.second);
+  };
   auto truth_sub = nh.subscribe<geometry_msgs::PoseStamped>(
       T::kGroundTruthPose, 50, [&](const geometry_msgs::PoseStampedConstPtr& m) {
+        truth[m->header.stamp] = {m->pose.position.x, m->pose.position.y};
         if (c.have_pose)
           c.path_m += std::hypot(m->pose.position.x - c.px, m->pose.position.y - c.py);
         c.px = m->pose.position.x;
@@ -112,9 +134,9 @@ int main(int argc, char** argv) {
   if (scans > 0) {
     std::printf(
         "demo_monitor: bag=%s scans=%ld line_messages=%ld segments_per_scan=%.2f truth_path_m=%.2f "
-        "map_odom_tf=%ld\n",
+        "map_odom_tf=%ld slam_final_error_m=%.3f\n",
         name.c_str(), scans, line_msgs, line_msgs ? double(segments) / line_msgs : 0.0, c.path_m,
-        c.map_odom);
+        c.map_odom, finalError(last_slam));
     std::fflush(stdout);
     return 0;
   }
@@ -122,10 +144,11 @@ int main(int argc, char** argv) {
   std::printf(
       "demo_monitor: bag=%s frames=%ld bad_frames=%ld image_hz=%.2f mean_luma=%.1f "
       "truth_path_m=%.2f "
-      "map_odom_tf=%ld field_markers=%ld classified_frames=%ld color_rate=%.3f\n",
+      "map_odom_tf=%ld field_markers=%ld classified_frames=%ld color_rate=%.3f "
+      "localizer_final_error_m=%.3f\n",
       name.c_str(), c.frames, c.bad_frames, span > 0 ? (c.frames - 1) / span : 0.0,
       c.frames ? c.luma_sum / c.frames : 0.0, c.path_m, c.map_odom, c.markers, rate.frames,
-      rate.total ? double(rate.correct) / rate.total : 0.0);
+      rate.total ? double(rate.correct) / rate.total : 0.0, finalError(last_rbpf));
   std::fflush(stdout);
   return 0;
 }

@@ -4,16 +4,16 @@
 #   DIR/db.sqlite  train_places on a simulated training run of the indoor building (cloudy, seed 1)
 #   DIR/test.bag   another run (cloudy, seed 2, the first DURATION_S seconds), written last and
 #                  renamed into place, so a test waiting for it finds it whole
-# Fixed seeds: the same data every run. Usage (as a launch node):
-#   places_node_with_database.sh DIR NODE DURATION_S TRAIN_ARGS... -- NODE_ARGS... [roslaunch args]
+# Both at 1 Hz and WIDTHxHEIGHT pixels. Fixed seeds: the same data every run. Usage (as a launch node):
+#   places_node_with_database.sh DIR NODE DURATION_S WIDTHxHEIGHT TRAIN_ARGS... -- NODE_ARGS... [roslaunch args]
 set -euo pipefail
-DIR="$1" NODE="$2" DURATION="$3"
-shift 3
+DIR="$1" NODE="$2" DURATION="$3" SIZE="$4"
+shift 4
 TRAIN=()
 while [ $# -gt 0 ] && [ "$1" != "--" ]; do TRAIN+=("$1"); shift; done
 [ $# -gt 0 ] && shift
 mkdir -p "$DIR"
-SIM=(--lighting cloudy --camera_rate_hz 1 --width_px 160 --height_px 120)
+SIM=(--lighting cloudy --camera_rate_hz 1 --width_px "${SIZE%x*}" --height_px "${SIZE#*x}")
 rosrun adaptive_perception simulate_indoor "${SIM[@]}" --seed 1 --output "$DIR/train.bag" > /dev/null 2>&1
 rosrun adaptive_perception train_places --bag "$DIR/train.bag" --database "$DIR/db.sqlite" \
   "${TRAIN[@]}" > /dev/null 2>&1

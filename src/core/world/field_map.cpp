@@ -147,7 +147,9 @@ FieldDimensions FieldMap::parseYaml(const std::string& text, const std::string& 
                              ": YAML syntax error: " + e.msg);
   }
   FieldDimensions d;
-  if (!root || root.IsNull()) return d;
+  // Keys left out keep their defaults, but a file without any (empty, or only comments) is a mistake.
+  if (!root || root.IsNull())
+    throw std::runtime_error(source + ": no field dimensions in the file (empty?)");
   if (!root.IsMap()) throw std::runtime_error(source + ": expected a map of field dimensions");
   std::map<std::string, double*> numbers = {
       {"field_length_m", &d.field_length_m},

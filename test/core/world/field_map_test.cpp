@@ -62,6 +62,11 @@ TEST(FieldMap, YamlErrorsNameFileLineAndKey) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("goal_width_m"), std::string::npos) << e.what();
   }
+  // Nothing in the file (empty, or a truncated copy that kept only the comments) is refused.
+  EXPECT_THROW(FieldMap::parseYaml("", "e.yaml"), std::runtime_error);
+  EXPECT_THROW(FieldMap::parseYaml("# Sony four-legged robot league\n# (truncated)\n", "c.yaml"),
+               std::runtime_error);
+  EXPECT_NO_THROW(FieldMap::parseYaml("field_length_m: 6.0\n", "one_key.yaml"));
   EXPECT_THROW(FieldMap::parseYaml("line_width_m: -1\n", "n.yaml"), std::runtime_error);
   EXPECT_THROW(FieldMap::parseYaml("a: [1,\n", "s.yaml"), std::runtime_error);
   EXPECT_THROW(FieldMap::loadYaml("/nonexistent/field.yaml"), std::runtime_error);
