@@ -222,7 +222,14 @@ def main():
         f"{r.v('monobot', 'standard_final_error_spread_m', '{:.4f}')} |")
     r.w(f"| anchor | {r.v('monobot', 'anchor_fisher_rank')} | "
         f"{r.v('monobot', 'anchor_final_error_spread_m', '{:.4f}')} |")
-    r.w(f"| external sensor | {r.v('monobot', 'external_fisher_rank')} | - |")
+    r.w(f"| external sensor | {r.v('monobot', 'external_fisher_rank')} | "
+        f"{r.v('monobot', 'external_final_error_spread_m', '{:.4f}')} |")
+    r.w()
+    r.w("Correlation of the standard filter's final error with its error at the first observation: "
+        f"{r.v('monobot', 'standard_initial_error_correlation', '{:.3f}')} (the anchored filter: "
+        f"{r.v('monobot', 'anchor_initial_error_correlation', '{:.3f}')}); Monte Carlo bias: standard "
+        f"{r.v('monobot', 'standard_bias_m', '{:.4f}')} m, anchor {r.v('monobot', 'anchor_bias_m', '{:.4f}')} m, "
+        f"external {r.v('monobot', 'external_bias_m', '{:.4f}')} m.")
     r.w()
     r.image("monobot/monobot.png", "monobot errors, 2-sigma bounds and Kalman gains")
     r.w("**Line extraction** on the office simulator bag (ground-truth walls): precision "

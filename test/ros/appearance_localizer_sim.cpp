@@ -14,6 +14,7 @@
 
 #include "adaptive_perception/PlaceRecognition.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "rostest_support.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/sim/indoor_world.h"
 
@@ -27,14 +28,10 @@ TEST(AppearanceLocalizerSim, ClassifiesRoomsAndLocalizes) {
   const ap::sim::IndoorWorld world = ap::sim::IndoorWorld::loadYaml(
       ap::ros_params::resolvePackagePath("config/worlds/indoor_building.yaml"));
   std::mutex mutex;
-  std::string phase;
   std::map<ros::Time, ap::math::SE2> truth;
   std::vector<ap::PlaceRecognition> rooms;
   std::map<ros::Time, ap::math::SE2> estimates;
-  auto a = nh.subscribe<std_msgs::String>("test_phase", 5, [&](const std_msgs::StringConstPtr& m) {
-    std::lock_guard<std::mutex> l(mutex);
-    phase = m->data;
-  });
+  const ap::rostest_support::PhaseListener player(nh);
   auto b = nh.subscribe<geometry_msgs::PoseStamped>(
       "ground_truth/pose", 10000, [&](const geometry_msgs::PoseStampedConstPtr& m) {
         std::lock_guard<std::mutex> l(mutex);
@@ -53,16 +50,8 @@ TEST(AppearanceLocalizerSim, ClassifiesRoomsAndLocalizes) {
       });
   ros::AsyncSpinner spinner(2);
   spinner.start();
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(280.0);
-  while (ros::ok() && ros::WallTime::now() < deadline) {
-    {
-      std::lock_guard<std::mutex> l(mutex);
-      if (phase == "done") break;
-    }
-    ros::WallDuration(0.2).sleep();
-  }
+  ASSERT_TRUE(player.waitFor("done", 280.0)) << "the player did not finish";
   std::lock_guard<std::mutex> l(mutex);
-  ASSERT_EQ(phase, "done") << "the player did not finish";
   ASSERT_GE(rooms.size(), 200u);
   int scored = 0, classified = 0, right = 0, wrong = 0;
   std::vector<double> errors;

@@ -12,6 +12,7 @@
 
 #include "adaptive_perception/TrackedObject.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "rostest_support.h"
 
 namespace ap = adaptive_perception;
 
@@ -20,13 +21,9 @@ TEST(CondensationTrackerSim, TracksTheTarget) {
   const double min_success = p.param("min_success_rate", 0.9);
   const double min_output = p.param("min_output_fraction", 0.9);
   std::mutex mutex;
-  std::string phase;
   std::map<ros::Time, cv::Rect2d> truth;
   std::map<ros::Time, ap::TrackedObject> objects;
-  auto a = nh.subscribe<std_msgs::String>("test_phase", 5, [&](const std_msgs::StringConstPtr& m) {
-    std::lock_guard<std::mutex> l(mutex);
-    phase = m->data;
-  });
+  const ap::rostest_support::PhaseListener player(nh);
   auto b = nh.subscribe<geometry_msgs::PolygonStamped>(
       "ground_truth/box", 10000, [&](const geometry_msgs::PolygonStampedConstPtr& m) {
         std::lock_guard<std::mutex> l(mutex);
@@ -39,16 +36,8 @@ TEST(CondensationTrackerSim, TracksTheTarget) {
                                            });
   ros::AsyncSpinner spinner(2);
   spinner.start();
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(170.0);
-  while (ros::ok() && ros::WallTime::now() < deadline) {
-    {
-      std::lock_guard<std::mutex> l(mutex);
-      if (phase == "done") break;
-    }
-    ros::WallDuration(0.2).sleep();
-  }
+  ASSERT_TRUE(player.waitFor("done", 170.0)) << "the player did not finish";
   std::lock_guard<std::mutex> l(mutex);
-  ASSERT_EQ(phase, "done") << "the player did not finish";
   ASSERT_GT(truth.size(), 50u);
   // Every image but the first (the initialisation) should give a tracked object.
   EXPECT_GE(objects.size(), min_output * (truth.size() - 1));
