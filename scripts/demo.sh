@@ -62,6 +62,6 @@ echo "indoor_places $line" | tee -a "$summary"
 rm -f "$places_dir/train.bag" "$places_dir/test.bag"
 echo "demo: summaries in results/demo/summary.txt, logs beside it"
 if [ "$REPORT" = true ]; then
-  echo "demo: running the papers' experiments for results/REPORT.md (about 20 minutes)"
+  echo "demo: running the papers' experiments for results/REPORT.md (about 10 minutes)"
   "$AP_ROOT/scripts/make_report.sh"
 fi

@@ -2,7 +2,7 @@
 """Writes results/REPORT.md from the runs of scripts/make_report.sh: for each source paper, the
 project's figures beside the paper's published ones, with the plots embedded.
 
-usage: make_report.py RUN_DIR REPORT.md
+usage: make_report.py RUN_DIR REPORT.md [WALL_SECONDS]
 RUN_DIR holds summary.txt (one `report: part=NAME seconds=S key=value ...` line per part) and each
 part's output folder. The papers' numbers below are copied from ../shared/papers (table and page
 named beside each); everything else is read from RUN_DIR.
@@ -41,8 +41,9 @@ class Report:
         self.parts = parse_summary(os.path.join(run_dir, "summary.txt"))
         self.lines = []
 
-    def v(self, part, key, fmt=None):
-        """A part's value, formatted; '-' when the part or key is missing or negative (not measured)."""
+    def v(self, part, key, fmt=None, signed=False):
+        """A part's value, formatted; '-' when the part or key is missing, or negative (the tools'
+        "not measured") unless the quantity is `signed`."""
         p = self.parts.get(part)
         if not p or key not in p:
             return "-"
@@ -51,7 +52,7 @@ class Report:
             x = float(s)
         except ValueError:
             return s
-        if x < 0:
+        if x < 0 and not signed:
             return "-"
         return fmt.format(x) if fmt else s
 
@@ -128,6 +129,7 @@ PAPER_PLACES = {
 
 def main():
     run_dir, out = sys.argv[1], sys.argv[2]
+    wall_s = float(sys.argv[3]) if len(sys.argv) > 3 else None
     r = Report(run_dir, out)
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     try:
@@ -150,7 +152,7 @@ def main():
     r.w(f"Made by `scripts/demo.sh` (`scripts/make_report.sh`) on {datetime.date.today()}, commit "
         f"`{commit}`, {os.cpu_count()} cores ({cpu}), {platform.system()}. Every number below was "
         f"measured by the project's own evaluate_* and bench_* tools in this run "
-        f"({total_s / 60:.0f} minutes of experiments); the papers' numbers are copied from their "
+        f"({(wall_s or total_s) / 60:.0f} minutes in all); the papers' numbers are copied from their "
         "tables. Short versions of the experiments: the full ones are the `scripts/evaluate_*.sh` "
         "named in each section.")
     r.w()
@@ -228,8 +230,8 @@ def main():
     r.w("Correlation of the standard filter's final error with its error at the first observation: "
         f"{r.v('monobot', 'standard_initial_error_correlation', '{:.3f}')} (the anchored filter: "
         f"{r.v('monobot', 'anchor_initial_error_correlation', '{:.3f}')}); Monte Carlo bias: standard "
-        f"{r.v('monobot', 'standard_bias_m', '{:.4f}')} m, anchor {r.v('monobot', 'anchor_bias_m', '{:.4f}')} m, "
-        f"external {r.v('monobot', 'external_bias_m', '{:.4f}')} m.")
+        f"{r.v('monobot', 'standard_bias_m', '{:+.4f}', signed=True)} m, anchor {r.v('monobot', 'anchor_bias_m', '{:+.4f}', signed=True)} m, "
+        f"external {r.v('monobot', 'external_bias_m', '{:+.4f}', signed=True)} m.")
     r.w()
     r.image("monobot/monobot.png", "monobot errors, 2-sigma bounds and Kalman gains")
     r.w("**Line extraction** on the office simulator bag (ground-truth walls): precision "
@@ -328,8 +330,12 @@ def main():
         f"frames/s ({f'{1000 / fps:.0f} ms' if fps else '-'} per frame) | 0.8 s per frame (1.2 GHz PC) |")
     r.w(f"| CONDENSATION, 100 samples, 320 x 240 | {r.v('bench_tracker', 'fps', '{:.1f}')} frames/s | "
         "not given |")
-    r.w(f"| SIFT room classification, one frame | {r.v('bench_appearance', 'ms_per_frame', '{:.1f}')} ms "
-        f"({r.v('bench_appearance', 'speedup_vs_paper_single', '{:.0f}')}x the paper's) | see papers/002 |")
+    r.w(f"| SIFT room classification against 1,700 frames, one image | "
+        f"{r.v('bench_appearance', 'ms_per_frame', '{:.1f}')} ms "
+        f"({r.v('bench_appearance', 'speedup_vs_paper_single', '{:.0f}')}x faster) | about 3 minutes |")
+    r.w(f"| appearance MCL, one frame (SIFT, matching, 100 particles) | "
+        f"{r.v('bench_appearance', 'ms_per_frame', '{:.1f}')} ms "
+        f"({r.v('bench_appearance', 'speedup_vs_paper_mcl', '{:.0f}')}x faster) | 3.5 s (24 particles) |")
     r.w(f"| histogram query against 10,000 images (HSV, chi-square) | "
         f"{r.v('bench_places', 'query_ms_chi_square', '{:.2f}')} ms | not given |")
     r.w(f"| line-landmark EKF SLAM, Intel lab log | {r.v('slam_intel', 'realtime_factor', '{:.0f}')}x "

@@ -7,7 +7,7 @@
 #
 # Every part prints one line `report: part=NAME seconds=S <the tool's summary>` and appends it to
 # DIR/summary.txt, which make_report.py reads. The full-size experiments are the evaluate_*.sh
-# scripts the report names; the short ones here take ~20 minutes on two cores.
+# scripts the report names; the short ones here take about 10 minutes on two cores.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 OUT="$AP_ROOT/results/report"
@@ -110,4 +110,4 @@ part bench_lines "$BIN/bench_lines"
 part bench_places "$BIN/bench_places" --images 10000 --space hsv
 part bench_appearance "$BIN/bench_appearance"
 
-python3 "$AP_ROOT/scripts/make_report.py" "$OUT" "$AP_ROOT/results/REPORT.md"
+python3 "$AP_ROOT/scripts/make_report.py" "$OUT" "$AP_ROOT/results/REPORT.md" "$SECONDS"
