@@ -67,25 +67,27 @@ for node, v in rows.items():
 EOF
 }
 
+# replay NAME LAUNCH NODE...: plays $TMP/NAME.bag through LAUNCH, sampling the NODEs, and reports.
+replay() {
+  local name="$1" launch="$2"
+  shift 2
+  roslaunch --disable-title adaptive_perception "$launch" bag:="$TMP/$name.bag" rate:="$RATE" \
+    name:="memory_$name" > "$OUT/$name.log" 2>&1 &
+  LAUNCH_PID=$!
+  sample "$OUT/$name.csv" "$@"
+  wait "$LAUNCH_PID" || true
+  LAUNCH_PID=""
+  report "$OUT/$name.csv" "$RATE" | tee -a "$OUT/summary.txt"
+  rm -f "$TMP/$name.bag"
+}
+: > "$OUT/summary.txt"
+
 # Laser: the corridor loop, lap after lap.
 "$BIN/simulate_laser" --world "$AP_ROOT/config/worlds/loop.yaml" --duration_s "$DURATION" --seed 5 \
   --output "$TMP/laser.bag" > /dev/null
-roslaunch --disable-title adaptive_perception laser_demo.launch bag:="$TMP/laser.bag" rate:="$RATE" \
-  name:=memory_laser > "$OUT/laser.log" 2>&1 &
-LAUNCH_PID=$!
-sample "$OUT/laser.csv" line_extractor ekf_slam_mapper
-wait "$LAUNCH_PID" || true
-LAUNCH_PID=""
-report "$OUT/laser.csv" "$RATE" | tee "$OUT/summary.txt"
-rm -f "$TMP/laser.bag"
+replay laser laser_demo.launch line_extractor ekf_slam_mapper
 
 # Field: lights switching every 5 s, the robot walking the whole time.
 "$BIN/simulate_field" --script switching --seed 9 --duration_s "$DURATION" --rate_hz 4 \
   --switch_period_s 5 --output "$TMP/field.bag" --overwrite > /dev/null
-roslaunch --disable-title adaptive_perception demo.launch bag:="$TMP/field.bag" rate:="$RATE" \
-  name:=memory_field > "$OUT/field.log" 2>&1 &
-LAUNCH_PID=$!
-sample "$OUT/field.csv" color_estimator rbpf_localizer
-wait "$LAUNCH_PID" || true
-LAUNCH_PID=""
-report "$OUT/field.csv" "$RATE" | tee -a "$OUT/summary.txt"
+replay field demo.launch color_estimator rbpf_localizer
