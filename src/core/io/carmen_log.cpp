@@ -172,8 +172,10 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
       }
       const size_t n = static_cast<size_t>(nd);
       double nrd;
+      // Bounded before the cast (a larger count cannot fit the line anyway; casting 1e44 to
+      // size_t is undefined: found by fuzz_carmen_log).
       if (tok.size() < 9 + n + 1 || !toDouble(tok[9 + n], &nrd) || nrd < 0 ||
-          nrd != std::floor(nrd)) {
+          nrd > static_cast<double>(tok.size()) || nrd != std::floor(nrd)) {
         issue(line_no, "ROBOTLASER1: truncated or malformed remission count");
         continue;
       }

@@ -69,6 +69,20 @@ TEST(CarmenLog, ReportsBadLinesWithNumbersAndKeepsGoing) {
   EXPECT_DOUBLE_EQ(log.odometry[2].timestamp_s, 12.0);
 }
 
+TEST(CarmenLog, RefusesCountsTooLargeForTheLine) {
+  // A remission count of 1e44 (found by fuzz_carmen_log: its cast to size_t was undefined).
+  const std::string text =
+      "ROBOTLASER1 0 -1.5 3.0 0.75 20.0 0.01 0 5 1 2 3 4 5 1e44 0.1 0.2 0.3 0.4 0.5 0.6 0.0 0.0 0.5 "
+      "0.5 0.2 100.8 host 0.4\n"
+      "ROBOTLASER1 0 -1.5 3.0 0.75 20.0 0.01 0 5 1 2 3 4 5 1e300 0.1 0.2 0.3 0.4 0.5 0.6 0.0 0.0 "
+      "0.5 0.5 0.2 100.9 host 0.4\n";
+  const CarmenLog log = parseCarmenLog(text);
+  ASSERT_EQ(log.issues.size(), 2u);
+  EXPECT_EQ(log.issues[0].line, 1);
+  EXPECT_NE(log.issues[0].what.find("remission count"), std::string::npos) << log.issues[0].what;
+  EXPECT_TRUE(log.lasers.empty());
+}
+
 TEST(CarmenLog, ReadsBzip2AndFailsClearlyOnMissingFile) {
   EXPECT_THROW(readCarmenLog("/nonexistent/log.clf"), std::runtime_error);
   const std::string path = ::testing::TempDir() + "/notbz.clf.bz2";
