@@ -41,7 +41,6 @@
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/LaserScan.h>
-#include <tf2/utils.h>
 #include <ros/network.h>
 #include <topic_tools/shape_shifter.h>
 #include <xmlrpcpp/XmlRpc.h>
