@@ -58,7 +58,7 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   math::SE2 initial;
   Eigen::Matrix3d initial_cov;
   if (P::loadInitialPose(pnh, {0.2, 0.2, 0.17}, &initial, &initial_cov))
-    pending_pose_ = std::make_pair(initial, initial_cov);
+    pending_pose_ = configured_pose_ = std::make_pair(initial, initial_cov);
 
   map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
@@ -146,11 +146,13 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   if (last_odom_) {
     dt_s = (msg->header.stamp - last_stamp_).toSec();
     if (dt_s < 0.0) {
-      ROS_WARN(
-          "rbpf_localizer: time went backwards by %.3f s (bag looped?): global localization "
-          "again",
-          -dt_s);
-      rbpf_->initUniform();
+      ROS_WARN("rbpf_localizer: time went backwards by %.3f s (bag looped?): starting again as "
+               "at start-up (%s)",
+               -dt_s, configured_pose_ ? "~initial_pose" : "global localization");
+      // A new filter, not re-spread particles: the same seed and frame count as at start-up, so a
+      // replayed bag gives the same estimates.
+      rbpf_ = std::make_unique<localization::RbpfLocalizer>(map_, camera_.camera(), priors_, config_);
+      if (configured_pose_) rbpf_->initGaussian(configured_pose_->first, configured_pose_->second);
       ++resets_;
       dt_s = 0.0;
     } else {

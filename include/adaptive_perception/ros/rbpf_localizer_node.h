@@ -76,6 +76,7 @@ class RbpfLocalizerNode {
   // A pose to start from (initial_pose parameter or initialpose topic), applied when the localizer
   // is (re)built.
   std::optional<std::pair<math::SE2, Eigen::Matrix3d>> pending_pose_;
+  std::optional<std::pair<math::SE2, Eigen::Matrix3d>> configured_pose_;  // ~initial_pose
   std::string map_frame_, odom_frame_, base_frame_;
   bool publish_tf_ = true;
   double transform_tolerance_s_ = 0.1, tf_timeout_s_ = 0.1;
