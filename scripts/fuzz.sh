@@ -36,11 +36,12 @@ for t in "${targets[@]}"; do
   for d in "$AP_ROOT/test/fuzz/corpus/${t#fuzz_}" "$AP_ROOT/test/fuzz/regressions/${t#fuzz_}"; do
     [ -d "$d" ] && dirs+=("$d")
   done
+  touch "$dir/.run_start"  # artifacts of earlier runs stay, but are not counted again
   "$BUILD/$t" "${dirs[@]}" -max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
     -artifact_prefix="$dir/" -print_final_stats=1 > "$dir/log.txt" 2>&1
   rc=$?
   runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log.txt" | tail -n 1)"
-  crashes="$(find "$dir" -maxdepth 1 -name 'crash-*' -o -maxdepth 1 -name 'leak-*' -o -maxdepth 1 -name 'timeout-*' -o -maxdepth 1 -name 'oom-*' | wc -l)"
+  crashes="$(find "$dir" -maxdepth 1 -newer "$dir/.run_start" \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)"
   echo "fuzz: target=$t seconds=$SECONDS_PER_TARGET runs=${runs:-0} corpus=$(ls "$dir/corpus" | wc -l) crashes=$crashes"
   if [ "$rc" -ne 0 ] || [ "$crashes" -gt 0 ]; then
     status=1
