@@ -83,10 +83,8 @@ class OutputRecorder {
     r.msg = m;
     std_msgs::Header h;
     std::size_t header_bytes = 0;
-    std::vector<uint8_t> buf(m->size());
-    ros::serialization::OStream out(buf.data(), static_cast<uint32_t>(buf.size()));
-    m->write(out);
-    if (!support::leadingHeader(*m, &h, &header_bytes)) return;
+    const std::vector<uint8_t> buf = support::serialized(*m);
+    if (!support::leadingHeader(buf, &h, &header_bytes)) return;
     r.stamp = h.stamp;
     r.payload.assign(buf.begin() + static_cast<long>(header_bytes), buf.end());
     std::lock_guard<std::mutex> l(mutex_);
@@ -160,7 +158,7 @@ class Replayer {
       if (m.topic == trigger_) {
         std_msgs::Header h;
         std::size_t n = 0;
-        if (support::leadingHeader(*m.msg, &h, &n)) {
+        if (support::leadingHeader(support::serialized(*m.msg), &h, &n)) {
           std::lock_guard<std::mutex> l(mutex_);
           sent_[h.stamp] = ros::WallTime::now();
         }

@@ -49,15 +49,22 @@ class PhaseListener {
   ros::Subscriber sub_;
 };
 
-/// The header at the start of a serialised message and its length in bytes; false when the
-/// message is too short to hold one. Valid for every message type whose first field is a Header.
-inline bool leadingHeader(const topic_tools::ShapeShifter& m, std_msgs::Header* header,
-                          std::size_t* header_bytes) {
+/// The bytes of a message as it travels on the wire.
+inline std::vector<uint8_t> serialized(const topic_tools::ShapeShifter& m) {
   std::vector<uint8_t> buf(m.size());
   ros::serialization::OStream out(buf.data(), static_cast<uint32_t>(buf.size()));
   m.write(out);
+  return buf;
+}
+
+/// The header at the start of serialised message bytes and its length in bytes; false when they
+/// are too short to hold one. Valid for every message type whose first field is a Header.
+inline bool leadingHeader(const std::vector<uint8_t>& buf, std_msgs::Header* header,
+                          std::size_t* header_bytes) {
   try {
-    ros::serialization::IStream in(buf.data(), static_cast<uint32_t>(buf.size()));
+    // IStream only reads, but takes a non-const pointer.
+    ros::serialization::IStream in(const_cast<uint8_t*>(buf.data()),
+                                   static_cast<uint32_t>(buf.size()));
     ros::serialization::deserialize(in, *header);
   } catch (const ros::serialization::StreamOverrunException&) {
     return false;
