@@ -30,12 +30,20 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   c.likelihood.outlier_probability =
       P::getInRange(pnh, "outlier_probability", c.likelihood.outlier_probability, 0.0, 0.999);
   c.likelihood.exponent = P::getInRange(pnh, "exponent", c.likelihood.exponent, 1e-6, 1.0);
+  c.likelihood.neighbourhood_cells =
+      P::getInRange(pnh, "neighbourhood_cells", c.likelihood.neighbourhood_cells, 0, 8);
   c.min_ess_fraction = P::getInRange(pnh, "min_ess_fraction", c.min_ess_fraction, 0.0, 1.0);
   c.resample_ess_fraction =
       P::getInRange(pnh, "resample_ess_fraction", c.resample_ess_fraction, 1e-3, 1.0);
   c.global_pool_size = P::getInRange(pnh, "global_pool_size", c.global_pool_size, 0, 10000000);
   c.global_pixel_stride = P::getInRange(pnh, "global_pixel_stride", c.global_pixel_stride, 1, 64);
+  c.global_neighbourhood_cells =
+      P::getInRange(pnh, "global_neighbourhood_cells", c.global_neighbourhood_cells, 0, 8);
+  c.global_search_frames =
+      P::getInRange(pnh, "global_search_frames", c.global_search_frames, 1, 100);
   c.mirror_fraction = P::getInRange(pnh, "mirror_fraction", c.mirror_fraction, 0.0, 0.5);
+  c.mirror_relative_weight =
+      P::getInRange(pnh, "mirror_relative_weight", c.mirror_relative_weight, 1e-6, 1.0);
   c.recovery_alpha_slow =
       P::getInRange(pnh, "recovery_alpha_slow", c.recovery_alpha_slow, 0.0, 1.0);
   c.recovery_alpha_fast =
@@ -146,12 +154,14 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   if (last_odom_) {
     dt_s = (msg->header.stamp - last_stamp_).toSec();
     if (dt_s < 0.0) {
-      ROS_WARN("rbpf_localizer: time went backwards by %.3f s (bag looped?): starting again as "
-               "at start-up (%s)",
-               -dt_s, configured_pose_ ? "~initial_pose" : "global localization");
+      ROS_WARN(
+          "rbpf_localizer: time went backwards by %.3f s (bag looped?): starting again as "
+          "at start-up (%s)",
+          -dt_s, configured_pose_ ? "~initial_pose" : "global localization");
       // A new filter, not re-spread particles: the same seed and frame count as at start-up, so a
       // replayed bag gives the same estimates.
-      rbpf_ = std::make_unique<localization::RbpfLocalizer>(map_, camera_.camera(), priors_, config_);
+      rbpf_ =
+          std::make_unique<localization::RbpfLocalizer>(map_, camera_.camera(), priors_, config_);
       if (configured_pose_) rbpf_->initGaussian(configured_pose_->first, configured_pose_->second);
       ++resets_;
       dt_s = 0.0;

@@ -2,8 +2,10 @@
 // uniform (global) start, against ground_truth/pose and the bag's true labels.
 //
 //   evaluate_localization --bag FILE [--particles 500] [--filter switching|single] [--threads 1]
-//       [--seed 1] [--pixel_stride 4] [--exponent E] [--min_ess_fraction F] [--mirror_fraction F]
-//       [--global_pool_size N] [--recovery_max_fraction F] [--init global|truth]
+//       [--seed 1] [--pixel_stride 4] [--exponent E] [--neighbourhood_cells C]
+//       [--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W]
+//       [--global_pool_size N] [--global_search_frames K] [--global_neighbourhood_cells C]
+//       [--recovery_max_fraction F] [--init global|truth]
 //       [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
 // (defaults: those of localization::RbpfConfig)
 //
@@ -51,8 +53,10 @@ int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "evaluate_localization --bag FILE [--particles N] [--filter switching|single] "
                    "[--threads T] [--seed N] "
-                   "[--pixel_stride S] [--exponent E] [--min_ess_fraction F] "
-                   "[--recovery_max_fraction F] [--priors_dir "
+                   "[--pixel_stride S] [--exponent E] [--neighbourhood_cells C] "
+                   "[--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W] "
+                   "[--global_pool_size N] [--global_search_frames K] "
+                   "[--global_neighbourhood_cells C] [--recovery_max_fraction F] [--priors_dir "
                    "DIR] [--init global|truth] [--output DIR] [--name LABEL]");
   const std::string bag = args.get("bag", "");
   localization::RbpfConfig cfg;
@@ -66,11 +70,18 @@ int main(int argc, char** argv) {
   cfg.recovery_max_fraction = args.getDouble("recovery_max_fraction", cfg.recovery_max_fraction);
   cfg.min_ess_fraction = args.getDouble("min_ess_fraction", cfg.min_ess_fraction);
   cfg.global_pool_size = static_cast<int>(args.getInt("global_pool_size", cfg.global_pool_size));
+  cfg.global_search_frames =
+      static_cast<int>(args.getInt("global_search_frames", cfg.global_search_frames));
   const std::string priors_dir = args.get("priors_dir", "config/color_priors");
   const std::string output = args.get("output", "results/evaluate_localization");
   const std::string name = args.get("name", fs::path(bag).stem().string());
   const std::string init = args.get("init", "global");
   cfg.mirror_fraction = args.getDouble("mirror_fraction", cfg.mirror_fraction);
+  cfg.mirror_relative_weight = args.getDouble("mirror_relative_weight", cfg.mirror_relative_weight);
+  cfg.likelihood.neighbourhood_cells =
+      static_cast<int>(args.getInt("neighbourhood_cells", cfg.likelihood.neighbourhood_cells));
+  cfg.global_neighbourhood_cells =
+      static_cast<int>(args.getInt("global_neighbourhood_cells", cfg.global_neighbourhood_cells));
   args.finish();
   if (init != "global" && init != "truth") args.fail("--init must be global or truth");
   if (bag.empty()) args.fail("--bag FILE is required");

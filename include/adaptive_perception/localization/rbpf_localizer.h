@@ -35,10 +35,18 @@
 namespace adaptive_perception::localization {
 
 struct ImageLikelihoodConfig {
-  int pixel_stride = 4;  // use every stride-th pixel in x and y (rows staggered)
+  int pixel_stride = 4;  // use every stride-th pixel in x and y (a regular grid)
   double outlier_probability =
       0.1;                 // weight of the uniform density in the pixel likelihood mixture
   double exponent = 0.02;  // the image log-likelihood is multiplied by this
+  // Each grid pixel is scored under the best of the colours the pose predicts at it and at the
+  // grid pixels this many grid steps away (left, right, up, down; neighbourhood_cells *
+  // pixel_stride pixels). A pixel-exact comparison punishes a pose a few centimetres off twice,
+  // where a line is predicted and where it is seen, so near the robot (a low camera, lines a few
+  // decimetres away) it scores below poses that see no line at all, and the particles drift off a
+  // true peak only 1-2 cm wide; the neighbourhood widens the peak. The neighbours are grid pixels,
+  // so it costs no extra rays. 0: the pixel alone (the paper).
+  int neighbourhood_cells = 2;
   void validate() const;
 };
 
@@ -60,17 +68,28 @@ struct RbpfConfig {
   double recovery_max_fraction =
       0.0;  // off by default: as tuned so far it also fires at light switches
   double free_space_margin_m = 0.15;  // uniform particles are drawn where a robot can stand
-  // Global localization from the first image: after initUniform(), the next step() scores this many
-  // uniform poses on a coarse pixel grid (every global_pixel_stride-th pixel) and draws the
-  // particles from them, so that every part of the field is searched, not just where N random
-  // particles happened to land. 0 turns it off (the N uniform particles are used as they are).
+  // Global localization: after initUniform(), the next global_search_frames images score this many
+  // uniform poses on a coarse pixel grid (every global_pixel_stride-th pixel), each pose moved by
+  // the odometry between images and its log-likelihoods summed, and the particles are drawn from
+  // them; so every part of the field is searched, not just where N random particles happened to
+  // land, and the particles commit only once several views agree (one view of lines rarely tells
+  // where on the field the robot is). Until then the particles are redrawn from the pool at every
+  // image. 0 turns the pool off (the N uniform particles are used as they are).
   int global_pool_size = 60000;
+  int global_search_frames = 4;
   // The field's lines are point-symmetric about the centre spot; only the goal and beacon colours
   // tell the halves apart, and they are in view for a few frames only. At each resampling this
   // fraction of the particles is replaced by the point mirror (-x, -y, yaw + pi) of other
   // particles, so the other half's hypothesis stays alive until colours decide between them.
+  // The copies take mirror_relative_weight (below).
   double mirror_fraction = 0.05;
+  // The weight of a mirrored particle relative to the others (0 < w <= 1). Below 1 the mirrors keep
+  // the other half's hypothesis alive without moving weight to it: with weight 1, every resampling
+  // while the view is symmetric moved mirror_fraction of the weight across, and after a few
+  // seconds of lines only the mirror held half the weight and the estimate could flip to it.
+  double mirror_relative_weight = 0.05;
   int global_pixel_stride = 12;
+  int global_neighbourhood_cells = 1;  // neighbourhood_cells on the global search's coarse grid
   int threads = 1;
   std::uint64_t seed = 1;
 
@@ -118,7 +137,7 @@ class RbpfLocalizer {
   double imageLogLikelihood(const math::SE2& pose, const color::SwitchingColorFilter& lighting,
                             const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs,
                             int* used) const;
-  /// True from initUniform() until the next step() has drawn the particles from the pool.
+  /// True from initUniform() until step() has scored global_search_frames images on the pool.
   bool globalSearchPending() const { return global_pending_; }
 
   const std::vector<Particle>& particles() const { return particles_; }
@@ -129,9 +148,9 @@ class RbpfLocalizer {
     double cluster_weight = 0.0;  // share of the weight in the main cluster
     double spread_m = 0.0;        // sqrt(trace of the x-y covariance) of ALL particles
   };
-  /// The pose estimate: the weighted mean of the main cluster (the heaviest cell of a 0.25 m x 45
-  /// degree grid and the particles within 0.5 m and 0.6 rad of it), not of all particles, whose
-  /// mean may lie between two hypotheses.
+  /// The pose estimate: the weighted mean of the main cluster (the heaviest 3x3x3 block of a
+  /// 0.25 m x 45 degree grid, and the particles within 0.5 m and 0.6 rad of its mean), not of all
+  /// particles, whose mean may lie between two hypotheses.
   PoseEstimate estimate() const;
   /// The particle with the highest weight.
   const Particle& best() const;
@@ -145,13 +164,14 @@ class RbpfLocalizer {
   std::vector<size_t> mainCluster() const;
   math::SE2 weightedMean(const std::vector<size_t>& idx) const;
   Eigen::Matrix3d covarianceAbout(const std::vector<size_t>& idx, const math::SE2& mean) const;
-  double logLikelihoodAt(const std::vector<world::PixelCoord>& pixels,
-                         const std::vector<Eigen::Vector3d>& yuv, const math::SE2& pose,
-                         const color::SwitchingColorFilter& lighting,
+  double logLikelihoodAt(const std::vector<world::PixelCoord>& pixels, int grid_cols,
+                         int neighbourhood_cells, const std::vector<Eigen::Vector3d>& yuv,
+                         const math::SE2& pose, const color::SwitchingColorFilter& lighting,
                          const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs,
                          int* used) const;
-  void globalSearch(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
-                    std::uint64_t frame_seed);
+  /// One image of the global search; returns true once the pool has seen global_search_frames.
+  bool globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv,
+                    const Eigen::Isometry3d& base_to_optical, std::uint64_t frame_seed);
   template <typename F>
   void parallelFor(size_t n, F&& f) const;
 
@@ -163,12 +183,16 @@ class RbpfLocalizer {
   std::vector<Particle> particles_;
   std::vector<double> weights_;
   std::vector<world::PixelCoord> pixels_;
+  int grid_cols_ = 0;                       // pixels_ is a grid_cols_-wide row-major grid
   std::vector<Eigen::Vector3d> pixel_yuv_;  // the current image at pixels_
   std::vector<int> pixels_used_;
   std::uint64_t frame_ = 0;
   double w_slow_ = 0.0, w_fast_ = 0.0;
   bool have_average_ = false;
   bool global_pending_ = false;
+  std::vector<math::SE2> pool_;  // the global search's poses, moved by odometry
+  std::vector<double> pool_ll_;  // and their summed log-likelihoods
+  int pool_frames_ = 0;          // images scored on the pool so far
 };
 
 }  // namespace adaptive_perception::localization

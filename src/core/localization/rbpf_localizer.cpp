@@ -37,6 +37,9 @@ void ImageLikelihoodConfig::validate() const {
   if (!(exponent > 0.0 && exponent <= 1.0))
     throw std::invalid_argument("exponent = " + std::to_string(exponent) +
                                 " (allowed: 0 < e <= 1)");
+  if (neighbourhood_cells < 0 || neighbourhood_cells > 8)
+    throw std::invalid_argument("neighbourhood_cells = " + std::to_string(neighbourhood_cells) +
+                                " (allowed: 0..8)");
 }
 
 color::ColorModelConfig RbpfConfig::rbpfModelConfig() {
@@ -57,12 +60,21 @@ void RbpfConfig::validate() const {
   if (global_pool_size < 0 || global_pool_size > 10000000)
     throw std::invalid_argument("global_pool_size = " + std::to_string(global_pool_size) +
                                 " (allowed: 0..10000000)");
+  if (global_search_frames < 1 || global_search_frames > 100)
+    throw std::invalid_argument("global_search_frames = " + std::to_string(global_search_frames) +
+                                " (allowed: 1..100)");
   if (global_pixel_stride < 1 || global_pixel_stride > 64)
     throw std::invalid_argument("global_pixel_stride = " + std::to_string(global_pixel_stride) +
                                 " (allowed: 1..64)");
+  if (global_neighbourhood_cells < 0 || global_neighbourhood_cells > 8)
+    throw std::invalid_argument("global_neighbourhood_cells = " +
+                                std::to_string(global_neighbourhood_cells) + " (allowed: 0..8)");
   if (!(mirror_fraction >= 0.0 && mirror_fraction <= 0.5))
     throw std::invalid_argument("mirror_fraction = " + std::to_string(mirror_fraction) +
                                 " (allowed: 0..0.5)");
+  if (!(mirror_relative_weight > 0.0 && mirror_relative_weight <= 1.0))
+    throw std::invalid_argument("mirror_relative_weight = " +
+                                std::to_string(mirror_relative_weight) + " (allowed: 0 < w <= 1)");
   if (!(min_ess_fraction >= 0.0 && min_ess_fraction <= 1.0))
     throw std::invalid_argument("min_ess_fraction = " + std::to_string(min_ess_fraction) +
                                 " (allowed: 0..1)");
@@ -75,10 +87,13 @@ void RbpfConfig::validate() const {
   switching.validate();
 }
 
-std::vector<world::PixelCoord> pixelGrid(const world::PinholeCamera& camera, int s) {
+// A regular grid of every s-th pixel in x and y, row-major; *cols is its width.
+std::vector<world::PixelCoord> pixelGrid(const world::PinholeCamera& camera, int s, int* cols) {
   std::vector<world::PixelCoord> pixels;
+  *cols = 0;
+  for (int u = s / 2; u < camera.width_px; u += s) ++*cols;
   for (int v = s / 2; v < camera.height_px; v += s)
-    for (int u = ((v / s) % 2) * (s / 2); u < camera.width_px; u += s)
+    for (int u = s / 2; u < camera.width_px; u += s)
       pixels.push_back({static_cast<std::uint16_t>(u), static_cast<std::uint16_t>(v)});
   return pixels;
 }
@@ -98,7 +113,7 @@ RbpfLocalizer::RbpfLocalizer(const world::FieldMap& map, const world::PinholeCam
                              const RbpfConfig& config)
     : map_(map), renderer_(map, camera), priors_(priors), config_(config), rng_(config.seed) {
   config_.validate();
-  pixels_ = pixelGrid(camera, config_.likelihood.pixel_stride);
+  pixels_ = pixelGrid(camera, config_.likelihood.pixel_stride, &grid_cols_);
   initUniform();
 }
 
@@ -120,6 +135,9 @@ void RbpfLocalizer::initUniform() {
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   have_average_ = false;
   global_pending_ = config_.global_pool_size > 0;
+  pool_.clear();
+  pool_ll_.clear();
+  pool_frames_ = 0;
 }
 
 void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& cov) {
@@ -139,10 +157,12 @@ double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose,
                                          const color::SwitchingColorFilter& lighting,
                                          const Eigen::Isometry3d& base_to_optical,
                                          color::ColorObservation* obs_out, int* used_out) const {
-  return logLikelihoodAt(pixels_, pixel_yuv_, pose, lighting, base_to_optical, obs_out, used_out);
+  return logLikelihoodAt(pixels_, grid_cols_, config_.likelihood.neighbourhood_cells, pixel_yuv_,
+                         pose, lighting, base_to_optical, obs_out, used_out);
 }
 
-double RbpfLocalizer::logLikelihoodAt(const std::vector<world::PixelCoord>& pixels,
+double RbpfLocalizer::logLikelihoodAt(const std::vector<world::PixelCoord>& pixels, int grid_cols,
+                                      int neighbourhood_cells,
                                       const std::vector<Eigen::Vector3d>& pixel_yuv,
                                       const math::SE2& pose,
                                       const color::SwitchingColorFilter& lighting,
@@ -151,6 +171,8 @@ double RbpfLocalizer::logLikelihoodAt(const std::vector<world::PixelCoord>& pixe
   const Eigen::Isometry3d cam = world::planarToIsometry(pose) * base_to_optical;
   std::vector<std::uint8_t> labels;
   renderer_.renderPixels(cam, pixels, &labels);
+  const int cols = grid_cols, rows = static_cast<int>(pixels.size()) / std::max(grid_cols, 1);
+  const int d = neighbourhood_cells;
   // Eq. (9) under the predicted lighting, in a mixture with the uniform density; eq. (16) is the
   // (tempered) product over the pixels. With several lighting modes the image likelihood is the
   // mixture over the modes with their predicted probabilities (the mode is part of the lighting
@@ -172,19 +194,37 @@ double RbpfLocalizer::logLikelihoodAt(const std::vector<world::PixelCoord>& pixe
   obs.counts.assign(mc.numColors(), 0);
   obs.means.assign(mc.numColors(), Eigen::Vector3d::Zero());
   obs.variances.assign(mc.numColors(), Eigen::Vector3d::Zero());
-  double background = 0.0;
+  // A pixel's candidates: the colours predicted at it and at the grid pixels d steps away; it
+  // scores the best of them, background scoring the uniform density.
+  std::vector<double> pixel_best(lighting.numModes());
   for (size_t j = 0; j < pixels.size(); ++j) {
+    std::uint8_t cand[5];
+    int nc = 0;
+    cand[nc++] = labels[j];
+    if (d > 0) {
+      const int r = static_cast<int>(j) / cols, c = static_cast<int>(j) % cols;
+      const int around[4] = {r * cols + std::max(c - d, 0), r * cols + std::min(c + d, cols - 1),
+                             std::max(r - d, 0) * cols + c, std::min(r + d, rows - 1) * cols + c};
+      for (int n : around)
+        if (std::find(cand, cand + nc, labels[n]) == cand + nc) cand[nc++] = labels[n];
+    }
+    std::fill(pixel_best.begin(), pixel_best.end(), -std::numeric_limits<double>::infinity());
+    for (int c = 0; c < nc; ++c) {
+      const int k = slot[cand[c]];
+      for (int m = 0; m < lighting.numModes(); ++m) {
+        // Background (or an unmodelled colour): the uniform density. Every pixel must contribute,
+        // or poses that see more background would score higher for having fewer terms.
+        double v = kLogUniformYuv;
+        if (k >= 0) {
+          const double a = log_in + cls[m].logLikelihood(pixel_yuv[j], k);
+          v = std::max(a, log_out) + std::log1p(std::exp(-std::fabs(a - log_out)));
+        }
+        pixel_best[m] = std::max(pixel_best[m], v);
+      }
+    }
+    for (int m = 0; m < lighting.numModes(); ++m) mode_ll[m] += pixel_best[m];
     const int k = slot[labels[j]];
-    if (k < 0) {
-      // Background (or an unmodelled colour) under this pose: the uniform density. Every pixel must
-      // contribute, or poses that see more background would score higher for having fewer terms.
-      background += kLogUniformYuv;
-      continue;
-    }
-    for (int m = 0; m < lighting.numModes(); ++m) {
-      const double a = log_in + cls[m].logLikelihood(pixel_yuv[j], k);
-      mode_ll[m] += std::max(a, log_out) + std::log1p(std::exp(-std::fabs(a - log_out)));
-    }
+    if (k < 0) continue;
     ++used;
     ++obs.counts[k];
     obs.means[k] += pixel_yuv[j];
@@ -195,7 +235,7 @@ double RbpfLocalizer::logLikelihoodAt(const std::vector<world::PixelCoord>& pixe
   double sum = 0.0;
   for (int m = 0; m < lighting.numModes(); ++m)
     sum += std::exp(std::log(std::max(mode_p[m], 1e-300)) + mode_ll[m] - best);
-  const double ll = background + best + std::log(sum);
+  const double ll = best + std::log(sum);
   for (int k = 0; k < mc.numColors(); ++k)
     if (obs.counts[k] > 0) obs.means[k] /= obs.counts[k];
   if (obs_out) *obs_out = std::move(obs);
@@ -240,31 +280,42 @@ void RbpfLocalizer::parallelFor(size_t n, F&& f) const {
   for (auto& th : pool) th.join();
 }
 
-void RbpfLocalizer::globalSearch(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
+bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv,
+                                 const Eigen::Isometry3d& base_to_optical,
                                  std::uint64_t frame_seed) {
-  // Score a large pool of uniform poses on a coarse pixel grid under the prior lighting, and draw
-  // the particles from it with the tempering that keeps min_ess_fraction of them distinct.
+  // Score the pool on a coarse pixel grid under the prior lighting, summing over images, and draw
+  // the particles from it with the tempering that keeps half of them distinct.
+  int coarse_cols = 0;
   const std::vector<world::PixelCoord> coarse =
-      pixelGrid(renderer_.camera(), config_.global_pixel_stride);
+      pixelGrid(renderer_.camera(), config_.global_pixel_stride, &coarse_cols);
   const std::vector<Eigen::Vector3d> values = pixelValues(yuv, coarse);
   const color::SwitchingColorFilter lighting(priors_, config_.model, config_.switching);
   const size_t n = static_cast<size_t>(config_.global_pool_size);
-  std::vector<math::SE2> pool(n);
-  std::vector<double> ll(n);
+  const bool first = pool_.empty();
+  if (first) {
+    pool_.resize(n);
+    pool_ll_.assign(n, 0.0);
+  }
   parallelFor(n, [&](size_t i) {
-    // Pairs of point-mirrored poses (see mirror_fraction): both halves are searched alike.
-    math::Rng rng(mix(frame_seed ^ 0x5bd1e995ull, i / 2));
-    pool[i] = uniformPose(rng);
-    if (i % 2 == 1)
-      pool[i] = math::SE2(-pool[i].x_m, -pool[i].y_m, math::wrapAngle(pool[i].yaw_rad + math::kPi));
-    ll[i] = logLikelihoodAt(coarse, values, pool[i], lighting, base_to_optical, nullptr, nullptr);
+    if (first) {
+      // Pairs of point-mirrored poses (see mirror_fraction): both halves are searched alike.
+      math::Rng rng(mix(frame_seed ^ 0x5bd1e995ull, i / 2));
+      pool_[i] = uniformPose(rng);
+      if (i % 2 == 1)
+        pool_[i] =
+            math::SE2(-pool_[i].x_m, -pool_[i].y_m, math::wrapAngle(pool_[i].yaw_rad + math::kPi));
+    } else {
+      pool_[i] = pool_[i] * odom_delta;
+    }
+    pool_ll_[i] += logLikelihoodAt(coarse, coarse_cols, config_.global_neighbourhood_cells, values,
+                                   pool_[i], lighting, base_to_optical, nullptr, nullptr);
   });
+  ++pool_frames_;
   std::vector<double> w;
-  // Keep half the particles effective: one image rarely tells where on the field the robot is.
   const double target = 0.5 * config_.particles;
   auto weigh = [&](double lambda) {
     std::vector<double> logw(n);
-    for (size_t i = 0; i < n; ++i) logw[i] = lambda * ll[i];
+    for (size_t i = 0; i < n; ++i) logw[i] = lambda * pool_ll_[i];
     math::normalizeLogWeights(logw, &w);
     return math::effectiveSampleSize(w);
   };
@@ -281,9 +332,16 @@ void RbpfLocalizer::globalSearch(const cv::Mat& yuv, const Eigen::Isometry3d& ba
   const auto idx =
       math::resampleIndices(w, config_.particles, math::ResamplingScheme::kSystematic, rng_);
   particles_.clear();
-  for (size_t i : idx) particles_.push_back({pool[i], lighting, 0.0});
+  for (size_t i : idx) particles_.push_back({pool_[i], lighting, 0.0});
   weights_.assign(particles_.size(), 1.0 / particles_.size());
+  if (pool_frames_ < config_.global_search_frames) return false;
   global_pending_ = false;
+  pool_.clear();
+  pool_.shrink_to_fit();
+  pool_ll_.clear();
+  pool_ll_.shrink_to_fit();
+  pool_frames_ = 0;
+  return true;
 }
 
 RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, double dt_s,
@@ -291,11 +349,19 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
                                               const Eigen::Isometry3d& base_to_optical) {
   setImage(yuv);
   const std::uint64_t frame_seed = mix(config_.seed, ++frame_);
-  if (global_pending_) globalSearch(yuv, base_to_optical, frame_seed);
-  pixels_used_.assign(particles_.size(), 0);
-  parallelFor(particles_.size(),
-              [&](size_t i) { weighParticle(i, odom_delta, dt_s, base_to_optical, frame_seed); });
   StepResult r;
+  bool moved = false;  // the particles already carry this image's odometry (drawn from the pool)
+  if (global_pending_) {
+    moved = true;
+    if (!globalSearch(odom_delta, yuv, base_to_optical, frame_seed)) {
+      r.effective_sample_size = math::effectiveSampleSize(weights_);
+      return r;  // still searching: the particles show the pool's current belief
+    }
+  }
+  pixels_used_.assign(particles_.size(), 0);
+  parallelFor(particles_.size(), [&](size_t i) {
+    weighParticle(i, moved ? math::SE2() : odom_delta, dt_s, base_to_optical, frame_seed);
+  });
   // Adaptive tempering: when this image alone would leave fewer than min_ess_fraction * N
   // effective particles, its likelihood is flattened by the largest factor lambda <= 1 that keeps
   // them (bisection). A global start or a kidnap then narrows over several frames instead of
@@ -372,6 +438,12 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
                         math::wrapAngle(src.pose.yaw_rad + math::kPi));
       dst.lighting = src.lighting;
       dst.pose = m;
+      weights_[&dst - particles_.data()] = config_.mirror_relative_weight / particles_.size();
+    }
+    if (mirror > 0) {
+      double total = 0.0;
+      for (double w : weights_) total += w;
+      for (double& w : weights_) w /= total;
     }
     r.mirrored = mirror;
   }
@@ -379,22 +451,47 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
 }
 
 std::vector<size_t> RbpfLocalizer::mainCluster() const {
-  // The heaviest cell of a coarse (x, y, yaw) grid, then every particle near that cell's mean.
+  // The cell of a coarse (x, y, yaw) grid with the most weight in it and its 26 neighbours (a
+  // hypothesis spread over a few cells must outweigh a compact one that holds less weight), then
+  // every particle near the weighted mean of that block.
   constexpr double kCell = 0.25, kRadius = 0.5, kYaw = 0.6;
-  std::map<std::tuple<int, int, int>, double> cells;
+  constexpr int kYawBins = 8;
+  using Key = std::tuple<int, int, int>;
+  std::map<Key, double> cells;
   auto key = [&](const math::SE2& p) {
+    const int b =
+        static_cast<int>(std::floor((p.yaw_rad + math::kPi) / (2.0 * math::kPi / kYawBins)));
     return std::make_tuple(static_cast<int>(std::floor(p.x_m / kCell)),
                            static_cast<int>(std::floor(p.y_m / kCell)),
-                           static_cast<int>(std::floor((p.yaw_rad + math::kPi) / (math::kPi / 4))));
+                           ((b % kYawBins) + kYawBins) % kYawBins);
+  };
+  auto near = [&](const Key& a, const Key& b) {
+    const int dyaw = std::abs(std::get<2>(a) - std::get<2>(b));
+    return std::abs(std::get<0>(a) - std::get<0>(b)) <= 1 &&
+           std::abs(std::get<1>(a) - std::get<1>(b)) <= 1 && std::min(dyaw, kYawBins - dyaw) <= 1;
   };
   for (size_t i = 0; i < particles_.size(); ++i) cells[key(particles_[i].pose)] += weights_[i];
-  const auto top = std::max_element(cells.begin(), cells.end(), [](const auto& a, const auto& b) {
-                     return a.second < b.second;
-                   })->first;
-  std::vector<size_t> in_cell;
+  Key top{};
+  double top_weight = -1.0;
+  for (const auto& [k, w] : cells) {
+    double block = 0.0;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dyaw = -1; dyaw <= 1; ++dyaw) {
+          const auto it =
+              cells.find(std::make_tuple(std::get<0>(k) + dx, std::get<1>(k) + dy,
+                                         (std::get<2>(k) + dyaw + kYawBins) % kYawBins));
+          if (it != cells.end()) block += it->second;
+        }
+    if (block > top_weight) {
+      top_weight = block;
+      top = k;
+    }
+  }
+  std::vector<size_t> in_block;
   for (size_t i = 0; i < particles_.size(); ++i)
-    if (key(particles_[i].pose) == top) in_cell.push_back(i);
-  const math::SE2 c = weightedMean(in_cell);
+    if (near(key(particles_[i].pose), top)) in_block.push_back(i);
+  const math::SE2 c = weightedMean(in_block);
   std::vector<size_t> out;
   for (size_t i = 0; i < particles_.size(); ++i) {
     const math::SE2& p = particles_[i].pose;

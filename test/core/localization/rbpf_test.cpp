@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "adaptive_perception/color/color_space.h"
@@ -146,4 +147,124 @@ TEST(Rbpf, UniformStartCoversTheField) {
   // sqrt(5.7^2/12 + 3.9^2/12) = 1.99 m (the goal mouths cut out change it by less than 0.01 m).
   EXPECT_NEAR(e.spread_m, 1.99, 0.08);
   EXPECT_LT(e.cluster_weight, 0.2);
+}
+
+// The neighbourhood widens the likelihood's peak: a pose 3 cm off loses far less against the true
+// pose than under the pixel-exact comparison (which punishes every line twice, where it is
+// predicted and where it is seen), while poses 30 cm off lose against the true pose about as
+// often as before (not always: a shift along a line that fills the view does not show).
+TEST(Rbpf, NeighbourhoodWidensTheTruePeak) {
+  Scene s;
+  sim::FieldSimConfig sc;
+  sc.seed = 2;
+  sim::FieldSimulator sim(s.map, s.cam, s.head, sc);
+  RbpfConfig exact_cfg, wide_cfg;
+  exact_cfg.likelihood.neighbourhood_cells = 0;
+  wide_cfg.likelihood.neighbourhood_cells = 2;
+  RbpfLocalizer exact(s.map, s.cam, s.priors, exact_cfg), wide(s.map, s.cam, s.priors, wide_cfg);
+  const color::SwitchingColorFilter lighting(s.priors, exact_cfg.model, exact_cfg.switching);
+  double drop_exact = 0.0, drop_wide = 0.0;
+  int frames = 0, wide_wins = 0, exact_wins = 0;
+  for (double t = 0.5; t < 20.0; t += 0.5) {
+    sim.advanceTo(t);
+    const auto img = sim.renderCamera();
+    int white = 0;
+    for (size_t k = 0; k < img.labels.total(); ++k) white += img.labels.data[k] == world::kWhite;
+    if (white < 500) continue;  // lines in view: the pose shows in the image
+    const cv::Mat yuv = color::unpackUyvy(img.uyvy);
+    exact.setImage(yuv);
+    wide.setImage(yuv);
+    const Eigen::Isometry3d b2o = s.head.baseToOptical(sim.state().pan_rad, sim.state().tilt_rad);
+    const math::SE2 truth = sim.state().true_pose;
+    auto ll = [&](const RbpfLocalizer& r, const math::SE2& off) {
+      return r.imageLogLikelihood(truth * off, lighting, b2o, nullptr, nullptr);
+    };
+    const math::SE2 near(0.03, 0.0, 0.0);
+    drop_exact += ll(exact, math::SE2()) - ll(exact, near);
+    drop_wide += ll(wide, math::SE2()) - ll(wide, near);
+    bool wins = true, wins_exact = true;
+    for (const math::SE2& off : {math::SE2(0.3, 0, 0), math::SE2(-0.3, 0, 0), math::SE2(0, 0.3, 0),
+                                 math::SE2(0, -0.3, 0)}) {
+      wins &= ll(wide, math::SE2()) > ll(wide, off);
+      wins_exact &= ll(exact, math::SE2()) > ll(exact, off);
+    }
+    wide_wins += wins;
+    exact_wins += wins_exact;
+    ++frames;
+  }
+  ASSERT_GE(frames, 5);
+  EXPECT_GT(drop_exact, 0.0);
+  EXPECT_LT(drop_wide, 0.5 * drop_exact) << "exact " << drop_exact << " wide " << drop_wide;
+  EXPECT_GE(wide_wins, exact_wins - 0.1 * frames)
+      << "the true pose wins in " << wide_wins << " (wide) and " << exact_wins << " (exact) of "
+      << frames << " frames";
+  EXPECT_GE(wide_wins, frames / 2);
+}
+
+// The global search scores the pool over global_search_frames images before the particles commit;
+// until then each image redraws them from the pool.
+TEST(Rbpf, GlobalSearchSpansTheConfiguredFrames) {
+  Scene s;
+  sim::FieldSimConfig sc;
+  sim::FieldSimulator sim(s.map, s.cam, s.head, sc);
+  RbpfConfig cfg;
+  cfg.particles = 100;
+  cfg.global_pool_size = 2000;
+  cfg.global_search_frames = 3;
+  RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
+  const double uniform_spread = rbpf.estimate().spread_m;
+  math::SE2 prev_odom = sim.state().odom_pose;
+  for (int k = 1; k <= 3; ++k) {
+    sim.advanceTo(0.25 * k);
+    const auto img = sim.renderCamera();
+    rbpf.step(math::between(prev_odom, sim.state().odom_pose), 0.25, color::unpackUyvy(img.uyvy),
+              s.head.baseToOptical(sim.state().pan_rad, sim.state().tilt_rad));
+    prev_odom = sim.state().odom_pose;
+    EXPECT_EQ(rbpf.globalSearchPending(), k < 3) << "after image " << k;
+    EXPECT_EQ(rbpf.particles().size(), 100u);
+  }
+  EXPECT_LT(rbpf.estimate().spread_m, uniform_spread);
+  cfg.global_search_frames = 0;
+  EXPECT_THROW(RbpfLocalizer(s.map, s.cam, s.priors, cfg), std::invalid_argument);
+}
+
+// Mirrored particles keep the other half's hypothesis alive without moving weight to it: after a
+// resampling each weighs mirror_relative_weight w of the others: 1 / (N - m + m w) against
+// w / (N - m + m w) for the m mirrored.
+TEST(Rbpf, MirroredParticlesCarryTheirRelativeWeight) {
+  Scene s;
+  sim::FieldSimConfig sc;
+  sim::FieldSimulator sim(s.map, s.cam, s.head, sc);
+  RbpfConfig cfg;
+  cfg.particles = 400;
+  cfg.resample_ess_fraction = 1.0;  // resample at every image
+  cfg.mirror_fraction = 0.1;
+  cfg.mirror_relative_weight = 0.05;
+  RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
+  const math::SE2 truth = sim.state().true_pose;
+  rbpf.initGaussian(truth, Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal());
+  sim.advanceTo(0.25);
+  const auto img = sim.renderCamera();
+  const auto r = rbpf.step(math::SE2(), 0.25, color::unpackUyvy(img.uyvy),
+                           s.head.baseToOptical(sim.state().pan_rad, sim.state().tilt_rad));
+  ASSERT_TRUE(r.resampled);
+  EXPECT_EQ(r.mirrored, 40);
+  // m particles were overwritten by a mirror (a copy of a copy goes back to the true half).
+  const double max_w = *std::max_element(rbpf.weights().begin(), rbpf.weights().end());
+  int m = 0;
+  for (double x : rbpf.weights()) m += x < 0.5 * max_w;
+  ASSERT_GT(m, 30);  // 40 draws of a destination, a few of them the same particle
+  ASSERT_LE(m, 40);
+  const double n = cfg.particles, w = cfg.mirror_relative_weight;
+  for (size_t i = 0; i < rbpf.particles().size(); ++i) {
+    const math::SE2& p = rbpf.particles()[i].pose;
+    const bool low = rbpf.weights()[i] < 0.5 * max_w;
+    EXPECT_NEAR(rbpf.weights()[i], (low ? w : 1.0) / (n - m + m * w), 1e-12);
+    if (std::hypot(p.x_m + truth.x_m, p.y_m + truth.y_m) < 0.2) {
+      EXPECT_TRUE(low);
+    }
+  }
+  double total = 0.0;
+  for (double x : rbpf.weights()) total += x;
+  EXPECT_NEAR(total, 1.0, 1e-9);
 }
