@@ -30,15 +30,17 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   c.likelihood.outlier_probability =
       P::getInRange(pnh, "outlier_probability", c.likelihood.outlier_probability, 0.0, 0.999);
   c.likelihood.exponent = P::getInRange(pnh, "exponent", c.likelihood.exponent, 1e-6, 1.0);
-  c.likelihood.neighbourhood_cells =
-      P::getInRange(pnh, "neighbourhood_cells", c.likelihood.neighbourhood_cells, 0, 8);
+  c.likelihood.position_tolerance_m =
+      P::getInRange(pnh, "position_tolerance_m", c.likelihood.position_tolerance_m, 0.0, 1.0);
+  c.likelihood.heading_tolerance_rad =
+      P::getInRange(pnh, "heading_tolerance_rad", c.likelihood.heading_tolerance_rad, 0.0, 0.5);
+  c.likelihood.max_neighbourhood_cells =
+      P::getInRange(pnh, "max_neighbourhood_cells", c.likelihood.max_neighbourhood_cells, 0, 16);
   c.min_ess_fraction = P::getInRange(pnh, "min_ess_fraction", c.min_ess_fraction, 0.0, 1.0);
   c.resample_ess_fraction =
       P::getInRange(pnh, "resample_ess_fraction", c.resample_ess_fraction, 1e-3, 1.0);
   c.global_pool_size = P::getInRange(pnh, "global_pool_size", c.global_pool_size, 0, 10000000);
   c.global_pixel_stride = P::getInRange(pnh, "global_pixel_stride", c.global_pixel_stride, 1, 64);
-  c.global_neighbourhood_cells =
-      P::getInRange(pnh, "global_neighbourhood_cells", c.global_neighbourhood_cells, 0, 8);
   c.global_search_frames =
       P::getInRange(pnh, "global_search_frames", c.global_search_frames, 1, 100);
   c.mirror_fraction = P::getInRange(pnh, "mirror_fraction", c.mirror_fraction, 0.0, 0.5);

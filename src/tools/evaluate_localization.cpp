@@ -2,9 +2,10 @@
 // uniform (global) start, against ground_truth/pose and the bag's true labels.
 //
 //   evaluate_localization --bag FILE [--particles 500] [--filter switching|single] [--threads 1]
-//       [--seed 1] [--pixel_stride 4] [--exponent E] [--neighbourhood_cells C]
+//       [--seed 1] [--pixel_stride 4] [--exponent E] [--position_tolerance_m M]
+//       [--heading_tolerance_rad R] [--max_neighbourhood_cells C]
 //       [--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W]
-//       [--global_pool_size N] [--global_search_frames K] [--global_neighbourhood_cells C]
+//       [--global_pool_size N] [--global_search_frames K]
 //       [--recovery_max_fraction F] [--init global|truth]
 //       [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
 // (defaults: those of localization::RbpfConfig)
@@ -53,10 +54,11 @@ int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "evaluate_localization --bag FILE [--particles N] [--filter switching|single] "
                    "[--threads T] [--seed N] "
-                   "[--pixel_stride S] [--exponent E] [--neighbourhood_cells C] "
+                   "[--pixel_stride S] [--exponent E] [--position_tolerance_m M] "
+                   "[--heading_tolerance_rad R] [--max_neighbourhood_cells C] "
                    "[--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W] "
                    "[--global_pool_size N] [--global_search_frames K] "
-                   "[--global_neighbourhood_cells C] [--recovery_max_fraction F] [--priors_dir "
+                   "[--recovery_max_fraction F] [--priors_dir "
                    "DIR] [--init global|truth] [--output DIR] [--name LABEL]");
   const std::string bag = args.get("bag", "");
   localization::RbpfConfig cfg;
@@ -78,10 +80,12 @@ int main(int argc, char** argv) {
   const std::string init = args.get("init", "global");
   cfg.mirror_fraction = args.getDouble("mirror_fraction", cfg.mirror_fraction);
   cfg.mirror_relative_weight = args.getDouble("mirror_relative_weight", cfg.mirror_relative_weight);
-  cfg.likelihood.neighbourhood_cells =
-      static_cast<int>(args.getInt("neighbourhood_cells", cfg.likelihood.neighbourhood_cells));
-  cfg.global_neighbourhood_cells =
-      static_cast<int>(args.getInt("global_neighbourhood_cells", cfg.global_neighbourhood_cells));
+  cfg.likelihood.position_tolerance_m =
+      args.getDouble("position_tolerance_m", cfg.likelihood.position_tolerance_m);
+  cfg.likelihood.heading_tolerance_rad =
+      args.getDouble("heading_tolerance_rad", cfg.likelihood.heading_tolerance_rad);
+  cfg.likelihood.max_neighbourhood_cells = static_cast<int>(
+      args.getInt("max_neighbourhood_cells", cfg.likelihood.max_neighbourhood_cells));
   args.finish();
   if (init != "global" && init != "truth") args.fail("--init must be global or truth");
   if (bag.empty()) args.fail("--bag FILE is required");

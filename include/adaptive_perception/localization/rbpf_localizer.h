@@ -40,13 +40,19 @@ struct ImageLikelihoodConfig {
       0.1;                 // weight of the uniform density in the pixel likelihood mixture
   double exponent = 0.02;  // the image log-likelihood is multiplied by this
   // Each grid pixel is scored under the best of the colours the pose predicts at it and at the
-  // grid pixels this many grid steps away (left, right, up, down; neighbourhood_cells *
-  // pixel_stride pixels). A pixel-exact comparison punishes a pose a few centimetres off twice,
-  // where a line is predicted and where it is seen, so near the robot (a low camera, lines a few
-  // decimetres away) it scores below poses that see no line at all, and the particles drift off a
-  // true peak only 1-2 cm wide; the neighbourhood widens the peak. The neighbours are grid pixels,
-  // so it costs no extra rays. 0: the pixel alone (the paper).
-  int neighbourhood_cells = 2;
+  // grid pixels a pose error of position_tolerance_m and heading_tolerance_rad would move it to
+  // (left/right and up/down, in whole grid steps, at most max_neighbourhood_cells). A pixel-exact
+  // comparison punishes a pose a few centimetres off twice, where a line is predicted and where it
+  // is seen, so near the robot (a low camera, lines a few decimetres away) it scores below poses
+  // that see no line at all, and the particles drift off a true peak only 1-2 cm wide. The
+  // offsets follow the ground distance each pixel looks at (the camera's height and tilt are the
+  // same for every particle, so they are computed once per image): a near pixel moves far in the
+  // image for a small pose error, a far one hardly at all, and a fixed image-space neighbourhood
+  // would either not help near or blur the range of far lines. The neighbours are grid pixels, so
+  // it costs no extra rays. Tolerance 0: the pixel alone (the paper).
+  double position_tolerance_m = 0.05;
+  double heading_tolerance_rad = 0.02;
+  int max_neighbourhood_cells = 4;
   void validate() const;
 };
 
@@ -89,15 +95,32 @@ struct RbpfConfig {
   // seconds of lines only the mirror held half the weight and the estimate could flip to it.
   double mirror_relative_weight = 0.05;
   int global_pixel_stride = 12;
-  int global_neighbourhood_cells = 1;  // neighbourhood_cells on the global search's coarse grid
   int threads = 1;
   std::uint64_t seed = 1;
 
   /// The colour model for the particles: the default colours with a lower pixel minimum, as each
-  /// particle sees only the subsample.
+  /// particle sees only the subsample, and an observation noise floor of 25 levels^2 (5 levels sd,
+  /// not 2): a particle's labels come from a pose that is a few centimetres off, so its colour
+  /// means mix in the neighbouring colour, and trusted at 2 levels they made the particles'
+  /// lighting jitter apart by several tempered nats per image, enough to hand the weight to a
+  /// wrong hypothesis (on the bright bag a global start converged for 1 seed in 5 with 4, 3 in 5
+  /// with 25, 1 in 5 with 100).
   static color::ColorModelConfig rbpfModelConfig();
   void validate() const;
 };
+
+/// How many grid steps a pixel's neighbours lie left/right (du) and up/down (dv).
+struct NeighbourOffset {
+  std::uint8_t du = 0, dv = 0;
+};
+
+/// Per pixel of a `stride`-spaced grid, the grid steps that a pose error of
+/// config.position_tolerance_m / heading_tolerance_rad moves it by, for a camera at
+/// base_to_optical above the ground plane z = 0 of base_link.
+std::vector<NeighbourOffset> neighbourOffsets(const world::PinholeCamera& camera,
+                                              const std::vector<world::PixelCoord>& pixels,
+                                              int stride, const Eigen::Isometry3d& base_to_optical,
+                                              const ImageLikelihoodConfig& config);
 
 struct Particle {
   math::SE2 pose;
@@ -165,8 +188,9 @@ class RbpfLocalizer {
   math::SE2 weightedMean(const std::vector<size_t>& idx) const;
   Eigen::Matrix3d covarianceAbout(const std::vector<size_t>& idx, const math::SE2& mean) const;
   double logLikelihoodAt(const std::vector<world::PixelCoord>& pixels, int grid_cols,
-                         int neighbourhood_cells, const std::vector<Eigen::Vector3d>& yuv,
-                         const math::SE2& pose, const color::SwitchingColorFilter& lighting,
+                         const std::vector<NeighbourOffset>& offsets,
+                         const std::vector<Eigen::Vector3d>& yuv, const math::SE2& pose,
+                         const color::SwitchingColorFilter& lighting,
                          const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs,
                          int* used) const;
   /// One image of the global search; returns true once the pool has seen global_search_frames.
@@ -183,7 +207,9 @@ class RbpfLocalizer {
   std::vector<Particle> particles_;
   std::vector<double> weights_;
   std::vector<world::PixelCoord> pixels_;
-  int grid_cols_ = 0;                       // pixels_ is a grid_cols_-wide row-major grid
+  int grid_cols_ = 0;                     // pixels_ is a grid_cols_-wide row-major grid
+  std::vector<NeighbourOffset> offsets_;  // for the camera at offsets_camera_ (step())
+  Eigen::Isometry3d offsets_camera_ = Eigen::Isometry3d(Eigen::Matrix4d::Zero());
   std::vector<Eigen::Vector3d> pixel_yuv_;  // the current image at pixels_
   std::vector<int> pixels_used_;
   std::uint64_t frame_ = 0;

@@ -37,14 +37,21 @@ void ImageLikelihoodConfig::validate() const {
   if (!(exponent > 0.0 && exponent <= 1.0))
     throw std::invalid_argument("exponent = " + std::to_string(exponent) +
                                 " (allowed: 0 < e <= 1)");
-  if (neighbourhood_cells < 0 || neighbourhood_cells > 8)
-    throw std::invalid_argument("neighbourhood_cells = " + std::to_string(neighbourhood_cells) +
-                                " (allowed: 0..8)");
+  if (!(position_tolerance_m >= 0.0 && position_tolerance_m <= 1.0))
+    throw std::invalid_argument("position_tolerance_m = " + std::to_string(position_tolerance_m) +
+                                " (allowed: 0..1)");
+  if (!(heading_tolerance_rad >= 0.0 && heading_tolerance_rad <= 0.5))
+    throw std::invalid_argument("heading_tolerance_rad = " + std::to_string(heading_tolerance_rad) +
+                                " (allowed: 0..0.5)");
+  if (max_neighbourhood_cells < 0 || max_neighbourhood_cells > 16)
+    throw std::invalid_argument("max_neighbourhood_cells = " +
+                                std::to_string(max_neighbourhood_cells) + " (allowed: 0..16)");
 }
 
 color::ColorModelConfig RbpfConfig::rbpfModelConfig() {
   color::ColorModelConfig c;
   c.min_pixels_per_color = 4;
+  c.observation_noise_floor_var = 25.0;
   return c;
 }
 
@@ -66,9 +73,6 @@ void RbpfConfig::validate() const {
   if (global_pixel_stride < 1 || global_pixel_stride > 64)
     throw std::invalid_argument("global_pixel_stride = " + std::to_string(global_pixel_stride) +
                                 " (allowed: 1..64)");
-  if (global_neighbourhood_cells < 0 || global_neighbourhood_cells > 8)
-    throw std::invalid_argument("global_neighbourhood_cells = " +
-                                std::to_string(global_neighbourhood_cells) + " (allowed: 0..8)");
   if (!(mirror_fraction >= 0.0 && mirror_fraction <= 0.5))
     throw std::invalid_argument("mirror_fraction = " + std::to_string(mirror_fraction) +
                                 " (allowed: 0..0.5)");
@@ -104,6 +108,50 @@ std::vector<Eigen::Vector3d> pixelValues(const cv::Mat& yuv,
   for (size_t j = 0; j < pixels.size(); ++j) {
     const cv::Vec3b c = yuv.at<cv::Vec3b>(pixels[j].v, pixels[j].u);
     out[j] = Eigen::Vector3d(c[0], c[1], c[2]);
+  }
+  return out;
+}
+
+std::vector<NeighbourOffset> neighbourOffsets(const world::PinholeCamera& camera,
+                                              const std::vector<world::PixelCoord>& pixels,
+                                              int stride, const Eigen::Isometry3d& base_to_optical,
+                                              const ImageLikelihoodConfig& config) {
+  std::vector<NeighbourOffset> out(pixels.size());
+  const double tol = config.position_tolerance_m;
+  if (tol <= 0.0 && config.heading_tolerance_rad <= 0.0) return out;
+  const Eigen::Vector3d origin = base_to_optical.translation();
+  const Eigen::Isometry3d optical_from_base = base_to_optical.inverse();
+  // A heading error turns the whole view: about fx * heading_tolerance pixels sideways.
+  const double heading_px = camera.fx_px * config.heading_tolerance_rad;
+  auto cells = [&](double px) {
+    return static_cast<std::uint8_t>(
+        std::min<double>(config.max_neighbourhood_cells, std::floor(px / stride + 0.5)));
+  };
+  for (size_t j = 0; j < pixels.size(); ++j) {
+    const Eigen::Vector3d ray =
+        base_to_optical.linear() * camera.rayThrough(pixels[j].u, pixels[j].v);
+    double du = 0.0, dv = 0.0;
+    if (ray.z() < -1e-9 && origin.z() > 0.0) {
+      // The ground point this pixel sees, and where the ground points tol away along x and y
+      // land in the image.
+      const Eigen::Vector3d ground = origin + (-origin.z() / ray.z()) * ray;
+      Eigen::Vector2d at;
+      if (camera.project(optical_from_base * ground, &at)) {
+        for (const Eigen::Vector3d& step :
+             {Eigen::Vector3d(tol, 0, 0), Eigen::Vector3d(-tol, 0, 0), Eigen::Vector3d(0, tol, 0),
+              Eigen::Vector3d(0, -tol, 0)}) {
+          Eigen::Vector2d moved;
+          if (!camera.project(optical_from_base * (ground + step), &moved)) continue;
+          du = std::max(du, std::fabs(moved.x() - at.x()));
+          dv = std::max(dv, std::fabs(moved.y() - at.y()));
+        }
+      }
+    } else {
+      // Above the horizon (walls, goals, beacons): taken as 2 m away, a sideways shift only.
+      du = camera.fx_px * tol / 2.0;
+    }
+    out[j].du = cells(du + heading_px);
+    out[j].dv = cells(dv);
   }
   return out;
 }
@@ -157,12 +205,18 @@ double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose,
                                          const color::SwitchingColorFilter& lighting,
                                          const Eigen::Isometry3d& base_to_optical,
                                          color::ColorObservation* obs_out, int* used_out) const {
-  return logLikelihoodAt(pixels_, grid_cols_, config_.likelihood.neighbourhood_cells, pixel_yuv_,
-                         pose, lighting, base_to_optical, obs_out, used_out);
+  if (offsets_camera_.matrix() == base_to_optical.matrix())
+    return logLikelihoodAt(pixels_, grid_cols_, offsets_, pixel_yuv_, pose, lighting,
+                           base_to_optical, obs_out, used_out);
+  const std::vector<NeighbourOffset> offsets =
+      neighbourOffsets(renderer_.camera(), pixels_, config_.likelihood.pixel_stride,
+                       base_to_optical, config_.likelihood);
+  return logLikelihoodAt(pixels_, grid_cols_, offsets, pixel_yuv_, pose, lighting, base_to_optical,
+                         obs_out, used_out);
 }
 
 double RbpfLocalizer::logLikelihoodAt(const std::vector<world::PixelCoord>& pixels, int grid_cols,
-                                      int neighbourhood_cells,
+                                      const std::vector<NeighbourOffset>& offsets,
                                       const std::vector<Eigen::Vector3d>& pixel_yuv,
                                       const math::SE2& pose,
                                       const color::SwitchingColorFilter& lighting,
@@ -172,7 +226,6 @@ double RbpfLocalizer::logLikelihoodAt(const std::vector<world::PixelCoord>& pixe
   std::vector<std::uint8_t> labels;
   renderer_.renderPixels(cam, pixels, &labels);
   const int cols = grid_cols, rows = static_cast<int>(pixels.size()) / std::max(grid_cols, 1);
-  const int d = neighbourhood_cells;
   // Eq. (9) under the predicted lighting, in a mixture with the uniform density; eq. (16) is the
   // (tempered) product over the pixels. With several lighting modes the image likelihood is the
   // mixture over the modes with their predicted probabilities (the mode is part of the lighting
@@ -194,35 +247,57 @@ double RbpfLocalizer::logLikelihoodAt(const std::vector<world::PixelCoord>& pixe
   obs.counts.assign(mc.numColors(), 0);
   obs.means.assign(mc.numColors(), Eigen::Vector3d::Zero());
   obs.variances.assign(mc.numColors(), Eigen::Vector3d::Zero());
-  // A pixel's candidates: the colours predicted at it and at the grid pixels d steps away; it
-  // scores the best of them, background scoring the uniform density.
-  std::vector<double> pixel_best(lighting.numModes());
+  // A pixel's predicted colour is a distribution: half the colour predicted at it, an eighth each
+  // the colours at the grid pixels its offsets away (a prediction blurred by the pose
+  // tolerance); its likelihood is the mixture over them, background scoring the uniform density.
+  // Being a proper mixture it does not favour poses that predict busier views.
+  std::vector<double> pixel_ll(lighting.numModes());
   for (size_t j = 0; j < pixels.size(); ++j) {
     std::uint8_t cand[5];
+    double share[5];
     int nc = 0;
-    cand[nc++] = labels[j];
-    if (d > 0) {
+    cand[nc] = labels[j];
+    share[nc++] = 1.0;
+    const NeighbourOffset d = offsets[j];
+    if (d.du > 0 || d.dv > 0) {
+      share[0] = 0.5;
       const int r = static_cast<int>(j) / cols, c = static_cast<int>(j) % cols;
-      const int around[4] = {r * cols + std::max(c - d, 0), r * cols + std::min(c + d, cols - 1),
-                             std::max(r - d, 0) * cols + c, std::min(r + d, rows - 1) * cols + c};
-      for (int n : around)
-        if (std::find(cand, cand + nc, labels[n]) == cand + nc) cand[nc++] = labels[n];
-    }
-    std::fill(pixel_best.begin(), pixel_best.end(), -std::numeric_limits<double>::infinity());
-    for (int c = 0; c < nc; ++c) {
-      const int k = slot[cand[c]];
-      for (int m = 0; m < lighting.numModes(); ++m) {
-        // Background (or an unmodelled colour): the uniform density. Every pixel must contribute,
-        // or poses that see more background would score higher for having fewer terms.
-        double v = kLogUniformYuv;
-        if (k >= 0) {
-          const double a = log_in + cls[m].logLikelihood(pixel_yuv[j], k);
-          v = std::max(a, log_out) + std::log1p(std::exp(-std::fabs(a - log_out)));
+      const int around[4] = {
+          r * cols + std::max(c - d.du, 0), r * cols + std::min(c + d.du, cols - 1),
+          std::max(r - d.dv, 0) * cols + c, std::min(r + d.dv, rows - 1) * cols + c};
+      for (int n : around) {
+        const int at = static_cast<int>(std::find(cand, cand + nc, labels[n]) - cand);
+        if (at == nc) {
+          cand[nc] = labels[n];
+          share[nc++] = 0.125;
+        } else {
+          share[at] += 0.125;
         }
-        pixel_best[m] = std::max(pixel_best[m], v);
       }
     }
-    for (int m = 0; m < lighting.numModes(); ++m) mode_ll[m] += pixel_best[m];
+    for (int m = 0; m < lighting.numModes(); ++m) {
+      double v[5], top = -std::numeric_limits<double>::infinity();
+      for (int c = 0; c < nc; ++c) {
+        // Background (or an unmodelled colour): the uniform density. Every pixel must contribute,
+        // or poses that see more background would score higher for having fewer terms.
+        const int k = slot[cand[c]];
+        v[c] = kLogUniformYuv;
+        if (k >= 0) {
+          const double a = log_in + cls[m].logLikelihood(pixel_yuv[j], k);
+          v[c] = std::max(a, log_out) + std::log1p(std::exp(-std::fabs(a - log_out)));
+        }
+        if (nc > 1) v[c] += std::log(share[c]);
+        top = std::max(top, v[c]);
+      }
+      if (nc == 1) {  // one colour all around (most pixels): no mixture
+        pixel_ll[m] = v[0];
+        continue;
+      }
+      double sum = 0.0;
+      for (int c = 0; c < nc; ++c) sum += std::exp(v[c] - top);
+      pixel_ll[m] = top + std::log(sum);
+    }
+    for (int m = 0; m < lighting.numModes(); ++m) mode_ll[m] += pixel_ll[m];
     const int k = slot[labels[j]];
     if (k < 0) continue;
     ++used;
@@ -289,6 +364,8 @@ bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv
   const std::vector<world::PixelCoord> coarse =
       pixelGrid(renderer_.camera(), config_.global_pixel_stride, &coarse_cols);
   const std::vector<Eigen::Vector3d> values = pixelValues(yuv, coarse);
+  const std::vector<NeighbourOffset> coarse_offsets = neighbourOffsets(
+      renderer_.camera(), coarse, config_.global_pixel_stride, base_to_optical, config_.likelihood);
   const color::SwitchingColorFilter lighting(priors_, config_.model, config_.switching);
   const size_t n = static_cast<size_t>(config_.global_pool_size);
   const bool first = pool_.empty();
@@ -307,8 +384,8 @@ bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv
     } else {
       pool_[i] = pool_[i] * odom_delta;
     }
-    pool_ll_[i] += logLikelihoodAt(coarse, coarse_cols, config_.global_neighbourhood_cells, values,
-                                   pool_[i], lighting, base_to_optical, nullptr, nullptr);
+    pool_ll_[i] += logLikelihoodAt(coarse, coarse_cols, coarse_offsets, values, pool_[i], lighting,
+                                   base_to_optical, nullptr, nullptr);
   });
   ++pool_frames_;
   std::vector<double> w;
@@ -348,6 +425,11 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
                                               const cv::Mat& yuv,
                                               const Eigen::Isometry3d& base_to_optical) {
   setImage(yuv);
+  if (offsets_camera_.matrix() != base_to_optical.matrix()) {
+    offsets_ = neighbourOffsets(renderer_.camera(), pixels_, config_.likelihood.pixel_stride,
+                                base_to_optical, config_.likelihood);
+    offsets_camera_ = base_to_optical;
+  }
   const std::uint64_t frame_seed = mix(config_.seed, ++frame_);
   StepResult r;
   bool moved = false;  // the particles already carry this image's odometry (drawn from the pool)
