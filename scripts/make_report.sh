@@ -57,6 +57,17 @@ for f in switching single; do
 done
 python3 scripts/plot_localization.py "$OUT/localization_switching" config/field_4legged.yaml \
   "rbpf_localizer, switching bag, global start" > /dev/null 2>&1 || true
+# Every field bag with the switching filter: a global start (seed 1) and tracking from the true start.
+"$BIN/simulate_field" --script kidnap --seed 4 --duration_s 20 --rate_hz 4 \
+  --output "$TMP/field_kidnap.bag" --overwrite > /dev/null
+for b in rosbag/field_bright.bag rosbag/field_dark.bag rosbag/field_switching.bag \
+  "$TMP/field_kidnap.bag"; do
+  n="$(basename "$b" .bag)"
+  [ "$n" = field_switching ] || part "localization_global_$n" "$BIN/evaluate_localization" \
+    --bag "$b" --particles 500 --output "$OUT/localization_global_$n"
+  part "localization_track_$n" "$BIN/evaluate_localization" --bag "$b" --particles 500 \
+    --init truth --output "$OUT/localization_track_$n"
+done
 
 # SLAM (papers/001 section 2): the monobot study, the simulator loop, the Intel lab's real log.
 part monobot "$BIN/monobot_experiment" --runs 100 --output "$OUT/monobot"
