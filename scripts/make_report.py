@@ -206,7 +206,7 @@ def main():
     r.w()
     r.image("localization_switching/field.png", "estimated and true paths")
     r.w("Every field bag, switching filter: a global start (seed 1) and tracking from the true "
-        "start pose (0.2 m, 0.2 rad spread). On the kidnap bag the figures are up to the kidnap.")
+        "start pose (standard deviations 0.2 m and 0.17 rad). On the kidnap bag the figures are up to the kidnap.")
     r.w()
     r.w("| bag | global start: converged after (s) | median position error (m) | "
         "from the true start: converged after (s) | median position error (m) | "
