@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The demo: sets up (apt + build), replays every bundled bag in rosbag/ through the nodes (field bags:
-# color_estimator + rbpf_localizer; laser bags: line_extractor + ekf_slam_mapper; a simulated indoor run:
-# histogram_place_recognizer), printing one summary line per bag, then runs a short version of every
+# color_estimator + rbpf_localizer; laser bags: line_extractor + ekf_slam_mapper; simulated indoor runs:
+# histogram_place_recognizer and appearance_localizer; a simulated tracking sequence:
+# condensation_tracker), printing one summary line per run, then runs a short version of every
 # paper's experiment and writes results/REPORT.md (scripts/make_report.sh; report:=false skips it).
 # rviz opens when a display is present (or with rviz:=true); rviz:=false keeps it closed.
 # Usage: scripts/demo.sh [rviz:=true|false] [rate:=R] [report:=true|false]
@@ -60,6 +61,42 @@ if [ -z "$line" ]; then
 fi
 echo "indoor_places $line" | tee -a "$summary"
 rm -f "$places_dir/train.bag" "$places_dir/test.bag"
+# Rooms: a SIFT database of one run of the building (309 x 240, cloudy, seed 1) and another run
+# (seed 2) replayed through appearance_localizer (room classification and appearance MCL).
+for run in train:1 test:2; do
+  "$BIN/simulate_indoor" --lighting cloudy --seed "${run#*:}" --camera_rate_hz 1 \
+    --output "$places_dir/rooms_${run%%:*}.bag" --overwrite > /dev/null 2>&1
+done
+rm -f "$places_dir/rooms.sqlite"
+"$BIN/train_places" --bag "$places_dir/rooms_train.bag" --database "$places_dir/rooms.sqlite" \
+  --images_per_place 0 --features --spaces hsv > /dev/null 2>&1
+demo_part() {  # NAME LAUNCH ARGS...: replays through LAUNCH, prints demo_monitor's line
+  local name="$1" launch="$2"
+  shift 2
+  echo "demo: replaying $name through $launch (rviz=$RVIZ)"
+  roslaunch --disable-title adaptive_perception "$launch" name:="$name" rviz:="$RVIZ" "$@" \
+    > "$AP_ROOT/results/demo/$name.log" 2>&1 || true
+  local line
+  line="$(grep -h '^demo_monitor:' "$AP_ROOT/results/demo/$name.log" | tail -n 1)"
+  if [ -z "$line" ]; then
+    echo "demo: $name produced no summary; see results/demo/$name.log"; tail -n 20 "$AP_ROOT/results/demo/$name.log"; exit 1
+  fi
+  echo "$line" | tee -a "$summary"
+}
+demo_part indoor_rooms rooms_demo.launch bag:="$places_dir/rooms_test.bag" \
+  database:="$places_dir/rooms.sqlite" rate:="$prate"
+rm -f "$places_dir/rooms_train.bag" "$places_dir/rooms_test.bag"
+# Tracking: the distractor sequence (a second object of the target's colour crosses it), the tracker
+# started on the first true box.
+track_dir="$AP_ROOT/results/demo/tracking"
+mkdir -p "$track_dir"
+"$BIN/simulate_tracking" --scenario distractor --seed 1 --output "$track_dir/distractor.bag" \
+  --overwrite > /dev/null
+"$BIN/simulate_tracking" --scenario distractor --seed 1 --frames 1 \
+  --video "$track_dir/first.avi" > /dev/null
+IFS=, read -r _ x y w h < <(sed -n 2p "$track_dir/first.csv")
+demo_part tracking_distractor tracking_demo.launch bag:="$track_dir/distractor.bag" \
+  initial_roi:="[$x, $y, $w, $h]" rate:="$RATE"
 echo "demo: summaries in results/demo/summary.txt, logs beside it"
 if [ "$REPORT" = true ]; then
   echo "demo: running the papers' experiments for results/REPORT.md (about 10 minutes)"

@@ -3,14 +3,19 @@
 //   demo_monitor: bag=NAME frames=N image_hz=F mean_luma=Y truth_path_m=D map_odom_tf=K
 //   field_markers=M classified_frames=C color_rate=R localizer_final_error_m=E   (camera bags)
 //   demo_monitor: bag=NAME scans=N line_messages=L segments_per_scan=S ... slam_final_error_m=E
+//   demo_monitor: bag=NAME rooms=N room_rate=R        (appearance_localizer on an indoor bag)
+//   demo_monitor: bag=NAME tracked_frames=N success_rate=R   (condensation_tracker, IoU >= 0.5)
 // (-1: not measured). Parameters: ~name (string, label of the run). Subscribed: camera/image_raw,
 // camera/labels, color_estimator/classified, ground_truth/pose, field_map, tf, scan, lines,
-// rbpf_localizer/pose, ekf_slam_mapper/pose.
+// rbpf_localizer/pose, ekf_slam_mapper/pose, ground_truth/place, appearance_localizer/room,
+// ground_truth/box, tracked_object.
+#include <geometry_msgs/PolygonStamped.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/LaserScan.h>
+#include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -20,6 +25,8 @@
 #include <optional>
 
 #include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/PlaceRecognition.h"
+#include "adaptive_perception/TrackedObject.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
 
@@ -130,7 +137,61 @@ int main(int argc, char** argv) {
         ++line_msgs;
         segments += static_cast<long>(m->segments.size());
       });
+  // Rooms: each appearance_localizer result against the true place when it arrives (the place has
+  // no stamp; the robot stays in a room for many images). Images outside every place are skipped.
+  std::string true_place;
+  long rooms = 0, rooms_right = 0;
+  auto place_sub = nh.subscribe<std_msgs::String>(
+      T::kGroundTruthPlace, 10, [&](const std_msgs::StringConstPtr& m) { true_place = m->data; });
+  auto room_sub = nh.subscribe<adaptive_perception::PlaceRecognition>(
+      "appearance_localizer/room", 20, [&](const adaptive_perception::PlaceRecognitionConstPtr& m) {
+        if (true_place.empty() || true_place == "none") return;
+        ++rooms;
+        rooms_right += m->place == true_place;
+      });
+  // Tracking: the tracker's box against the true box of the same image (IoU >= 0.5 is a success).
+  std::map<ros::Time, cv::Rect2d> true_boxes, tracked_boxes;
+  long tracked = 0, tracked_right = 0;
+  auto score_box = [&](const cv::Rect2d& a, const cv::Rect2d& b) {
+    const double inter = (a & b).area(), uni = a.area() + b.area() - inter;
+    ++tracked;
+    tracked_right += uni > 0.0 && inter / uni >= 0.5;
+  };
+  auto box_sub = nh.subscribe<geometry_msgs::PolygonStamped>(
+      T::kGroundTruthBox, 20, [&](const geometry_msgs::PolygonStampedConstPtr& m) {
+        const cv::Rect2d box = adaptive_perception::ros_conv::polygonBox(m->polygon);
+        auto it = tracked_boxes.find(m->header.stamp);
+        if (it != tracked_boxes.end()) {
+          score_box(box, it->second);
+          tracked_boxes.erase(it);
+        } else {
+          true_boxes[m->header.stamp] = box;
+        }
+      });
+  auto tracked_sub = nh.subscribe<adaptive_perception::TrackedObject>(
+      T::kTrackedObject, 20, [&](const adaptive_perception::TrackedObjectConstPtr& m) {
+        const cv::Rect2d box(m->box.x_offset, m->box.y_offset, m->box.width, m->box.height);
+        auto it = true_boxes.find(m->header.stamp);
+        if (it != true_boxes.end()) {
+          score_box(it->second, box);
+          true_boxes.erase(it);
+        } else {
+          tracked_boxes[m->header.stamp] = box;
+        }
+      });
   ros::spin();
+  if (rooms > 0) {
+    std::printf("demo_monitor: bag=%s rooms=%ld room_rate=%.3f\n", name.c_str(), rooms,
+                double(rooms_right) / rooms);
+    std::fflush(stdout);
+    return 0;
+  }
+  if (tracked > 0) {
+    std::printf("demo_monitor: bag=%s tracked_frames=%ld success_rate=%.3f\n", name.c_str(),
+                tracked, double(tracked_right) / tracked);
+    std::fflush(stdout);
+    return 0;
+  }
   if (scans > 0) {
     std::printf(
         "demo_monitor: bag=%s scans=%ld line_messages=%ld segments_per_scan=%.2f truth_path_m=%.2f "

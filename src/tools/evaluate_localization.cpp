@@ -6,7 +6,8 @@
 //       [--heading_tolerance_rad R] [--max_neighbourhood_cells C]
 //       [--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W]
 //       [--global_pool_size N] [--global_search_frames K]
-//       [--recovery_max_fraction F] [--init global|truth]
+//       [--recovery_max_fraction F] [--recovery_alpha_fast A] [--recovery_alpha_slow A]
+//       [--recovery_gain_per_nat G] [--init global|truth]
 //       [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
 // (defaults: those of localization::RbpfConfig)
 //
@@ -58,7 +59,8 @@ int main(int argc, char** argv) {
                    "[--heading_tolerance_rad R] [--max_neighbourhood_cells C] "
                    "[--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W] "
                    "[--global_pool_size N] [--global_search_frames K] "
-                   "[--recovery_max_fraction F] [--priors_dir "
+                   "[--recovery_max_fraction F] [--recovery_alpha_fast A] "
+                   "[--recovery_alpha_slow A] [--recovery_gain_per_nat G] [--priors_dir "
                    "DIR] [--init global|truth] [--output DIR] [--name LABEL]");
   const std::string bag = args.get("bag", "");
   localization::RbpfConfig cfg;
@@ -70,6 +72,9 @@ int main(int argc, char** argv) {
       static_cast<int>(args.getInt("pixel_stride", cfg.likelihood.pixel_stride));
   cfg.likelihood.exponent = args.getDouble("exponent", cfg.likelihood.exponent);
   cfg.recovery_max_fraction = args.getDouble("recovery_max_fraction", cfg.recovery_max_fraction);
+  cfg.recovery_alpha_fast = args.getDouble("recovery_alpha_fast", cfg.recovery_alpha_fast);
+  cfg.recovery_alpha_slow = args.getDouble("recovery_alpha_slow", cfg.recovery_alpha_slow);
+  cfg.recovery_gain_per_nat = args.getDouble("recovery_gain_per_nat", cfg.recovery_gain_per_nat);
   cfg.min_ess_fraction = args.getDouble("min_ess_fraction", cfg.min_ess_fraction);
   cfg.global_pool_size = static_cast<int>(args.getInt("global_pool_size", cfg.global_pool_size));
   cfg.global_search_frames =
