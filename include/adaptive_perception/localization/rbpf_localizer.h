@@ -39,9 +39,10 @@ struct ImageLikelihoodConfig {
   double outlier_probability =
       0.1;                 // weight of the uniform density in the pixel likelihood mixture
   double exponent = 0.02;  // the image log-likelihood is multiplied by this
-  // Each grid pixel is scored under the best of the colours the pose predicts at it and at the
-  // grid pixels a pose error of position_tolerance_m and heading_tolerance_rad would move it to
-  // (left/right and up/down, in whole grid steps, at most max_neighbourhood_cells). A pixel-exact
+  // Each grid pixel is scored under a mixture of the colours the pose predicts: half the colour at
+  // the pixel, an eighth each the colours at the grid pixels a pose error of position_tolerance_m
+  // and heading_tolerance_rad would move it to (left/right and up/down, in whole grid steps, at
+  // most max_neighbourhood_cells). A pixel-exact
   // comparison punishes a pose a few centimetres off twice, where a line is predicted and where it
   // is seen, so near the robot (a low camera, lines a few decimetres away) it scores below poses
   // that see no line at all, and the particles drift off a true peak only 1-2 cm wide. The
