@@ -42,6 +42,9 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   c.line_model_alpha_std_rad =
       P::getInRange(pnh, "line_model_alpha_std_rad", c.line_model_alpha_std_rad, 0.0, 1.0);
   c.merge_landmarks = P::get<bool>(pnh, "merge_landmarks", c.merge_landmarks);
+  c.share_landmarks = P::get<bool>(pnh, "share_landmarks", c.share_landmarks);
+  c.first_estimate_jacobians =
+      P::get<bool>(pnh, "first_estimate_jacobians", c.first_estimate_jacobians);
   P::loadMotionModel(pnh, &c.motion);
   P::loadInitialPose(pnh, {1e-3, 1e-3, 1e-3}, &initial_pose_, &initial_cov_);
   external_gate_ = P::getInRange(pnh, "external_gate_probability", external_gate_, 0.5, 0.999999);

@@ -3,13 +3,14 @@
 // reports speed. Either way it draws one scan with its segments (PNG).
 //
 //   evaluate_lines --bag FILE [--output results/evaluate_lines] [--split_method
-//   recursive|hull_tree]
-//                  [--plot_scan N] [--name LABEL]
+//                  recursive|hull_tree] [--range_noise_std_m S] [--plot_scan N] [--name LABEL]
+// --range_noise_std_m: the laser's range noise assumed by the extractor (its default when absent).
 //
 // Scoring: laser/line_evaluation.h (wall pieces in view, matching within 0.1 m and 5 degrees).
 // Writes OUTPUT/results.yaml, OUTPUT/scan.png. Last line:
 //   evaluate_lines: precision=.. recall=.. mean_endpoint_error_m=.. mean_angle_error_deg=..
-//   scans_per_s=.. scans=N
+//   line_nees_mean=.. line_nees_in_bounds=.. scans_per_s=.. scans=N
+// (line NEES: laser/line_evaluation.h; 2 and 0.95 when the fit covariance is right)
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/LaserScan.h>
@@ -36,11 +37,12 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "evaluate_lines --bag FILE [--output DIR] [--split_method recursive|hull_tree] "
-                   "[--plot_scan N] [--name LABEL] [--no_plot]");
+                   "[--range_noise_std_m S] [--plot_scan N] [--name LABEL] [--no_plot]");
   const std::string bag_path = args.get("bag", "");
   const std::string output = args.get("output", "results/evaluate_lines");
   const std::string method = args.get("split_method", "recursive");
   const long plot_scan = args.getInt("plot_scan", -1);
+  const double range_noise = args.getDouble("range_noise_std_m", -1.0);
   const std::string name = args.get("name", fs::path(bag_path).stem().string());
   const bool plot = !args.has("no_plot");
   args.finish();
@@ -48,6 +50,7 @@ int main(int argc, char** argv) {
   try {
     laser::LineExtractionConfig cfg;
     cfg.split_method = laser::parseSplitMethod(method);
+    if (range_noise > 0.0) cfg.range_noise_std_m = range_noise;
     laser::LineExtractor extractor(cfg);
     rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
     std::vector<sensor_msgs::LaserScanConstPtr> scans;
@@ -103,6 +106,8 @@ int main(int argc, char** argv) {
       yaml << "precision: " << score.precision() << "\nrecall: " << score.recall()
            << "\nmean_endpoint_error_m: " << score.meanEndpointError()
            << "\nmean_angle_error_deg: " << math::radToDeg(score.meanAngleErrorRad())
+           << "\nline_nees_mean: " << score.meanLineNees()
+           << "\nline_nees_in_bounds: " << score.lineNeesInBounds()
            << "\nwalls_scored: " << score.truth_eligible << "\nsegments_scored: " << score.extracted
            << "\n";
     yaml.close();
@@ -116,9 +121,11 @@ int main(int argc, char** argv) {
     if (has_truth) {
       std::printf(
           "evaluate_lines: precision=%.3f recall=%.3f mean_endpoint_error_m=%.3f "
-          "mean_angle_error_deg=%.2f scans_per_s=%.0f scans=%zu\n",
+          "mean_angle_error_deg=%.2f line_nees_mean=%.2f line_nees_in_bounds=%.3f "
+          "scans_per_s=%.0f scans=%zu\n",
           score.precision(), score.recall(), score.meanEndpointError(),
-          math::radToDeg(score.meanAngleErrorRad()), scans_per_s, scans.size());
+          math::radToDeg(score.meanAngleErrorRad()), score.meanLineNees(),
+          score.lineNeesInBounds(), scans_per_s, scans.size());
     } else {
       std::printf(
           "evaluate_lines: scans_per_s=%.0f segments_per_scan=%.1f scans=%zu (no ground truth)\n",

@@ -6,24 +6,30 @@
 //                 [--make_relations FILE] [--external_std_m 0.1] [--seed N] [--max_scans N]
 //                 [--range_noise_std_m 0.01] [--max_gap_m 0.3] [--odom_noise_scale 1]
 //                 [--line_model_rho_std_m 0.02] [--line_model_alpha_std_rad 0.01]
-//                 [--merge_landmarks 1] [--output DIR] [--name TITLE]
+//                 [--merge_landmarks 1] [--share_landmarks 1] [--first_estimate_jacobians 0]
+//                 [--output DIR]
+//                 [--name TITLE]
 //
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
 // /tf_static (identity when absent). The external variant simulates an absolute position sensor
 // from ground_truth/pose with --external_std_m noise on every scan (the bag must have ground
 // truth). Summary keys (last line):
 //   evaluate_slam: variant=.. ate_m=.. final_position_error_m=.. odometry_final_position_error_m=..
-//       nees_in_bounds=.. relation_trans_error_m=.. relation_trans_error_m_std=..
+//       nees_in_bounds=.. nees_below_bounds=.. nees_mean=.. nis_per_dof=.. relation_trans_error_m=.. relation_trans_error_m_std=..
 //       relation_rot_error_deg=.. relation_rot_error_deg_std=.. landmarks=.. fixed_landmarks=..
+//       merged=.. (landmark pairs merged as the same wall over the run)
 //       scans=.. update_ms_mean=.. update_ms_max=.. realtime_factor=..
 // ate_m: RMS position error over the scans (no alignment: the map frame starts at the first true
 // pose). nees_in_bounds: share of scans whose pose NEES lies inside the 95% chi-square interval of
-// 3 degrees of freedom; for the anchor variant the truth is first expressed in the frame the
+// 3 degrees of freedom; nees_below_bounds the share below it (under-confident: the rest of the
+// misses are over-confident); nees_mean should be near 3. nis_per_dof: the normalised innovation squared
+// of the line updates summed over the run over their degrees of freedom (near 1 for a consistent
+// filter; needs no ground truth, so it also checks real logs). For the anchor variant the truth is first expressed in the frame the
 // anchored lines define (matched to the true walls of ground_truth/walls). Relation keys: the
 // Kuemmerle et al. metric against --relations (Freiburg format, bag stamps). -1 where not
 // available. --make_relations writes reference relations from ground_truth/pose (1 s chain + 200
 // random pairs). Writes OUTPUT/estimate.tum, truth.tum, odometry.tum, pose_covariance.csv,
-// nees.csv (per scan with ground truth: NEES and the pose error),
+// nees.csv (per scan with ground truth: NEES and the pose error), nis.csv (per scan: NIS, dof, landmarks merged),
 // landmarks.csv and map.png.
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -131,8 +137,7 @@ int main(int argc, char** argv) {
                    "[--relations FILE] [--make_relations FILE] [--external_std_m S] [--seed N] "
                    "[--max_scans N] [--range_noise_std_m S] [--max_gap_m M] [--odom_noise_scale K] "
                    "[--line_model_rho_std_m S] [--line_model_alpha_std_rad S] [--merge_landmarks "
-                   "0|1] [--output DIR] "
-                   "[--name TITLE]");
+                   "0|1] [--share_landmarks 0|1] [--first_estimate_jacobians 0|1] [--output DIR] [--name TITLE]");
   const std::string bag_path = args.get("bag", "");
   slam::LineEkfSlamConfig cfg;
   const std::string association = args.get("association", "jcbb");
@@ -150,6 +155,9 @@ int main(int argc, char** argv) {
   cfg.line_model_alpha_std_rad =
       args.getDouble("line_model_alpha_std_rad", cfg.line_model_alpha_std_rad);
   cfg.merge_landmarks = args.getInt("merge_landmarks", cfg.merge_landmarks ? 1 : 0) != 0;
+  cfg.share_landmarks = args.getInt("share_landmarks", cfg.share_landmarks ? 1 : 0) != 0;
+  cfg.first_estimate_jacobians =
+      args.getInt("first_estimate_jacobians", cfg.first_estimate_jacobians ? 1 : 0) != 0;
   const double odom_scale = args.getDouble("odom_noise_scale", 1.0);
   localization::MotionModelConfig& m = cfg.motion;
   for (double* a : {&m.alpha1, &m.alpha2, &m.alpha3, &m.alpha4, &m.min_translation_std_m,
@@ -219,6 +227,11 @@ int main(int argc, char** argv) {
     double sq = 0.0, final_err = -1.0, compute_s = 0.0, odom_final_err = -1.0, max_update_s = 0.0;
     math::SE2 dead_reckoning = ekf.pose();  // odometry alone, from the same start
     long with_truth = 0;
+    double nis_sum = 0.0;
+    long nis_dof = 0, nis_rows = 0;
+    std::ofstream nis_csv(fs::path(output) / "nis.csv");
+    nis_csv << "scan,nis,dof,merged\n";
+    long merged = 0;
     const math::SE2* prev_odom = nullptr;
     std::map<double, math::SE2> estimate;
     std::vector<std::pair<math::SE2, Eigen::Matrix3d>> est_cov;
@@ -233,7 +246,12 @@ int main(int argc, char** argv) {
       prev_odom = o;
       const auto c0 = std::chrono::steady_clock::now();
       ekf.predictFromOdometry(*o);
-      ekf.update(slam::toObservations(extractor.extract(ros_conv::fromLaserScan(*s)), mount));
+      const slam::LineEkfSlam::UpdateResult up =
+          ekf.update(slam::toObservations(extractor.extract(ros_conv::fromLaserScan(*s)), mount));
+      nis_sum += up.nis;
+      nis_dof += up.nis_dof;
+      nis_csv << nis_rows++ << "," << up.nis << "," << up.nis_dof << "," << up.merged << "\n";
+      merged += up.merged;
       if (cfg.variant == slam::Variant::kExternal && g)
         ekf.updateExternalPosition(Eigen::Vector2d(g->x_m + rng.gaussian(0.0, external_std),
                                                    g->y_m + rng.gaussian(0.0, external_std)),
@@ -267,7 +285,7 @@ int main(int argc, char** argv) {
     const math::SE2 frame = cfg.variant == slam::Variant::kAnchor
                                 ? anchorFrame(ekf, trueLines(walls, truth, mount))
                                 : math::SE2();
-    long in_bounds = 0;
+    long in_bounds = 0, below = 0;
     double nees_sum = 0.0;
     std::ofstream nees_csv(fs::path(output) / "nees.csv");
     nees_csv << "scan,nees,err_x_m,err_y_m,err_yaw_rad\n";
@@ -278,6 +296,7 @@ int main(int argc, char** argv) {
                                 math::angleDiff(e.yaw_rad, g.yaw_rad));
       const double nees = err.dot(est_cov[i].second.ldlt().solve(err));
       in_bounds += nees >= nees_lo && nees <= nees_hi;
+      below += nees < nees_lo;
       nees_sum += nees;
       nees_csv << i << "," << nees << "," << err.x() << "," << err.y() << "," << err.z() << "\n";
     }
@@ -310,17 +329,18 @@ int main(int argc, char** argv) {
     const bool has_rel = !relations.empty();
     std::printf(
         "evaluate_slam: variant=%s ate_m=%.3f final_position_error_m=%.3f "
-        "odometry_final_position_error_m=%.3f nees_in_bounds=%.3f nees_mean=%.2f "
-        "relation_trans_error_m=%.4f "
+        "odometry_final_position_error_m=%.3f nees_in_bounds=%.3f nees_below_bounds=%.3f nees_mean=%.2f "
+        "nis_per_dof=%.2f relation_trans_error_m=%.4f "
         "relation_trans_error_m_std=%.4f relation_rot_error_deg=%.3f "
         "relation_rot_error_deg_std=%.3f relations_used=%d landmarks=%d fixed_landmarks=%d "
-        "scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f\n",
+        "merged=%ld scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
-        with_truth ? nees_sum / with_truth : -1.0, has_rel ? rel.trans_mean_m : -1.0,
+        with_truth ? double(below) / with_truth : -1.0,
+        with_truth ? nees_sum / with_truth : -1.0, nis_dof ? nis_sum / nis_dof : -1.0, has_rel ? rel.trans_mean_m : -1.0,
         has_rel ? rel.trans_std_m : -1.0, has_rel ? math::radToDeg(rel.rot_mean_rad) : -1.0,
         has_rel ? math::radToDeg(rel.rot_std_rad) : -1.0, rel.used, confirmed,
-        ekf.numFixedLandmarks(), scans.size(), 1e3 * compute_s / scans.size(), 1e3 * max_update_s,
+        ekf.numFixedLandmarks(), merged, scans.size(), 1e3 * compute_s / scans.size(), 1e3 * max_update_s,
         duration / std::max(compute_s, 1e-9));
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";

@@ -7,7 +7,9 @@
 // (a wall seen at a grazing angle is not one cluster). An extracted segment matches a piece when
 // its endpoints lie within `max_offset_m` (mean) of the piece's line, the directions agree within
 // `max_angle_rad`, and it overlaps the piece by at least half its own length. Endpoint error: mean
-// distance of a matched segment's endpoints to the piece's ends.
+// distance of a matched segment's endpoints to the piece's ends. Line NEES: the error of a matched
+// segment's (rho, alpha) against the piece's true line, squared in the metric of the fit
+// covariance (2 degrees of freedom: near 2 when the covariance tells the truth).
 #include <Eigen/Core>
 #include <vector>
 
@@ -23,12 +25,16 @@ struct TrueWallPiece {
 struct LineScore {
   long extracted = 0, extracted_matched = 0, truth_eligible = 0, truth_matched = 0, pairs = 0;
   double endpoint_error_sum_m = 0.0, angle_error_sum_rad = 0.0;
+  double line_nees_sum = 0.0;
+  long line_nees_in_bounds = 0;  // inside the 95% chi-square interval of 2 dof
 
   void add(const LineScore& o);
   double precision() const { return extracted ? double(extracted_matched) / extracted : 1.0; }
   double recall() const { return truth_eligible ? double(truth_matched) / truth_eligible : 1.0; }
   double meanEndpointError() const { return pairs ? endpoint_error_sum_m / pairs : 0.0; }
   double meanAngleErrorRad() const { return pairs ? angle_error_sum_rad / pairs : 0.0; }
+  double meanLineNees() const { return pairs ? line_nees_sum / pairs : 0.0; }
+  double lineNeesInBounds() const { return pairs ? double(line_nees_in_bounds) / pairs : 0.0; }
 };
 
 LineScore scoreSegments(const std::vector<LineSegment>& extracted,

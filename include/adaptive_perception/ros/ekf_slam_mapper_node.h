@@ -7,7 +7,8 @@
 //   ~variant (standard | anchor | external), ~retire_after_updates (int, 0 = off; the paper: 50),
 //   ~anchor_min_angle_rad.
 //   ~association (jcbb | nn), ~gate_probability, ~confirm_sightings, ~tentative_timeout_scans,
-//   ~min_new_line_length_m, ~line_model_rho_std_m, ~line_model_alpha_std_rad, ~merge_landmarks.
+//   ~min_new_line_length_m, ~line_model_rho_std_m, ~line_model_alpha_std_rad, ~merge_landmarks,
+//   ~share_landmarks, ~first_estimate_jacobians.
 //   ~odom_alpha1..4, ~odom_min_translation_std_m, ~odom_min_rotation_std_rad: motion noise.
 //   ~initial_pose ([x_m, y_m, yaw_rad], default the origin), ~initial_pose_std ([m, m, rad]).
 //   ~external_gate_probability: external poses whose innovation fails this chi-square gate are

@@ -25,10 +25,22 @@ math::SE2 predictPose(const math::SE2& pose, const math::SE2& delta, Eigen::Matr
 Line observeLine(const math::SE2& pose, const Line& map_line, Eigen::Matrix<double, 2, 3>* h_r,
                  Eigen::Matrix2d* h_l);
 
+/// The Jacobians of observeLine evaluated at a chosen linearisation point: robot position (x, y)
+/// and landmark direction alpha (the observation's Jacobians do not depend on the robot's heading
+/// or the landmark's rho). `sign` is -1 when the observation is flipped to keep rho >= 0 (the
+/// prediction decides it), else 1. First-estimates Jacobian filters call this with the first
+/// estimates instead of the current ones.
+void observeLineJacobians(double x_m, double y_m, double alpha_rad, double sign,
+                          Eigen::Matrix<double, 2, 3>* h_r, Eigen::Matrix2d* h_l);
+
 /// Inverse observation: the map line of a line observed in the robot frame. G_r = d(line)/d(pose),
 /// G_z = d(line)/d(observation).
 Line lineToMap(const math::SE2& pose, const Line& observed, Eigen::Matrix<double, 2, 3>* g_r,
                Eigen::Matrix2d* g_z);
+/// lineToMap with its Jacobians linearised at the robot position (lin_x_m, lin_y_m) instead of the
+/// pose's (the mean still uses `pose`).
+Line lineToMap(const math::SE2& pose, const Line& observed, double lin_x_m, double lin_y_m,
+               Eigen::Matrix<double, 2, 3>* g_r, Eigen::Matrix2d* g_z);
 
 /// The line through two points (rho >= 0).
 Line lineThrough(const Eigen::Vector2d& a, const Eigen::Vector2d& b);

@@ -1,9 +1,11 @@
 #include "adaptive_perception/laser/line_evaluation.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 
 #include "adaptive_perception/math/angles.h"
+#include "adaptive_perception/math/chi_square.h"
 
 namespace adaptive_perception::laser {
 
@@ -15,12 +17,15 @@ void LineScore::add(const LineScore& o) {
   pairs += o.pairs;
   endpoint_error_sum_m += o.endpoint_error_sum_m;
   angle_error_sum_rad += o.angle_error_sum_rad;
+  line_nees_sum += o.line_nees_sum;
+  line_nees_in_bounds += o.line_nees_in_bounds;
 }
 
 LineScore scoreSegments(const std::vector<LineSegment>& extracted,
                         const std::vector<TrueWallPiece>& truth, const LineExtractionConfig& config,
                         double max_offset_m, double max_angle_rad) {
   LineScore sc;
+  const double nees_lo = math::chiSquareQuantile(0.025, 2), nees_hi = math::chiSquareQuantile(0.975, 2);
   sc.extracted = static_cast<long>(extracted.size());
   std::vector<bool> hit(truth.size(), false);
   for (const LineSegment& s : extracted) {
@@ -47,6 +52,16 @@ LineScore scoreSegments(const std::vector<LineSegment>& extracted,
         sc.endpoint_error_sum_m += 0.5 * std::min(e1, e2);
         sc.angle_error_sum_rad += dangle;
         ++sc.pairs;
+        // The true line in the segment's representation: the normal that points like its own.
+        const Eigen::Vector2d tn = n.dot(sn) >= 0.0 ? n : Eigen::Vector2d(-n);
+        const Eigen::Vector2d err(s.line.rho_m - tn.dot(a),
+                                  math::angleDiff(s.line.alpha_rad, std::atan2(tn.y(), tn.x())));
+        const Eigen::LDLT<Eigen::Matrix2d> ldlt(s.line.cov);
+        if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
+          const double nees = err.dot(ldlt.solve(err));
+          sc.line_nees_sum += nees;
+          sc.line_nees_in_bounds += nees >= nees_lo && nees <= nees_hi;
+        }
       }
     }
     sc.extracted_matched += found;

@@ -61,7 +61,7 @@ void LineEkfSlamConfig::validate() const {
 
 LineEkfSlam::LineEkfSlam(const LineEkfSlamConfig& config, const math::SE2& start,
                          const Eigen::Matrix3d& start_cov)
-    : config_(config), x_(3), p_(start_cov) {
+    : config_(config), x_(3), p_(start_cov), lin_pose_(start) {
   config_.validate();
   x_ << start.x_m, start.y_m, math::wrapAngle(start.yaw_rad);
 }
@@ -111,6 +111,12 @@ void LineEkfSlam::predict(const math::SE2& d) { predict(d, odometryNoise(d)); }
 void LineEkfSlam::predict(const math::SE2& d, const Eigen::Matrix3d& q) {
   Eigen::Matrix3d fx, fv;
   const math::SE2 next = predictPose(pose(), d, &fx, &fv);
+  if (config_.first_estimate_jacobians) {
+    // F_x from the predicted positions: x_{k+1|k} - x_{k|k-1} instead of R(theta_{k|k}) d.
+    fx(0, 2) = -(next.y_m - lin_pose_.y_m);
+    fx(1, 2) = next.x_m - lin_pose_.x_m;
+  }
+  lin_pose_ = next;
   x_.head<3>() << next.x_m, next.y_m, next.yaw_rad;
   const int n = static_cast<int>(x_.size());
   // Only the pose rows/columns change: P_rr = F P_rr F^T + F_v Q F_v^T, P_rl = F P_rl.
@@ -128,7 +134,15 @@ LineEkfSlam::Block LineEkfSlam::pairingBlock(const LineObservation& obs, int lm)
   Eigen::Matrix2d hl;
   const bool fixed = lm >= numLandmarks();
   const FixedLandmark* f = fixed ? &fixed_[lm - numLandmarks()] : nullptr;
-  const Line pred = observeLine(pose(), fixed ? f->line : landmark(lm), &hr, &hl);
+  const Line map_line = fixed ? f->line : landmark(lm);
+  const Line pred = observeLine(pose(), map_line, &hr, &hl);
+  if (config_.first_estimate_jacobians && !fixed) {
+    // Same flip as the prediction (it defines the innovation's representation).
+    const double raw_rho = map_line.rho_m - (x_[0] * std::cos(map_line.alpha_rad) +
+                                             x_[1] * std::sin(map_line.alpha_rad));
+    observeLineJacobians(lin_pose_.x_m, lin_pose_.y_m, landmarks_[lm].first_alpha_rad,
+                         raw_rho < 0.0 ? -1.0 : 1.0, &hr, &hl);
+  }
   b.nu = lineInnovation(obs.line, pred);
   b.hr = hr;
   b.r = obs.cov + modelNoise();
@@ -221,6 +235,7 @@ void LineEkfSlam::normaliseLandmarks() {
       alpha += math::kPi;
       p_.row(landmarkIndex(j)) *= -1.0;
       p_.col(landmarkIndex(j)) *= -1.0;
+      landmarks_[j].first_alpha_rad = math::wrapAngle(landmarks_[j].first_alpha_rad + math::kPi);
     }
     alpha = math::wrapAngle(alpha);
   }
@@ -273,7 +288,8 @@ void LineEkfSlam::jcbb(const std::vector<LineObservation>& obs,
   if (nodes > config_.jcbb_max_nodes) return;
   for (int lm : candidates[i]) {
     bool used = false;
-    for (const auto& p : current) used |= p.lm == lm;
+    if (!config_.share_landmarks)
+      for (const auto& p : current) used |= p.lm == lm;
     if (used) continue;
     current.push_back({static_cast<int>(i), lm});
     const int dof = 2 * static_cast<int>(current.size());
@@ -370,7 +386,9 @@ void LineEkfSlam::extendExtent(const Line& l, const LineObservation& obs, Landma
 void LineEkfSlam::addLandmark(const LineObservation& obs, int scan) {
   Eigen::Matrix<double, 2, 3> gr;
   Eigen::Matrix2d gz;
-  const Line l = lineToMap(pose(), obs.line, &gr, &gz);
+  const bool fej = config_.first_estimate_jacobians;
+  const Line l = lineToMap(pose(), obs.line, fej ? lin_pose_.x_m : x_[0],
+                           fej ? lin_pose_.y_m : x_[1], &gr, &gz);
   const int n = static_cast<int>(x_.size());
   x_.conservativeResize(n + 2);
   x_.segment<2>(n) << l.rho_m, l.alpha_rad;
@@ -384,6 +402,7 @@ void LineEkfSlam::addLandmark(const LineObservation& obs, int scan) {
   p_ = std::move(p);
   Landmark lm;
   lm.id = next_id_++;
+  lm.first_alpha_rad = l.alpha_rad;
   lm.last_seen_scan = scan;
   landmarks_.push_back(lm);
   extendExtent(numLandmarks() - 1, obs);
@@ -528,11 +547,12 @@ LineEkfSlam::UpdateResult LineEkfSlam::update(const std::vector<LineObservation>
   for (size_t i = 0; i < obs.size(); ++i)
     if (res.association[i] >= 0) pairs.push_back({static_cast<int>(i), res.association[i]});
   if (!pairs.empty()) {
-    applyUpdate(blocks(obs, pairs));
+    res.nis = applyUpdate(blocks(obs, pairs));
+    res.nis_dof = 2 * static_cast<int>(pairs.size());
     for (const auto& pr : pairs) {
       Landmark& lm =
           pr.lm < numLandmarks() ? landmarks_[pr.lm] : fixed_[pr.lm - numLandmarks()].info;
-      ++lm.sightings;
+      if (lm.last_seen_scan != scan_) ++lm.sightings;  // pieces of one wall: one sighting a scan
       lm.last_seen_scan = scan_;
       lm.confirmed_flag = lm.confirmed_flag || lm.sightings >= config_.confirm_sightings;
       extendExtent(pr.lm, obs[pr.obs]);

@@ -24,6 +24,19 @@ math::SE2 predictPose(const math::SE2& p, const math::SE2& d, Eigen::Matrix3d* f
                    math::wrapAngle(p.yaw_rad + d.yaw_rad));
 }
 
+void observeLineJacobians(double x, double y, double alpha, double sign,
+                          Eigen::Matrix<double, 2, 3>* h_r, Eigen::Matrix2d* h_l) {
+  const double ca = std::cos(alpha), sa = std::sin(alpha);
+  if (h_r) {
+    *h_r << -sign * ca, -sign * sa, 0,  //
+        0, 0, -1;
+  }
+  if (h_l) {
+    *h_l << sign, sign * (x * sa - y * ca),  //
+        0, 1;
+  }
+}
+
 Line observeLine(const math::SE2& p, const Line& l, Eigen::Matrix<double, 2, 3>* h_r,
                  Eigen::Matrix2d* h_l) {
   const double ca = std::cos(l.alpha_rad), sa = std::sin(l.alpha_rad);
@@ -35,24 +48,24 @@ Line observeLine(const math::SE2& p, const Line& l, Eigen::Matrix<double, 2, 3>*
     alpha += math::kPi;
     sign = -1.0;
   }
-  if (h_r) {
-    *h_r << -sign * ca, -sign * sa, 0,  //
-        0, 0, -1;
-  }
-  if (h_l) {
-    *h_l << sign, sign * (p.x_m * sa - p.y_m * ca),  //
-        0, 1;
-  }
+  observeLineJacobians(p.x_m, p.y_m, l.alpha_rad, sign, h_r, h_l);
   return Line{rho, math::wrapAngle(alpha)};
 }
 
 Line lineToMap(const math::SE2& p, const Line& z, Eigen::Matrix<double, 2, 3>* g_r,
                Eigen::Matrix2d* g_z) {
+  return lineToMap(p, z, p.x_m, p.y_m, g_r, g_z);
+}
+
+Line lineToMap(const math::SE2& p, const Line& z, double lin_x, double lin_y,
+               Eigen::Matrix<double, 2, 3>* g_r, Eigen::Matrix2d* g_z) {
   double alpha = z.alpha_rad + p.yaw_rad;
   const double ca = std::cos(alpha), sa = std::sin(alpha);
   double rho = z.rho_m + p.x_m * ca + p.y_m * sa;
-  // d(rho)/d(alpha) through alpha = z.alpha + theta:
-  const double drho_dalpha = -p.x_m * sa + p.y_m * ca;
+  // d(rho)/d(alpha) through alpha = z.alpha + theta, at the linearisation point (G_r) and at the
+  // pose (G_z, which only carries the observation noise):
+  const double drho_dalpha = -lin_x * sa + lin_y * ca;
+  const double drho_dalpha_z = -p.x_m * sa + p.y_m * ca;
   double sign = 1.0;
   if (rho < 0.0) {
     rho = -rho;
@@ -64,7 +77,7 @@ Line lineToMap(const math::SE2& p, const Line& z, Eigen::Matrix<double, 2, 3>* g
         0, 0, 1;
   }
   if (g_z) {
-    *g_z << sign, sign * drho_dalpha,  //
+    *g_z << sign, sign * drho_dalpha_z,  //
         0, 1;
   }
   return Line{rho, math::wrapAngle(alpha)};

@@ -11,6 +11,7 @@
 
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/math/kalman_filter.h"
+#include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/slam/map_io.h"
 
 using namespace adaptive_perception;
@@ -353,4 +354,80 @@ TEST(LineMapYaml, WritesLandmarksAndCovarianceAtomically) {
   EXPECT_NEAR(y["state_covariance"]["data"][7 * 3 + 3].as<double>(), ekf.covariance()(3, 3), 1e-15);
   EXPECT_THROW(slam::writeLineMapYaml("/nonexistent_dir/map.yaml", ekf), std::runtime_error);
   std::remove(path.c_str());
+}
+
+// The standard model cannot observe the map's global heading: lines only tell where the robot is
+// relative to lines it placed itself. So from a start pose with yaw variance s2, no sequence of
+// moves and line observations may bring the robot's yaw variance below s2 (Huang, Mourikis &
+// Roumeliotis 2008). The plain EKF, linearised at ever-changing estimates, does (spurious
+// information; the cause of its over-confident NEES on long loops); the first-estimates Jacobians
+// keep the bound. Noisy odometry and observations of a square room while driving a circle.
+TEST(LineEkfSlam, FirstEstimatesJacobiansKeepTheHeadingUnobservable) {
+  const std::vector<Line> room{Line{3.0, 0.0}, Line{3.0, M_PI / 2}, Line{3.0, M_PI},
+                               Line{3.0, -M_PI / 2}};
+  auto run = [&](bool fej) {
+    slam::LineEkfSlamConfig cfg;
+    cfg.first_estimate_jacobians = fej;
+    cfg.confirm_sightings = 1;
+    cfg.merge_landmarks = false;
+    const double yaw_var0 = 0.05;
+    slam::LineEkfSlam ekf(cfg, math::SE2(), Eigen::Vector3d(1e-4, 1e-4, yaw_var0).asDiagonal());
+    math::Rng rng(7);
+    math::SE2 truth;
+    double min_ratio = 1.0;
+    for (int k = 0; k < 300; ++k) {
+      if (k > 0) {
+        const math::SE2 d(0.1, 0.0, 0.1);  // a circle of radius 1 m
+        truth = truth * d;
+        const Eigen::Matrix3d q = Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal();
+        ekf.predict(math::SE2(d.x_m + rng.gaussian(0, 0.01), d.y_m + rng.gaussian(0, 0.01),
+                              d.yaw_rad + rng.gaussian(0, 0.01)),
+                    q);
+      }
+      std::vector<slam::LineObservation> obs;
+      for (const Line& l : room) {
+        Line z = slam::observeLine(truth, l, nullptr, nullptr);
+        z.rho_m += rng.gaussian(0, 0.02);
+        z.alpha_rad += rng.gaussian(0, 0.01);
+        obs.push_back(obsOf(z, 0.02, 0.01));
+      }
+      ekf.update(obs);
+      min_ratio = std::min(min_ratio, ekf.poseCovariance()(2, 2) / yaw_var0);
+    }
+    EXPECT_EQ(ekf.numLandmarks(), 4);
+    return min_ratio;
+  };
+  const double plain = run(false), fej = run(true);
+  EXPECT_LT(plain, 0.9) << "the plain EKF should show the spurious heading information";
+  EXPECT_GT(fej, 0.999);
+}
+
+// A wall broken by an alcove is one line seen as two segments in one scan. With share_landmarks,
+// JCBB pairs both with the one landmark (two independent measurements of it) and starts nothing
+// new; without it, the second piece must start a landmark of its own.
+TEST(LineEkfSlam, PiecesOfOneWallInOneScanShareTheLandmark) {
+  for (const bool share : {true, false}) {
+    slam::LineEkfSlamConfig cfg;
+    cfg.confirm_sightings = 1;
+    cfg.share_landmarks = share;
+    slam::LineEkfSlam ekf(cfg);
+    ekf.update({obsOf(Line{2.0, 0.3})});
+    ASSERT_EQ(ekf.numLandmarks(), 1);
+    ekf.predict(math::SE2(0.05, 0.0, 0.0));
+    const Line seen = slam::observeLine(ekf.pose(), Line{2.0, 0.3}, nullptr, nullptr);
+    slam::LineObservation a = obsOf(seen), b = obsOf(Line{seen.rho_m + 0.004, seen.alpha_rad});
+    b.start_m = a.end_m + Eigen::Vector2d(-std::sin(seen.alpha_rad), std::cos(seen.alpha_rad));
+    b.end_m = b.start_m + Eigen::Vector2d(-std::sin(seen.alpha_rad), std::cos(seen.alpha_rad));
+    const slam::LineEkfSlam::UpdateResult res = ekf.update({a, b});
+    if (share) {
+      EXPECT_EQ(res.association, (std::vector<int>{0, 0}));
+      EXPECT_EQ(res.added, 0);
+      EXPECT_EQ(res.nis_dof, 4);
+      EXPECT_EQ(ekf.numLandmarks(), 1);
+      EXPECT_EQ(ekf.landmarkInfo(0).sightings, 2);  // one per scan, however many pieces
+    } else {
+      EXPECT_EQ(res.association[0] + res.association[1], -1);  // one paired, one new
+      EXPECT_EQ(res.added, 1);
+    }
+  }
 }
