@@ -25,7 +25,7 @@
 // misses are over-confident); nees_mean should be near 3. nis_per_dof: the normalised innovation squared
 // of the line updates summed over the run over their degrees of freedom (near 1 for a consistent
 // filter; needs no ground truth, so it also checks real logs). For the anchor variant the truth is first expressed in the frame the
-// anchored lines define (matched to the true walls of ground_truth/walls). Relation keys: the
+// anchored line and the fixed intersection define (matched to the true walls of ground_truth/walls). Relation keys: the
 // Kuemmerle et al. metric against --relations (Freiburg format, bag stamps). -1 where not
 // available. --make_relations writes reference relations from ground_truth/pose (1 s chain + 200
 // random pairs). Writes OUTPUT/estimate.tum, truth.tum, odometry.tum, pose_covariance.csv,
@@ -38,6 +38,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -104,29 +105,46 @@ std::vector<slam::Line> trueLines(
   return out;
 }
 
-/// Ground truth -> the frame the anchored lines define (identity when there are not two anchors).
+/// Ground truth -> the frame the anchor variant defines (identity before both references are set).
 math::SE2 anchorFrame(const slam::LineEkfSlam& ekf, const std::vector<slam::Line>& truth_lines) {
+  // The references: the anchored line, then the gauge line (its intersection with the first).
+  std::vector<slam::Line> refs;
+  for (int k = 0; k < ekf.numFixedLandmarks(); ++k)
+    if (ekf.fixedLandmark(k).anchor) refs.push_back(ekf.fixedLandmark(k).line);
+  for (int i = 0; i < ekf.numLandmarks(); ++i)
+    if (ekf.landmarkInfo(i).gauge) refs.push_back(ekf.landmark(i));
   std::vector<slam::Line> est, tru;
-  for (int k = 0; k < ekf.numFixedLandmarks() && est.size() < 2; ++k) {
-    const auto& f = ekf.fixedLandmark(k);
-    if (!f.anchor) continue;
+  for (size_t k = 0; k < refs.size() && est.size() < 2; ++k) {
+    const slam::Line& line = refs[k];
     double best = 1e300;
     slam::Line match;
     for (const auto& t : truth_lines) {
-      const double d = std::fabs(t.rho_m - f.line.rho_m) +
-                       2.0 * std::fabs(math::angleDiff(t.alpha_rad, f.line.alpha_rad));
+      const double d = std::fabs(t.rho_m - line.rho_m) +
+                       2.0 * std::fabs(math::angleDiff(t.alpha_rad, line.alpha_rad));
       if (d < best) {
         best = d;
         match = t;
       }
     }
     if (best > 1.0) continue;
-    est.push_back(f.line);
+    est.push_back(line);
     tru.push_back(match);
   }
-  math::SE2 t;
-  if (est.size() == 2 && slam::transformBetweenLinePairs(tru.data(), est.data(), &t)) return t;
-  return math::SE2();
+  if (est.size() < 2) return math::SE2();
+  // Rotation from the first reference (two undirected lines: the turn nearer zero), translation
+  // carrying the true intersection of the references onto the estimated one: exactly the frame
+  // the anchored line and the fixed intersection define (the gauge line's own direction is
+  // still an estimate, so its rho is not used).
+  double th = math::wrapAngle(est[0].alpha_rad - tru[0].alpha_rad);
+  if (std::cos(th) < 0.0) th = math::wrapAngle(th + math::kPi);
+  auto intersection = [](const slam::Line& a, const slam::Line& b) {
+    Eigen::Matrix2d n;
+    n << std::cos(a.alpha_rad), std::sin(a.alpha_rad), std::cos(b.alpha_rad), std::sin(b.alpha_rad);
+    return Eigen::Vector2d(n.inverse() * Eigen::Vector2d(a.rho_m, b.rho_m));
+  };
+  const Eigen::Vector2d pe = intersection(est[0], est[1]), pt = intersection(tru[0], tru[1]);
+  const Eigen::Vector2d t = pe - Eigen::Rotation2Dd(th) * pt;
+  return math::SE2(t.x(), t.y(), th);
 }
 }  // namespace
 

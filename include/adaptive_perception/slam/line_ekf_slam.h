@@ -16,12 +16,15 @@
 //
 // Fully observable variants (section 2.2, eqs. 19-27):
 //   - kStandard: the plain filter; its map is only known relative to the first observations.
-//   - kAnchor: confirmed landmarks become fixed global references (eqs. 20-22, 24-25). A line fixes
-//     two of the three pose degrees of freedom, so two non-parallel lines are anchored (the line
-//     counterpart of the paper's point anchor): the first confirmed landmark, then the first one at
-//     least anchor_min_angle_rad away in direction. Anchoring conditions the state on the
-//     landmark's current estimate (the map frame is redefined by it) and moves it out of the state;
-//     its observations keep correcting the pose with H = [H_r 0].
+//   - kAnchor: confirmed landmarks fix the map frame (eqs. 20-22, 24-25), the line counterpart of
+//     the paper's point anchor. A line fixes two of the frame's three degrees of freedom, so: the
+//     first confirmed landmark becomes a fixed global reference (the state is conditioned on its
+//     current estimate, the map frame is redefined by it, and it leaves the state; its
+//     observations keep correcting the pose with H = [H_r 0]); then the first confirmed one at
+//     least anchor_min_angle_rad away in direction fixes the third, the position of its
+//     intersection with the first along it (a rank-one conditioning; the line stays in the state,
+//     Landmark::gauge). Fixing the second line whole would over-constrain the frame: its angle to
+//     the first would be asserted exact.
 //   - kExternal: an absolute pose sensor (eqs. 23, 26-27) through updateExternalPosition() /
 //     updateExternalPose().
 //   Retirement (any variant, retire_after_updates > 0): a landmark revised more than that many
@@ -112,6 +115,9 @@ struct Landmark {
   bool confirmed() const { return confirmed_flag; }
   bool confirmed_flag = false;
   double first_alpha_rad = 0.0;  // direction at initialisation: the FEJ linearisation point
+  // Anchor variant: the second reference line. Its intersection with the first anchor, along
+  // that line, is fixed (zero variance); the line itself stays in the state.
+  bool gauge = false;
 };
 
 /// A landmark outside the state: an anchor (zero covariance, defines the map frame) or a retired
@@ -210,6 +216,11 @@ class LineEkfSlam {
   double applyUpdate(const std::vector<Block>& b);
   void normaliseLandmarks();
   void anchorOrRetire(UpdateResult* res);
+  /// Coordinate along `anchor` (from its foot point, along (-sin, cos) of its normal) of its
+  /// intersection with l.
+  static double alongFirstAnchor(const Line& anchor, const Line& l);
+  /// Conditions the state on landmark j's intersection with `anchor` (the third gauge freedom).
+  void fixGauge(int j, const Line& anchor);
   /// Merges landmarks compatible with one of `seen` (state indices); returns how many merged.
   int mergeCompatible(std::vector<int> seen);
   /// Moves landmark i out of the state: conditioned on its estimate (anchor) or marginalised.

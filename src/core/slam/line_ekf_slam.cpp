@@ -444,32 +444,69 @@ void LineEkfSlam::fixLandmark(int i, bool anchor) {
   removeLandmark(i);
 }
 
+double LineEkfSlam::alongFirstAnchor(const Line& anchor, const Line& l) {
+  // The intersection p of the two lines, as its coordinate along the anchor: p = rho_a n_a + u t_a
+  // with n_a . p = rho_a and n . p = rho, so u = (rho - rho_a n . n_a) / (n . t_a).
+  const Eigen::Vector2d na(std::cos(anchor.alpha_rad), std::sin(anchor.alpha_rad)),
+      ta(-na.y(), na.x()), n(std::cos(l.alpha_rad), std::sin(l.alpha_rad));
+  return (l.rho_m - anchor.rho_m * n.dot(na)) / n.dot(ta);
+}
+
+void LineEkfSlam::fixGauge(int j, const Line& anchor) {
+  // Condition on u(rho_j, alpha_j) = its estimate, linearised: P -= P J^T (J P J^T)^-1 J P with J
+  // the 1x2 derivative of u at landmark j's columns (central differences: u is smooth away from
+  // parallel lines, which anchor_min_angle_rad excludes).
+  const Line l = landmark(j);
+  const double h = 1e-6;
+  Eigen::RowVector2d jac;
+  jac[0] = (alongFirstAnchor(anchor, Line{l.rho_m + h, l.alpha_rad}) -
+            alongFirstAnchor(anchor, Line{l.rho_m - h, l.alpha_rad})) /
+           (2 * h);
+  jac[1] = (alongFirstAnchor(anchor, Line{l.rho_m, l.alpha_rad + h}) -
+            alongFirstAnchor(anchor, Line{l.rho_m, l.alpha_rad - h})) /
+           (2 * h);
+  const int k = landmarkIndex(j);
+  const Eigen::VectorXd pj = p_.middleCols(k, 2) * jac.transpose();  // P J^T
+  const double s = jac * p_.block<2, 2>(k, k) * jac.transpose();
+  if (s > 0.0) {
+    p_ -= pj * pj.transpose() / s;
+    p_ = 0.5 * (p_ + p_.transpose());
+  }
+  landmarks_[j].gauge = true;
+}
+
 void LineEkfSlam::anchorOrRetire(UpdateResult* res) {
   if (config_.variant == Variant::kAnchor) {
-    int anchors = 0;
-    double first_alpha = 0.0;
+    // The map frame has three degrees of freedom: the first confirmed line fixes two (its
+    // direction and offset) and leaves the state; a second, non-parallel one fixes only the third,
+    // the position of its intersection with the first along it, and stays in the state with its
+    // direction still estimated. (Fixing the second line whole would assert its angle to the first
+    // exactly, an error frozen into every later update.)
+    const FixedLandmark* first = nullptr;
     for (const auto& f : fixed_)
-      if (f.anchor && anchors++ == 0) first_alpha = f.line.alpha_rad;
-    for (int j = 0; j < numLandmarks() && anchors < 2;) {
-      // Lines are undirected: directions compare modulo pi.
-      const bool usable =
-          landmarks_[j].confirmed() &&
-          (anchors == 0 ||
-           std::fabs(math::wrapAngle(2.0 * (landmark(j).alpha_rad - first_alpha))) / 2.0 >=
-               config_.anchor_min_angle_rad);
-      if (!usable) {
-        ++j;
-        continue;
+      if (f.anchor) first = &f;
+    bool have_gauge = false;
+    for (const auto& lm : landmarks_) have_gauge |= lm.gauge;
+    for (int j = 0; j < numLandmarks() && !first; ++j)
+      if (landmarks_[j].confirmed()) {
+        fixLandmark(j, true);
+        first = &fixed_.back();
+        ++res->anchored;
       }
-      if (anchors == 0) first_alpha = landmark(j).alpha_rad;
-      fixLandmark(j, true);  // j now names the next landmark
-      ++res->anchored;
-      ++anchors;
+    for (int j = 0; j < numLandmarks() && first && !have_gauge; ++j) {
+      // Lines are undirected: directions compare modulo pi.
+      if (landmarks_[j].confirmed() &&
+          std::fabs(math::wrapAngle(2.0 * (landmark(j).alpha_rad - first->line.alpha_rad))) / 2.0 >=
+              config_.anchor_min_angle_rad) {
+        fixGauge(j, first->line);
+        have_gauge = true;
+        ++res->anchored;
+      }
     }
   }
   if (config_.retire_after_updates > 0)
     for (int j = numLandmarks() - 1; j >= 0; --j)
-      if (landmarks_[j].sightings > config_.retire_after_updates) {
+      if (landmarks_[j].sightings > config_.retire_after_updates && !landmarks_[j].gauge) {
         fixLandmark(j, false);
         ++res->retired;
       }
@@ -520,6 +557,7 @@ int LineEkfSlam::mergeCompatible(std::vector<int> seen) {
       keep.sightings += gone.sightings;
       keep.last_seen_scan = std::max(keep.last_seen_scan, gone.last_seen_scan);
       keep.confirmed_flag = keep.confirmed_flag || gone.confirmed_flag;
+      keep.gauge = keep.gauge || gone.gauge;  // l_i = F l_j now: i carries j's fixed intersection
       for (const auto& pc : gone.pieces) {
         LineObservation o;  // pieces are in map: pass them through the robot frame
         const math::SE2 inv = pose().inverse();

@@ -206,9 +206,11 @@ TEST(LineEkfSlam, BadConfigurationIsRejectedWithItsName) {
 
 }  // namespace
 
-// Anchoring conditions the joint Gaussian on the landmark's estimate: the remaining covariance is
-// the Schur complement P_aa - P_al P_ll^-1 P_la (computed here directly), and the mean is
-// unchanged.
+// Anchoring conditions the joint Gaussian: on the first landmark's estimate (two rows), then on
+// the second reference's intersection with it along the first (one row, J = du/d(rho, alpha),
+// here by central differences of the intersection computed from two lines). The remaining
+// covariance is the Schur complement P_aa - P_ac C^T (C P_cc C^T)^-1 C P_ca computed directly
+// from the un-anchored filter, and the mean is unchanged.
 TEST(LineEkfSlam, AnchorConditionsTheStateOnTheAnchoredLandmarks) {
   slam::LineEkfSlamConfig cfg;
   cfg.confirm_sightings = 2;
@@ -229,37 +231,54 @@ TEST(LineEkfSlam, AnchorConditionsTheStateOnTheAnchoredLandmarks) {
   plain.predict(math::SE2(0.1, 0.0, 0.0));
   plain.update(seen);
   const auto res = ekf.update(seen);
-  // Wall 0 is the first anchor; wall 1 is parallel to it, wall 2 is the second anchor.
+  // Wall 0 is the anchor; wall 1 is parallel to it; wall 2 fixes the intersection.
   EXPECT_EQ(res.anchored, 2);
-  ASSERT_EQ(ekf.numLandmarks(), 1);
-  ASSERT_EQ(ekf.numFixedLandmarks(), 2);
+  ASSERT_EQ(ekf.numLandmarks(), 2);
+  ASSERT_EQ(ekf.numFixedLandmarks(), 1);
+  EXPECT_TRUE(ekf.fixedLandmark(0).anchor);
   EXPECT_NEAR(ekf.fixedLandmark(0).line.rho_m, plain.landmark(0).rho_m, 1e-12);
-  EXPECT_NEAR(ekf.fixedLandmark(1).line.alpha_rad, plain.landmark(2).alpha_rad, 1e-12);
-  const std::vector<int> keep{0, 1, 2, slam::LineEkfSlam::landmarkIndex(1),
-                              slam::LineEkfSlam::landmarkIndex(1) + 1};
-  const std::vector<int> cond{
-      slam::LineEkfSlam::landmarkIndex(0), slam::LineEkfSlam::landmarkIndex(0) + 1,
-      slam::LineEkfSlam::landmarkIndex(2), slam::LineEkfSlam::landmarkIndex(2) + 1};
+  EXPECT_FALSE(ekf.landmarkInfo(0).gauge);
+  EXPECT_TRUE(ekf.landmarkInfo(1).gauge);
+  // u(l2) = position along wall 0 (direction (-sin a0, cos a0) from its foot) where l2 crosses it.
+  const Line a0 = plain.landmark(0);
+  auto along = [&](const Line& l) {
+    Eigen::Matrix2d n;
+    n << std::cos(a0.alpha_rad), std::sin(a0.alpha_rad), std::cos(l.alpha_rad),
+        std::sin(l.alpha_rad);
+    const Eigen::Vector2d p = n.inverse() * Eigen::Vector2d(a0.rho_m, l.rho_m);
+    return Eigen::Vector2d(-std::sin(a0.alpha_rad), std::cos(a0.alpha_rad))
+        .dot(p - a0.rho_m * Eigen::Vector2d(std::cos(a0.alpha_rad), std::sin(a0.alpha_rad)));
+  };
+  const Line l2 = plain.landmark(2);
+  const double h = 1e-6;
+  const double du_drho = (along({l2.rho_m + h, l2.alpha_rad}) - along({l2.rho_m - h, l2.alpha_rad})) / (2 * h);
+  const double du_dalpha =
+      (along({l2.rho_m, l2.alpha_rad + h}) - along({l2.rho_m, l2.alpha_rad - h})) / (2 * h);
+  const int n = static_cast<int>(plain.state().size());
+  const int i0 = slam::LineEkfSlam::landmarkIndex(0), i2 = slam::LineEkfSlam::landmarkIndex(2);
+  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(3, n);
+  c(0, i0) = 1.0;
+  c(1, i0 + 1) = 1.0;
+  c(2, i2) = du_drho;
+  c(2, i2 + 1) = du_dalpha;
   const Eigen::MatrixXd& p = plain.covariance();
-  Eigen::MatrixXd paa(5, 5), pal(5, 4), pll(4, 4);
-  for (int a = 0; a < 5; ++a)
-    for (int b = 0; b < 5; ++b) paa(a, b) = p(keep[a], keep[b]);
-  for (int a = 0; a < 5; ++a)
-    for (int b = 0; b < 4; ++b) pal(a, b) = p(keep[a], cond[b]);
-  for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b) pll(a, b) = p(cond[a], cond[b]);
-  const Eigen::MatrixXd expected = paa - pal * pll.inverse() * pal.transpose();
+  const Eigen::MatrixXd cond = p - p * c.transpose() * (c * p * c.transpose()).inverse() * c * p;
+  const std::vector<int> keep{0, 1, 2, slam::LineEkfSlam::landmarkIndex(1),
+                              slam::LineEkfSlam::landmarkIndex(1) + 1, i2, i2 + 1};
+  Eigen::MatrixXd expected(7, 7);
+  for (int a = 0; a < 7; ++a)
+    for (int b = 0; b < 7; ++b) expected(a, b) = cond(keep[a], keep[b]);
   EXPECT_TRUE(ekf.covariance().isApprox(expected, 1e-6)) << ekf.covariance() << "\n---\n"
                                                          << expected;
-  for (int a = 0; a < 5; ++a) EXPECT_NEAR(ekf.state()[a], plain.state()[keep[a]], 1e-12);
-  // With both anchors fixed, the pose is observable: seeing them again shrinks the pose covariance
-  // in every direction, and their index continues after the state landmarks.
+  for (int a = 0; a < 7; ++a) EXPECT_NEAR(ekf.state()[a], plain.state()[keep[a]], 1e-12);
+  // The frame is fixed: seeing the references again shrinks the pose covariance in every
+  // direction; the anchored line's index continues after the state landmarks.
   ekf.predict(math::SE2(0.0, 0.0, 0.0), Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
   const Eigen::Matrix3d before = ekf.poseCovariance();
-  const std::vector<slam::LineObservation> anchors_only{obsOf(Line{1.9, 0.0}),
-                                                        obsOf(Line{1.0, M_PI / 2})};
-  EXPECT_EQ(ekf.associate(anchors_only), (std::vector<int>{1, 2}));
-  ekf.update(anchors_only);
+  const std::vector<slam::LineObservation> refs_only{obsOf(Line{1.9, 0.0}),
+                                                     obsOf(Line{1.0, M_PI / 2})};
+  EXPECT_EQ(ekf.associate(refs_only), (std::vector<int>{2, 1}));
+  ekf.update(refs_only);
   EXPECT_LT(ekf.poseCovariance()(0, 0), 0.5 * before(0, 0));
   EXPECT_LT(ekf.poseCovariance()(1, 1), 0.5 * before(1, 1));
   EXPECT_LT(ekf.poseCovariance()(2, 2), 0.5 * before(2, 2));
