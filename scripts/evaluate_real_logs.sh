@@ -19,6 +19,7 @@ summary="$OUT/summary.txt"
 : > "$summary"
 for log in $LOGS; do
   "$BIN/carmen_to_bag" --input "$AP_ROOT/data/laser/$log.clf.bz2" --output "$OUT/$log.bag" --overwrite --max_issues 3 \
+    --odometry laser_poses \
     2> "$OUT/$log.issues.txt" | tee -a "$summary"
   "$BIN/evaluate_lines" --bag "$OUT/$log.bag" --output "$OUT/$log" --name "$log" | tail -n 1 | sed "s/^/$log /" | tee -a "$summary"
   "$BIN/evaluate_slam" --bag "$OUT/$log.bag" --retire_after "$RETIRE_AFTER" \

@@ -1,11 +1,13 @@
 // carmen_to_bag: converts a CARMEN log (.clf or .clf.bz2) into a bag.
 //
 //   carmen_to_bag --input LOG --output FILE.bag [--laser_frame laser] [--overwrite] [--max_issues
-//   20]
+//   20] [--odometry auto|odom_lines|laser_poses]
 //
 // Topics: scan (sensor_msgs/LaserScan: angle_min, angle_increment and range_max from the log;
 // FLASER and ROBOTLASER1 in `laser`, RLASER in `rear_laser`), odom (nav_msgs/Odometry from ODOM
-// lines, or from the lasers' robot poses when the log has none) + tf odom -> base_link, base_link
+// lines, or from the lasers' robot poses when the log has none; --odometry laser_poses takes the
+// lasers' poses even then: each scan then carries the odometry of its own instant, which matters on
+// logs whose ODOM stamps are out of order, like intel) + tf odom -> base_link, base_link
 // -> laser (tf_static when the mounting never changes, else tf at each scan), ground_truth/pose
 // (PoseStamped in map) from TRUEPOS. Every stamp is the line's ipc_timestamp, so published relation
 // files for these logs line up with the bag. Malformed / truncated / unknown / out-of-order lines
@@ -34,14 +36,17 @@ namespace T = adaptive_perception::ros_topics;
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "carmen_to_bag --input LOG --output FILE.bag [--laser_frame laser] "
-                   "[--overwrite] [--max_issues 20]");
+                   "[--overwrite] [--max_issues 20] [--odometry auto|odom_lines|laser_poses]");
   const std::string input = args.get("input", "");
   const std::string output = args.get("output", "");
   const std::string laser_frame = args.get("laser_frame", T::kLaserFrame);
   const bool overwrite = args.has("overwrite");
   const long max_issues = args.getInt("max_issues", 20);
+  const std::string odometry = args.get("odometry", "auto");
   args.finish();
   if (input.empty() || output.empty()) args.fail("--input and --output are required");
+  if (odometry != "auto" && odometry != "odom_lines" && odometry != "laser_poses")
+    args.fail("--odometry = '" + odometry + "' (allowed: auto, odom_lines, laser_poses)");
   if (std::filesystem::exists(output) && !overwrite)
     args.fail("'" + output + "' exists; pass --overwrite to replace it");
   try {
@@ -113,7 +118,10 @@ int main(int argc, char** argv) {
                                                     T::kBaseFrame, o.header.stamp));
       bag.write("/tf", o.header.stamp, tf);
     };
-    if (!log.odometry.empty()) {
+    if (odometry == "odom_lines" && log.odometry.empty())
+      throw std::runtime_error(input + ": --odometry odom_lines, but the log has no ODOM lines");
+    const bool from_lines = odometry == "odom_lines" || (odometry == "auto" && !log.odometry.empty());
+    if (from_lines) {
       for (const auto& o : log.odometry) writeOdom(o.timestamp_s, o.pose, o.tv_mps, o.rv_radps);
     } else {
       for (const auto& l : log.lasers) writeOdom(l.timestamp_s, l.robot_pose, 0.0, 0.0);
@@ -129,7 +137,7 @@ int main(int argc, char** argv) {
     std::printf(
         "carmen_to_bag: output=%s scans=%zu odom=%zu truepos=%zu issues=%zu out_of_order=%ld\n",
         output.c_str(), log.lasers.size(),
-        log.odometry.empty() ? log.lasers.size() : log.odometry.size(), log.true_poses.size(),
+        from_lines ? log.odometry.size() : log.lasers.size(), log.true_poses.size(),
         log.issues.size(), log.out_of_order);
   } catch (const std::exception& e) {
     std::cerr << "carmen_to_bag: error: " << e.what() << "\n";
