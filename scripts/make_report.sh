@@ -77,8 +77,8 @@ part slam_loop "$BIN/evaluate_slam" --bag rosbag/laser_loop.bag --output "$OUT/s
   --name "simulator loop"
 "$BIN/carmen_to_bag" --input data/laser/intel.clf.bz2 --output "$TMP/intel.bag" --overwrite \
   --max_issues 3 --odometry laser_poses > /dev/null 2>&1
-part slam_intel "$BIN/evaluate_slam" --bag "$TMP/intel.bag" --retire_after 50 --odom_noise_scale 8 \
-  --output "$OUT/slam_intel" --name "Intel lab (retire after 50)"
+part slam_intel "$BIN/evaluate_slam" --bag "$TMP/intel.bag" --odom_noise_scale 8 \
+  --output "$OUT/slam_intel" --name "Intel lab"
 rm -f "$TMP/intel.bag"
 
 # Histogram place recognition (papers/004): omni-directional camera, cloudy training and test runs,
