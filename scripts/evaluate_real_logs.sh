@@ -5,7 +5,7 @@
 # Usage: scripts/evaluate_real_logs.sh [RETIRE_AFTER=0] [ODOM_NOISE_SCALE=8] [LOGS="intel fr079 mit-csail fr-clinic_robotlaser"]
 # Odometry: the robot pose each laser line carries (carmen_to_bag --odometry laser_poses). Retirement
 # (the paper's 50 on USC SAL) is off by default: on the Intel log it froze landmarks before the loops
-# closed (doubled corridors), and the whole log still runs at about 70x real time without it.
+# closed (doubled corridors), and the whole log still runs at about 140x real time without it.
 # The EKF's default odometry noise fits the simulator; these robots' odometry is far worse (the Intel
 # log drifts by more than a turn), and on the Intel log 8x the default gave the squarest map (4x:
 # a rotated, smeared map; 1x: divergence).

@@ -207,10 +207,20 @@ class LineEkfSlam {
     int col2 = -1;
   };
   Eigen::Matrix2d modelNoise() const;
+  /// Innovation z - h of obs against landmark lm (state index, or fixed after them), with the
+  /// Jacobians (first estimates when configured) and the measurement noise (with a fixed
+  /// landmark's own covariance folded in).
+  Eigen::Vector2d linearise(const LineObservation& obs, int lm, Eigen::Matrix<double, 2, 3>* hr,
+                            Eigen::Matrix2d* hl, Eigen::Matrix2d* r) const;
   Block pairingBlock(const LineObservation& obs, int lm) const;
+  /// Squared Mahalanobis distance of one pairing (individual compatibility), allocation-free.
+  double individualMahalanobis(const LineObservation& obs, int lm) const;
+  /// chi-square quantile of gate_probability at dof degrees of freedom, cached.
+  double gate(int dof) const;
   std::vector<Block> blocks(const std::vector<LineObservation>& obs,
                             const std::vector<Pairing>& pairs) const;
-  /// S = H P H^T + R of stacked blocks, using only the non-zero columns of H (O(m^2)).
+  /// S = H P H^T + R of stacked line pairings (2 rows each), using only the non-zero columns of H
+  /// (O(m^2)).
   Eigen::MatrixXd innovationCovariance(const std::vector<Block>& b) const;
   /// The stacked update (eqs. 6-9); returns the squared Mahalanobis distance of the innovation.
   double applyUpdate(const std::vector<Block>& b);
@@ -247,6 +257,7 @@ class LineEkfSlam {
   // The last predicted pose x_{k|k-1} (the start pose before any prediction): where the
   // first-estimates Jacobians linearise the robot.
   math::SE2 lin_pose_;
+  mutable std::vector<double> gate_by_dof_;
   int scan_ = 0;
 };
 

@@ -128,31 +128,63 @@ void LineEkfSlam::predict(const math::SE2& d, const Eigen::Matrix3d& q) {
   }
 }
 
-LineEkfSlam::Block LineEkfSlam::pairingBlock(const LineObservation& obs, int lm) const {
-  Block b;
-  Eigen::Matrix<double, 2, 3> hr;
-  Eigen::Matrix2d hl;
+Eigen::Vector2d LineEkfSlam::linearise(const LineObservation& obs, int lm,
+                                       Eigen::Matrix<double, 2, 3>* hr, Eigen::Matrix2d* hl,
+                                       Eigen::Matrix2d* r) const {
   const bool fixed = lm >= numLandmarks();
   const FixedLandmark* f = fixed ? &fixed_[lm - numLandmarks()] : nullptr;
   const Line map_line = fixed ? f->line : landmark(lm);
-  const Line pred = observeLine(pose(), map_line, &hr, &hl);
+  const Line pred = observeLine(pose(), map_line, hr, hl);
   if (config_.first_estimate_jacobians && !fixed) {
     // Same flip as the prediction (it defines the innovation's representation).
     const double raw_rho = map_line.rho_m - (x_[0] * std::cos(map_line.alpha_rad) +
                                              x_[1] * std::sin(map_line.alpha_rad));
     observeLineJacobians(lin_pose_.x_m, lin_pose_.y_m, landmarks_[lm].first_alpha_rad,
-                         raw_rho < 0.0 ? -1.0 : 1.0, &hr, &hl);
+                         raw_rho < 0.0 ? -1.0 : 1.0, hr, hl);
   }
-  b.nu = lineInnovation(obs.line, pred);
+  *r = obs.cov + modelNoise();
+  if (fixed) *r += *hl * f->cov * hl->transpose();  // a retired landmark's own uncertainty
+  return lineInnovation(obs.line, pred);
+}
+
+LineEkfSlam::Block LineEkfSlam::pairingBlock(const LineObservation& obs, int lm) const {
+  Block b;
+  Eigen::Matrix<double, 2, 3> hr;
+  Eigen::Matrix2d hl, r;
+  b.nu = linearise(obs, lm, &hr, &hl, &r);
   b.hr = hr;
-  b.r = obs.cov + modelNoise();
-  if (fixed) {
-    b.r += hl * f->cov * hl.transpose();  // a retired landmark's own uncertainty
-  } else {
+  b.r = r;
+  if (lm < numLandmarks()) {
     b.hl = hl;
     b.col = landmarkIndex(lm);
   }
   return b;
+}
+
+double LineEkfSlam::individualMahalanobis(const LineObservation& obs, int lm) const {
+  // jointMahalanobis of the single pairing, in fixed-size arithmetic (no allocation): this runs for
+  // every observation against every landmark.
+  Eigen::Matrix<double, 2, 3> hr;
+  Eigen::Matrix2d hl, s;
+  const Eigen::Vector2d nu = linearise(obs, lm, &hr, &hl, &s);
+  s += hr * p_.topLeftCorner<3, 3>() * hr.transpose();
+  if (lm < numLandmarks()) {
+    const int c = landmarkIndex(lm);
+    const Eigen::Matrix2d x = hr * p_.block<3, 2>(0, c) * hl.transpose();
+    s += x + x.transpose() + hl * p_.block<2, 2>(c, c) * hl.transpose();
+  }
+  const Eigen::LDLT<Eigen::Matrix2d> ldlt(s);
+  return nu.dot(ldlt.solve(nu));
+}
+
+double LineEkfSlam::gate(int dof) const {
+  if (static_cast<int>(gate_by_dof_.size()) <= dof) {
+    const size_t from = gate_by_dof_.size();
+    gate_by_dof_.resize(dof + 1);
+    for (size_t k = std::max<size_t>(from, 1); k < gate_by_dof_.size(); ++k)
+      gate_by_dof_[k] = math::chiSquareQuantile(config_.gate_probability, static_cast<int>(k));
+  }
+  return gate_by_dof_[dof];
 }
 
 std::vector<LineEkfSlam::Block> LineEkfSlam::blocks(const std::vector<LineObservation>& obs,
@@ -164,23 +196,31 @@ std::vector<LineEkfSlam::Block> LineEkfSlam::blocks(const std::vector<LineObserv
 }
 
 Eigen::MatrixXd LineEkfSlam::innovationCovariance(const std::vector<Block>& b) const {
-  std::vector<int> off(b.size() + 1, 0);
-  for (size_t k = 0; k < b.size(); ++k) off[k + 1] = off[k] + static_cast<int>(b[k].nu.size());
-  Eigen::MatrixXd s(off.back(), off.back());
+  // Line pairings only (2 rows each, as jointMahalanobis builds them): fixed-size arithmetic, as
+  // JCBB evaluates this at every node of its search.
+  const int m = static_cast<int>(b.size());
+  Eigen::MatrixXd s(2 * m, 2 * m);
   const Eigen::Matrix3d prr = p_.topLeftCorner<3, 3>();
-  for (size_t a = 0; a < b.size(); ++a) {
+  std::vector<Eigen::Matrix<double, 2, 3>> hr(m);
+  std::vector<Eigen::Matrix2d> hl(m);
+  for (int k = 0; k < m; ++k) {
+    hr[k] = b[k].hr;
+    if (b[k].col >= 0) hl[k] = b[k].hl;
+  }
+  for (int a = 0; a < m; ++a) {
     // Row a of H P: hr_a P_r* + hl_a P_l*, restricted to the columns the other blocks use.
-    for (size_t c = a; c < b.size(); ++c) {
-      Eigen::MatrixXd sac = b[a].hr * prr * b[c].hr.transpose();
-      if (b[c].col >= 0) sac += b[a].hr * p_.block(0, b[c].col, 3, 2) * b[c].hl.transpose();
+    const Eigen::Matrix<double, 2, 3> hp = hr[a] * prr;
+    for (int c = a; c < m; ++c) {
+      Eigen::Matrix2d sac = hp * hr[c].transpose();
+      if (b[c].col >= 0) sac += hr[a] * p_.block<3, 2>(0, b[c].col) * hl[c].transpose();
       if (b[a].col >= 0) {
-        sac += b[a].hl * p_.block(b[a].col, 0, 2, 3) * b[c].hr.transpose();
+        sac += hl[a] * p_.block<2, 3>(b[a].col, 0) * hr[c].transpose();
         if (b[c].col >= 0)
-          sac += b[a].hl * p_.block(b[a].col, b[c].col, 2, 2) * b[c].hl.transpose();
+          sac += hl[a] * p_.block<2, 2>(b[a].col, b[c].col) * hl[c].transpose();
       }
       if (a == c) sac += b[a].r;
-      s.block(off[a], off[c], sac.rows(), sac.cols()) = sac;
-      s.block(off[c], off[a], sac.cols(), sac.rows()) = sac.transpose();
+      s.block<2, 2>(2 * a, 2 * c) = sac;
+      s.block<2, 2>(2 * c, 2 * a) = sac.transpose();
     }
   }
   return s;
@@ -293,7 +333,7 @@ void LineEkfSlam::jcbb(const std::vector<LineObservation>& obs,
     if (used) continue;
     current.push_back({static_cast<int>(i), lm});
     const int dof = 2 * static_cast<int>(current.size());
-    if (jointMahalanobis(obs, current) <= math::chiSquareQuantile(config_.gate_probability, dof))
+    if (jointMahalanobis(obs, current) <= gate(dof))
       jcbb(obs, candidates, i + 1, current, best, best_d2, nodes);
     current.pop_back();
   }
@@ -303,12 +343,12 @@ void LineEkfSlam::jcbb(const std::vector<LineObservation>& obs,
 }
 
 std::vector<int> LineEkfSlam::associate(const std::vector<LineObservation>& obs) const {
-  const double gate2 = math::chiSquareQuantile(config_.gate_probability, 2);
+  const double gate2 = gate(2);
   std::vector<std::vector<int>> candidates(obs.size());
   std::vector<std::vector<double>> d2s(obs.size());
   for (size_t i = 0; i < obs.size(); ++i) {
     for (int j = 0; j < numLandmarks() + numFixedLandmarks(); ++j) {
-      const double d2 = jointMahalanobis(obs, {{static_cast<int>(i), j}});
+      const double d2 = individualMahalanobis(obs[i], j);
       if (d2 <= gate2) {
         candidates[i].push_back(j);
         d2s[i].push_back(d2);
@@ -513,7 +553,7 @@ void LineEkfSlam::anchorOrRetire(UpdateResult* res) {
 }
 
 int LineEkfSlam::mergeCompatible(std::vector<int> seen) {
-  const double gate2 = math::chiSquareQuantile(config_.gate_probability, 2);
+  const double gate2 = gate(2);
   int merged = 0;
   std::sort(seen.begin(), seen.end());
   seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
