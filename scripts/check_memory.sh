@@ -90,4 +90,4 @@ replay laser laser_demo.launch line_extractor ekf_slam_mapper
 # Field: lights switching every 5 s, the robot walking the whole time.
 "$BIN/simulate_field" --script switching --seed 9 --duration_s "$DURATION" --rate_hz 4 \
   --switch_period_s 5 --output "$TMP/field.bag" --overwrite > /dev/null
-replay field demo.launch color_estimator rbpf_localizer
+replay field field_demo.launch color_estimator rbpf_localizer

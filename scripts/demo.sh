@@ -3,8 +3,10 @@
 # color_estimator + rbpf_localizer; laser bags and the Intel lab's real log: line_extractor +
 # ekf_slam_mapper; simulated indoor runs:
 # histogram_place_recognizer and appearance_localizer; a simulated tracking sequence:
-# condensation_tracker), printing one summary line per run, then runs a short version of every
-# paper's experiment and writes results/REPORT.md (scripts/make_report.sh; report:=false skips it).
+# condensation_tracker), printing one summary line per run, then plays the field, laser-loop, building
+# and tracking runs all at once through launch/demo.launch (its data stays in results/demo/all, so
+# `roslaunch adaptive_perception demo.launch rviz:=true` can replay it), then runs a short version of
+# every paper's experiment and writes results/REPORT.md (scripts/make_report.sh; report:=false skips it).
 # rviz opens when a display is present (or with rviz:=true); rviz:=false keeps it closed.
 # Usage: scripts/demo.sh [rviz:=true|false] [rate:=R] [report:=true|false]
 set -euo pipefail
@@ -29,7 +31,7 @@ summary="$AP_ROOT/results/demo/summary.txt"
 : > "$summary"
 for bag in "$AP_ROOT"/rosbag/field_*.bag "$AP_ROOT"/rosbag/laser_*.bag; do
   name="$(basename "$bag" .bag)"
-  launch=demo.launch
+  launch=field_demo.launch
   case "$name" in laser_*) launch=laser_demo.launch ;; esac
   echo "demo: replaying $name through $launch (rviz=$RVIZ)"
   roslaunch --disable-title adaptive_perception "$launch" bag:="$bag" name:="$name" rviz:="$RVIZ" \
@@ -101,7 +103,22 @@ demo_part() {  # NAME LAUNCH ARGS...: replays through LAUNCH, prints demo_monito
 }
 demo_part indoor_rooms rooms_demo.launch bag:="$places_dir/rooms_test.bag" \
   database:="$places_dir/rooms.sqlite" rate:="$prate"
+# The data of the all-at-once demo (launch/demo.launch): each run moved into its own namespace and
+# frames (scripts/prefix_bag.py), all starting at the field bags' stamp.
+all_dir="$AP_ROOT/results/demo/all"
+mkdir -p "$all_dir"
+T0=1600000000
+PY=/usr/bin/python3
+$PY "$AP_ROOT/scripts/prefix_bag.py" --prefix rooms --start_s $T0 "$places_dir/rooms_test.bag" \
+  "$all_dir/rooms.bag" > /dev/null
+rm -f "$all_dir/places.sqlite" "$all_dir/rooms.sqlite"
+"$BIN/train_places" --bag "$places_dir/rooms_train.bag" --database "$all_dir/places.sqlite" > /dev/null 2>&1
+cp "$places_dir/rooms.sqlite" "$all_dir/rooms.sqlite"
 rm -f "$places_dir/rooms_train.bag" "$places_dir/rooms_test.bag"
+$PY "$AP_ROOT/scripts/prefix_bag.py" --prefix slam --start_s $T0 "$AP_ROOT/rosbag/laser_loop.bag" \
+  "$all_dir/slam.bag" > /dev/null
+"$BIN/simulate_field" --script switching --seed 3 --duration_s 120 --rate_hz 4 --switch_period_s 2.5 \
+  --output "$all_dir/field.bag" --overwrite > /dev/null
 # Tracking: the distractor sequence (a second object of the target's colour crosses it), the tracker
 # started on the first true box.
 track_dir="$AP_ROOT/results/demo/tracking"
@@ -113,6 +130,20 @@ mkdir -p "$track_dir"
 IFS=, read -r _ x y w h < <(sed -n 2p "$track_dir/first.csv")
 demo_part tracking_distractor tracking_demo.launch bag:="$track_dir/distractor.bag" \
   initial_roi:="[$x, $y, $w, $h]" rate:="$RATE"
+$PY "$AP_ROOT/scripts/prefix_bag.py" --prefix tracking --start_s $T0 "$track_dir/distractor.bag" \
+  "$all_dir/tracking.bag" > /dev/null
+echo "initial_roi: [$x, $y, $w, $h]" > "$all_dir/initial_roi.yaml"
+# Everything at once, as `roslaunch adaptive_perception demo.launch rviz:=true` shows it: one line per part.
+echo "demo: replaying the field, laser loop, building and tracking runs at once through demo.launch (rviz=$RVIZ)"
+roslaunch --disable-title adaptive_perception demo.launch rviz:="$RVIZ" rate:="$RATE" \
+  > "$AP_ROOT/results/demo/all.log" 2>&1 || true
+lines="$(grep -h '^demo_monitor: bag=all_' "$AP_ROOT/results/demo/all.log" || true)"
+places_line="$(grep -h '^histogram_place_recognizer: images=' "$AP_ROOT/results/demo/all.log" | tail -n 1 || true)"
+if [ "$(echo "$lines" | grep -c .)" -ne 4 ]; then
+  echo "demo: demo.launch did not report all four parts; see results/demo/all.log"; tail -n 20 "$AP_ROOT/results/demo/all.log"; exit 1
+fi
+echo "$lines" | tee -a "$summary"
+[ -n "$places_line" ] && echo "all_indoor_places $places_line" | tee -a "$summary"
 echo "demo: summaries in results/demo/summary.txt, logs beside it"
 if [ "$REPORT" = true ]; then
   echo "demo: running the papers' experiments for results/REPORT.md (about 10 minutes)"

@@ -11,6 +11,8 @@ PACKAGES=(
   # ROS 1 as Debian ships it (no /opt/ros)
   catkin ros-message-generation ros-base-dev python3-rostest python3-roslaunch python3-rosbag
   python3-rosunit librostest-dev
+  # static_transform_publisher (demo.launch places the parts side by side)
+  tf2-tools
   librosbag-dev libcv-bridge-dev libimage-transport-dev libtf2-ros-dev libtf2-geometry-msgs-dev
   libtf2-eigen-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
   libdiagnostic-updater-dev libdiagnostic-msgs-dev libdynamic-reconfigure-config-init-mutex-dev

@@ -5,7 +5,8 @@
 //   demo_monitor: bag=NAME scans=N line_messages=L segments_per_scan=S ... slam_final_error_m=E
 //   demo_monitor: bag=NAME rooms=N room_rate=R        (appearance_localizer on an indoor bag)
 //   demo_monitor: bag=NAME tracked_frames=N success_rate=R   (condensation_tracker, IoU >= 0.5)
-// (-1: not measured). Parameters: ~name (string, label of the run). Subscribed: camera/image_raw,
+// (-1: not measured). Parameters: ~name (string, label of the run), ~map_frame and ~odom_frame
+// (strings, default map and odom: the map -> odom transform that map_odom_tf counts). Subscribed: camera/image_raw,
 // camera/labels, color_estimator/classified, ground_truth/pose, field_map, tf, scan, lines,
 // rbpf_localizer/pose, ekf_slam_mapper/pose, ground_truth/place, appearance_localizer/room,
 // ground_truth/box, tracked_object.
@@ -59,6 +60,8 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "demo_monitor");
   ros::NodeHandle nh, pnh("~");
   const std::string name = pnh.param<std::string>("name", "run");
+  const std::string map_frame = pnh.param<std::string>("map_frame", T::kMapFrame);
+  const std::string odom_frame = pnh.param<std::string>("odom_frame", T::kOdomFrame);
   Counts c;
   auto image_sub = nh.subscribe<sensor_msgs::Image>(
       T::kCameraImage, 5, [&](const sensor_msgs::ImageConstPtr& m) {
@@ -102,7 +105,7 @@ int main(int argc, char** argv) {
   auto tf_sub =
       nh.subscribe<tf2_msgs::TFMessage>("/tf", 100, [&](const tf2_msgs::TFMessageConstPtr& m) {
         for (const auto& t : m->transforms)
-          if (t.header.frame_id == T::kMapFrame && t.child_frame_id == T::kOdomFrame) ++c.map_odom;
+          if (t.header.frame_id == map_frame && t.child_frame_id == odom_frame) ++c.map_odom;
       });
   auto map_sub = nh.subscribe<visualization_msgs::MarkerArray>(
       T::kFieldMap, 1,
