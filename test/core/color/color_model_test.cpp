@@ -5,6 +5,8 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <string>
 
 #include "adaptive_perception/color/color_lut.h"
 #include "adaptive_perception/color/prior_learning.h"
@@ -337,4 +339,27 @@ TEST(ColorModelConfig, RejectsBadValuesByName) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("drift_std_per_sqrt_s"), std::string::npos);
   }
+}
+
+// The shipped priors (config/color_priors, made by scripts/learn_color_priors.sh) load and validate
+// against the default model; "all" is learnt from the union of the data sets the dark and bright
+// groups partition, so its mean lies between theirs in every coordinate.
+TEST(ShippedPriors, LoadValidateAndAllLiesBetweenDarkAndBright) {
+  const std::string dir = std::string(AP_SOURCE_DIR) + "/config/color_priors/";
+  const color::ColorModelConfig config;
+  std::map<std::string, color::LightingPrior> priors;
+  for (const char* name : {"dark", "bright", "all"}) {
+    priors[name] = color::LightingPrior::loadYaml(dir + name + ".yaml");
+    EXPECT_EQ(priors[name].name, name);
+    EXPECT_NO_THROW(priors[name].validate(config)) << name;
+  }
+  const Eigen::VectorXd& dark = priors["dark"].mean;
+  const Eigen::VectorXd& bright = priors["bright"].mean;
+  const Eigen::VectorXd& all = priors["all"].mean;
+  ASSERT_EQ(all.size(), dark.size());
+  for (Eigen::Index i = 0; i < all.size(); ++i) {
+    EXPECT_GE(all[i], std::min(dark[i], bright[i]) - 1e-9) << "coordinate " << i;
+    EXPECT_LE(all[i], std::max(dark[i], bright[i]) + 1e-9) << "coordinate " << i;
+  }
+  EXPECT_EQ(priors["all"].color_names, priors["dark"].color_names);
 }
