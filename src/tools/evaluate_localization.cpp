@@ -117,7 +117,8 @@ int main(int argc, char** argv) {
     fs::create_directories(output);
     std::ofstream csv(fs::path(output) / "frames.csv"), est_tum(fs::path(output) / "estimate.tum"),
         truth_tum(fs::path(output) / "truth.tum");
-    csv << "t_s,position_error_m,heading_error_deg,ess,tempering,classification_rate,injected\n";
+    csv << "t_s,position_error_m,heading_error_deg,ess,tempering,classification_rate,injected,"
+           "mean_pixel_log_likelihood\n";
     const double t0 = frames.front().stamp.toSec();
     bool have_prev = false;
     Eigen::Isometry3d prev_odom = Eigen::Isometry3d::Identity();
@@ -200,7 +201,7 @@ int main(int argc, char** argv) {
         rate = ft ? double(fc) / ft : -1.0;
       }
       csv << t << "," << pe << "," << he << "," << r.effective_sample_size << "," << r.tempering
-          << "," << rate << "," << r.injected << "\n";
+          << "," << rate << "," << r.injected << "," << r.mean_pixel_log_likelihood << "\n";
       tum(est_tum, f.stamp.toSec(), est);
       tum(truth_tum, f.stamp.toSec(), truth);
       if (!t_s.empty() && std::hypot(truth.x_m - prev_truth.x_m, truth.y_m - prev_truth.y_m) > 0.5)
