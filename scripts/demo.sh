@@ -109,7 +109,7 @@ all_dir="$AP_ROOT/results/demo/all"
 mkdir -p "$all_dir"
 T0=1600000000
 PY=/usr/bin/python3
-$PY "$AP_ROOT/scripts/prefix_bag.py" --prefix rooms --start_s $T0 "$places_dir/rooms_test.bag" \
+$PY "$AP_ROOT/scripts/prefix_bag.py" --prefix rooms --start_s $T0 --duration_s 120 "$places_dir/rooms_test.bag" \
   "$all_dir/rooms.bag" > /dev/null
 rm -f "$all_dir/places.sqlite" "$all_dir/rooms.sqlite"
 "$BIN/train_places" --bag "$places_dir/rooms_train.bag" --database "$all_dir/places.sqlite" > /dev/null 2>&1
@@ -125,13 +125,20 @@ track_dir="$AP_ROOT/results/demo/tracking"
 mkdir -p "$track_dir"
 "$BIN/simulate_tracking" --scenario distractor --seed 1 --output "$track_dir/distractor.bag" \
   --overwrite > /dev/null
-"$BIN/simulate_tracking" --scenario distractor --seed 1 --frames 1 \
+"$BIN/simulate_tracking" --scenario distractor --seed 1 --frames 1 --overwrite \
   --video "$track_dir/first.avi" > /dev/null
 IFS=, read -r _ x y w h < <(sed -n 2p "$track_dir/first.csv")
 demo_part tracking_distractor tracking_demo.launch bag:="$track_dir/distractor.bag" \
   initial_roi:="[$x, $y, $w, $h]" rate:="$RATE"
-$PY "$AP_ROOT/scripts/prefix_bag.py" --prefix tracking --start_s $T0 "$track_dir/distractor.bag" \
+# For the all-at-once demo, the distractor scene over 2 minutes at 10 Hz (the same start box).
+"$BIN/simulate_tracking" --scenario distractor --seed 1 --frames 1200 --rate_hz 10 \
+  --output "$track_dir/long.bag" --overwrite > /dev/null
+"$BIN/simulate_tracking" --scenario distractor --seed 1 --frames 1200 --rate_hz 10 --overwrite \
+  --video "$track_dir/long.avi" > /dev/null
+IFS=, read -r _ x y w h < <(sed -n 2p "$track_dir/long.csv")
+$PY "$AP_ROOT/scripts/prefix_bag.py" --prefix tracking --start_s $T0 "$track_dir/long.bag" \
   "$all_dir/tracking.bag" > /dev/null
+rm -f "$track_dir/long.bag" "$track_dir/long.avi"
 echo "initial_roi: [$x, $y, $w, $h]" > "$all_dir/initial_roi.yaml"
 # Everything at once, as `roslaunch adaptive_perception demo.launch rviz:=true` shows it: one line per part.
 echo "demo: replaying the field, laser loop, building and tracking runs at once through demo.launch (rviz=$RVIZ)"
