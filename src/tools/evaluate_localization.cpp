@@ -7,7 +7,8 @@
 //       [--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W]
 //       [--global_pool_size N] [--global_search_frames K]
 //       [--recovery_max_fraction F] [--recovery_alpha_fast A] [--recovery_alpha_slow A]
-//       [--recovery_gain_per_nat G] [--init global|truth]
+//       [--recovery_gain_per_nat G] [--relocalization_interval_frames N]
+//       [--relocalization_pool_size N] [--relocalization_margin M] [--init global|truth]
 //       [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
 // (defaults: those of localization::RbpfConfig)
 //
@@ -23,6 +24,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -60,8 +62,9 @@ int main(int argc, char** argv) {
                    "[--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W] "
                    "[--global_pool_size N] [--global_search_frames K] "
                    "[--recovery_max_fraction F] [--recovery_alpha_fast A] "
-                   "[--recovery_alpha_slow A] [--recovery_gain_per_nat G] [--priors_dir "
-                   "DIR] [--init global|truth] [--output DIR] [--name LABEL]");
+                   "[--recovery_alpha_slow A] [--recovery_gain_per_nat G] "
+                   "[--relocalization_interval_frames N] [--relocalization_pool_size N] "
+                   "[--relocalization_margin M] [--priors_dir DIR] [--init global|truth] [--output DIR] [--name LABEL]");
   const std::string bag = args.get("bag", "");
   localization::RbpfConfig cfg;
   cfg.particles = static_cast<int>(args.getInt("particles", cfg.particles));
@@ -75,6 +78,11 @@ int main(int argc, char** argv) {
   cfg.recovery_alpha_fast = args.getDouble("recovery_alpha_fast", cfg.recovery_alpha_fast);
   cfg.recovery_alpha_slow = args.getDouble("recovery_alpha_slow", cfg.recovery_alpha_slow);
   cfg.recovery_gain_per_nat = args.getDouble("recovery_gain_per_nat", cfg.recovery_gain_per_nat);
+  cfg.relocalization_interval_frames = static_cast<int>(
+      args.getInt("relocalization_interval_frames", cfg.relocalization_interval_frames));
+  cfg.relocalization_pool_size =
+      static_cast<int>(args.getInt("relocalization_pool_size", cfg.relocalization_pool_size));
+  cfg.relocalization_margin = args.getDouble("relocalization_margin", cfg.relocalization_margin);
   cfg.min_ess_fraction = args.getDouble("min_ess_fraction", cfg.min_ess_fraction);
   cfg.global_pool_size = static_cast<int>(args.getInt("global_pool_size", cfg.global_pool_size));
   cfg.global_search_frames =
@@ -118,7 +126,7 @@ int main(int argc, char** argv) {
     std::ofstream csv(fs::path(output) / "frames.csv"), est_tum(fs::path(output) / "estimate.tum"),
         truth_tum(fs::path(output) / "truth.tum");
     csv << "t_s,position_error_m,heading_error_deg,ess,tempering,classification_rate,injected,"
-           "mean_pixel_log_likelihood\n";
+           "mean_pixel_log_likelihood,relocalization_score,relocalized\n";
     const double t0 = frames.front().stamp.toSec();
     bool have_prev = false;
     Eigen::Isometry3d prev_odom = Eigen::Isometry3d::Identity();
@@ -201,7 +209,10 @@ int main(int argc, char** argv) {
         rate = ft ? double(fc) / ft : -1.0;
       }
       csv << t << "," << pe << "," << he << "," << r.effective_sample_size << "," << r.tempering
-          << "," << rate << "," << r.injected << "," << r.mean_pixel_log_likelihood << "\n";
+          << "," << rate << "," << r.injected << "," << r.mean_pixel_log_likelihood << ","
+          << (std::isnan(r.relocalization_score) ? std::string()
+                                                 : std::to_string(r.relocalization_score))
+          << "," << int(r.relocalized) << "\n";
       tum(est_tum, f.stamp.toSec(), est);
       tum(truth_tum, f.stamp.toSec(), truth);
       if (!t_s.empty() && std::hypot(truth.x_m - prev_truth.x_m, truth.y_m - prev_truth.y_m) > 0.5)

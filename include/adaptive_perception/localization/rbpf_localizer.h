@@ -23,6 +23,7 @@
 // seeded by (seed, frame, particle), so the result is the same for any thread count.
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -96,6 +97,20 @@ struct RbpfConfig {
   // seconds of lines only the mirror held half the weight and the estimate could flip to it.
   double mirror_relative_weight = 0.05;
   int global_pixel_stride = 12;
+  // Relocalization check (recovers from a kidnap, and from a global search that committed to the
+  // wrong place): every relocalization_interval_frames images after the particles have committed,
+  // relocalization_pool_size uniform poses (in point-mirrored pairs) and the particles' own poses
+  // are scored side by side over the next global_search_frames images as the global search scores
+  // its pool (every global_pixel_stride-th pixel, each pose moved by the odometry, log-likelihoods
+  // summed), all under the best particle's lighting. If the best uniform pose beats the best
+  // particle pose by more than relocalization_margin (tempered log-likelihood summed over those
+  // images), the particles are drawn from the uniform poses as at the end of a global search and
+  // keep the best particle's lighting. A likelihood ratio against the rest of the field, not the
+  // likelihood's level: the level swings with what the camera sees and with the light, and falls
+  // as far when the head turns to a bare stretch of carpet as after a kidnap. 0 turns it off.
+  int relocalization_interval_frames = 0;
+  int relocalization_pool_size = 20000;
+  double relocalization_margin = 1.0;
   int threads = 1;
   std::uint64_t seed = 1;
 
@@ -147,6 +162,11 @@ class RbpfLocalizer {
     double tempering = 1.0;  // the factor applied to this image's log-likelihood (1: none)
     double mean_pixel_log_likelihood = 0.0;  // per used pixel, of the average particle likelihood
     int pixels_used = 0;                     // by the best particle
+    // A relocalization check that ended with this image: the best uniform pose's summed
+    // log-likelihood minus the best particle pose's (NaN: no check ended), and whether the
+    // particles were redrawn.
+    double relocalization_score = std::numeric_limits<double>::quiet_NaN();
+    bool relocalized = false;
   };
   /// One image: odometry delta since the previous image (in the previous base frame), elapsed time,
   /// the YUV image (CV_8UC3) and the camera pose on the robot (base_link -> camera_optical_frame).
@@ -194,9 +214,32 @@ class RbpfLocalizer {
                          const color::SwitchingColorFilter& lighting,
                          const Eigen::Isometry3d& base_to_optical, color::ColorObservation* obs,
                          int* used) const;
+  /// The image on the coarse grid of the global search and the relocalization check.
+  struct CoarseImage {
+    std::vector<world::PixelCoord> pixels;
+    int cols = 0;
+    std::vector<Eigen::Vector3d> values;
+    std::vector<NeighbourOffset> offsets;
+  };
+  CoarseImage coarseImage(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical) const;
+  /// Moves pool[first..] by odom_delta (when `move`) and adds each pose's coarse log-likelihood.
+  void scorePool(std::vector<math::SE2>* pool, std::vector<double>* ll, size_t first, bool move,
+                 const math::SE2& odom_delta, const CoarseImage& image,
+                 const color::SwitchingColorFilter& lighting,
+                 const Eigen::Isometry3d& base_to_optical) const;
+  /// pool[i] for i < n: a uniform pose, odd entries the point mirror of the even one before.
+  void fillUniformPool(std::vector<math::SE2>* pool, size_t n, std::uint64_t seed) const;
+  /// Replaces the particles by draws from pool[0..n) weighted by the summed log-likelihoods,
+  /// flattened as far as needed to leave half the particles distinct.
+  void drawParticlesFromPool(const std::vector<math::SE2>& pool, const std::vector<double>& ll,
+                             size_t n, const color::SwitchingColorFilter& lighting);
   /// One image of the global search; returns true once the pool has seen global_search_frames.
   bool globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv,
                     const Eigen::Isometry3d& base_to_optical, std::uint64_t frame_seed);
+  /// One image of the relocalization check (after the particles were weighed and resampled).
+  void relocalizationCheck(const math::SE2& odom_delta, const cv::Mat& yuv,
+                           const Eigen::Isometry3d& base_to_optical, std::uint64_t frame_seed,
+                           StepResult* result);
   template <typename F>
   void parallelFor(size_t n, F&& f) const;
 
@@ -220,6 +263,12 @@ class RbpfLocalizer {
   std::vector<math::SE2> pool_;  // the global search's poses, moved by odometry
   std::vector<double> pool_ll_;  // and their summed log-likelihoods
   int pool_frames_ = 0;          // images scored on the pool so far
+  // The relocalization check: uniform poses [0, check_uniform_) then the particles' poses.
+  std::vector<math::SE2> check_pool_;
+  std::vector<double> check_ll_;
+  size_t check_uniform_ = 0;
+  int check_frames_ = 0;       // images scored in the running check (0: none running)
+  int frames_since_check_ = 0;  // images since the particles committed or the last check ended
 };
 
 }  // namespace adaptive_perception::localization

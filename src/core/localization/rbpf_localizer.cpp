@@ -82,6 +82,16 @@ void RbpfConfig::validate() const {
   if (!(min_ess_fraction >= 0.0 && min_ess_fraction <= 1.0))
     throw std::invalid_argument("min_ess_fraction = " + std::to_string(min_ess_fraction) +
                                 " (allowed: 0..1)");
+  if (relocalization_interval_frames < 0 || relocalization_interval_frames > 100000)
+    throw std::invalid_argument("relocalization_interval_frames = " +
+                                std::to_string(relocalization_interval_frames) +
+                                " (allowed: 0..100000)");
+  if (relocalization_pool_size < 0 || relocalization_pool_size > 10000000)
+    throw std::invalid_argument("relocalization_pool_size = " +
+                                std::to_string(relocalization_pool_size) +
+                                " (allowed: 0..10000000)");
+  if (!std::isfinite(relocalization_margin))
+    throw std::invalid_argument("relocalization_margin must be finite");
   if (!(recovery_max_fraction >= 0.0 && recovery_max_fraction <= 1.0))
     throw std::invalid_argument("recovery_max_fraction = " + std::to_string(recovery_max_fraction) +
                                 " (allowed: 0..1)");
@@ -186,6 +196,10 @@ void RbpfLocalizer::initUniform() {
   pool_.clear();
   pool_ll_.clear();
   pool_frames_ = 0;
+  check_pool_.clear();
+  check_ll_.clear();
+  check_frames_ = 0;
+  frames_since_check_ = 0;
 }
 
 void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& cov) {
@@ -199,6 +213,13 @@ void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& c
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   have_average_ = false;
   global_pending_ = false;
+  pool_.clear();
+  pool_ll_.clear();
+  pool_frames_ = 0;
+  check_pool_.clear();
+  check_ll_.clear();
+  check_frames_ = 0;
+  frames_since_check_ = 0;
 }
 
 double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose,
@@ -355,44 +376,48 @@ void RbpfLocalizer::parallelFor(size_t n, F&& f) const {
   for (auto& th : pool) th.join();
 }
 
-bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv,
-                                 const Eigen::Isometry3d& base_to_optical,
-                                 std::uint64_t frame_seed) {
-  // Score the pool on a coarse pixel grid under the prior lighting, summing over images, and draw
-  // the particles from it with the tempering that keeps half of them distinct.
-  int coarse_cols = 0;
-  const std::vector<world::PixelCoord> coarse =
-      pixelGrid(renderer_.camera(), config_.global_pixel_stride, &coarse_cols);
-  const std::vector<Eigen::Vector3d> values = pixelValues(yuv, coarse);
-  const std::vector<NeighbourOffset> coarse_offsets = neighbourOffsets(
-      renderer_.camera(), coarse, config_.global_pixel_stride, base_to_optical, config_.likelihood);
-  const color::SwitchingColorFilter lighting(priors_, config_.model, config_.switching);
-  const size_t n = static_cast<size_t>(config_.global_pool_size);
-  const bool first = pool_.empty();
-  if (first) {
-    pool_.resize(n);
-    pool_ll_.assign(n, 0.0);
-  }
+RbpfLocalizer::CoarseImage RbpfLocalizer::coarseImage(
+    const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical) const {
+  CoarseImage c;
+  c.pixels = pixelGrid(renderer_.camera(), config_.global_pixel_stride, &c.cols);
+  c.values = pixelValues(yuv, c.pixels);
+  c.offsets = neighbourOffsets(renderer_.camera(), c.pixels, config_.global_pixel_stride,
+                               base_to_optical, config_.likelihood);
+  return c;
+}
+
+void RbpfLocalizer::fillUniformPool(std::vector<math::SE2>* pool, size_t n,
+                                    std::uint64_t seed) const {
   parallelFor(n, [&](size_t i) {
-    if (first) {
-      // Pairs of point-mirrored poses (see mirror_fraction): both halves are searched alike.
-      math::Rng rng(mix(frame_seed ^ 0x5bd1e995ull, i / 2));
-      pool_[i] = uniformPose(rng);
-      if (i % 2 == 1)
-        pool_[i] =
-            math::SE2(-pool_[i].x_m, -pool_[i].y_m, math::wrapAngle(pool_[i].yaw_rad + math::kPi));
-    } else {
-      pool_[i] = pool_[i] * odom_delta;
-    }
-    pool_ll_[i] += logLikelihoodAt(coarse, coarse_cols, coarse_offsets, values, pool_[i], lighting,
-                                   base_to_optical, nullptr, nullptr);
+    // Pairs of point-mirrored poses (see mirror_fraction): both halves are searched alike.
+    math::Rng rng(mix(seed ^ 0x5bd1e995ull, i / 2));
+    (*pool)[i] = uniformPose(rng);
+    if (i % 2 == 1)
+      (*pool)[i] = math::SE2(-(*pool)[i].x_m, -(*pool)[i].y_m,
+                             math::wrapAngle((*pool)[i].yaw_rad + math::kPi));
   });
-  ++pool_frames_;
+}
+
+void RbpfLocalizer::scorePool(std::vector<math::SE2>* pool, std::vector<double>* ll, size_t first,
+                              bool move, const math::SE2& odom_delta, const CoarseImage& image,
+                              const color::SwitchingColorFilter& lighting,
+                              const Eigen::Isometry3d& base_to_optical) const {
+  parallelFor(pool->size() - first, [&](size_t k) {
+    const size_t i = first + k;
+    if (move) (*pool)[i] = (*pool)[i] * odom_delta;
+    (*ll)[i] += logLikelihoodAt(image.pixels, image.cols, image.offsets, image.values, (*pool)[i],
+                                lighting, base_to_optical, nullptr, nullptr);
+  });
+}
+
+void RbpfLocalizer::drawParticlesFromPool(const std::vector<math::SE2>& pool,
+                                          const std::vector<double>& ll, size_t n,
+                                          const color::SwitchingColorFilter& lighting) {
   std::vector<double> w;
   const double target = 0.5 * config_.particles;
   auto weigh = [&](double lambda) {
     std::vector<double> logw(n);
-    for (size_t i = 0; i < n; ++i) logw[i] = lambda * pool_ll_[i];
+    for (size_t i = 0; i < n; ++i) logw[i] = lambda * ll[i];
     math::normalizeLogWeights(logw, &w);
     return math::effectiveSampleSize(w);
   };
@@ -409,8 +434,27 @@ bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv
   const auto idx =
       math::resampleIndices(w, config_.particles, math::ResamplingScheme::kSystematic, rng_);
   particles_.clear();
-  for (size_t i : idx) particles_.push_back({pool_[i], lighting, 0.0});
+  for (size_t i : idx) particles_.push_back({pool[i], lighting, 0.0});
   weights_.assign(particles_.size(), 1.0 / particles_.size());
+}
+
+bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv,
+                                 const Eigen::Isometry3d& base_to_optical,
+                                 std::uint64_t frame_seed) {
+  // Score the pool on a coarse pixel grid under the prior lighting, summing over images, and draw
+  // the particles from it with the tempering that keeps half of them distinct.
+  const CoarseImage image = coarseImage(yuv, base_to_optical);
+  const color::SwitchingColorFilter lighting(priors_, config_.model, config_.switching);
+  const size_t n = static_cast<size_t>(config_.global_pool_size);
+  const bool first = pool_.empty();
+  if (first) {
+    pool_.resize(n);
+    pool_ll_.assign(n, 0.0);
+    fillUniformPool(&pool_, n, frame_seed);
+  }
+  scorePool(&pool_, &pool_ll_, 0, !first, odom_delta, image, lighting, base_to_optical);
+  ++pool_frames_;
+  drawParticlesFromPool(pool_, pool_ll_, n, lighting);
   if (pool_frames_ < config_.global_search_frames) return false;
   global_pending_ = false;
   pool_.clear();
@@ -418,7 +462,42 @@ bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv
   pool_ll_.clear();
   pool_ll_.shrink_to_fit();
   pool_frames_ = 0;
+  frames_since_check_ = 0;
   return true;
+}
+
+void RbpfLocalizer::relocalizationCheck(const math::SE2& odom_delta, const cv::Mat& yuv,
+                                        const Eigen::Isometry3d& base_to_optical,
+                                        std::uint64_t frame_seed, StepResult* result) {
+  if (config_.relocalization_interval_frames <= 0) return;
+  const bool starting = check_frames_ == 0;
+  if (starting && ++frames_since_check_ < config_.relocalization_interval_frames) return;
+  const color::SwitchingColorFilter lighting = best().lighting;
+  const CoarseImage image = coarseImage(yuv, base_to_optical);
+  if (starting) {
+    // The particles have this image's motion already; the uniform poses are drawn for it.
+    check_uniform_ = static_cast<size_t>(config_.relocalization_pool_size);
+    check_pool_.resize(check_uniform_ + particles_.size());
+    check_ll_.assign(check_pool_.size(), 0.0);
+    fillUniformPool(&check_pool_, check_uniform_, frame_seed ^ 0x2545F4914F6CDD1Dull);
+    for (size_t i = 0; i < particles_.size(); ++i)
+      check_pool_[check_uniform_ + i] = particles_[i].pose;
+  }
+  scorePool(&check_pool_, &check_ll_, 0, !starting, odom_delta, image, lighting, base_to_optical);
+  if (++check_frames_ < config_.global_search_frames) return;
+  const auto mid = check_ll_.begin() + static_cast<std::ptrdiff_t>(check_uniform_);
+  const double best_uniform =
+      check_uniform_ > 0 ? *std::max_element(check_ll_.begin(), mid) : -1e300;
+  const double best_particle = *std::max_element(mid, check_ll_.end());
+  result->relocalization_score = best_uniform - best_particle;
+  if (result->relocalization_score > config_.relocalization_margin) {
+    drawParticlesFromPool(check_pool_, check_ll_, check_uniform_, lighting);
+    result->relocalized = true;
+  }
+  check_pool_.clear();
+  check_ll_.clear();
+  check_frames_ = 0;
+  frames_since_check_ = 0;
 }
 
 RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, double dt_s,
@@ -529,6 +608,7 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
     }
     r.mirrored = mirror;
   }
+  relocalizationCheck(moved ? math::SE2() : odom_delta, yuv, base_to_optical, frame_seed, &r);
   return r;
 }
 
