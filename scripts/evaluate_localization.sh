@@ -56,7 +56,21 @@ for bag in rosbag/field_bright.bag rosbag/field_dark.bag rosbag/field_switching.
     python3 "$AP_ROOT/scripts/plot_localization.py" "$run" config/field_4legged.yaml "$name, $filter filter, global start"
   done
 done
+# The relocalization check (off by default) on the kidnap bag: how many of the seeds re-converge.
+recovered=0
+times=""
+for seed in $(seq 1 "$SEEDS"); do
+  line="$("$BIN/evaluate_localization" --bag "$KIDNAP" --particles "$PARTICLES" --threads "$THREADS" \
+    --seed "$seed" --relocalization_interval_s 2 --output "$OUT/relocalization/kidnap_$seed" | tail -n 1)"
+  k="$(echo "$line" | key reconverged_after_kidnap_s)"
+  times="$times $k"
+  case "$k" in -1*) ;; *) recovered=$((recovered + 1)) ;; esac
+done
+echo "field_kidnap switching, relocalization check every 2 s: $recovered of $SEEDS re-converged after the kidnap (s:$times)"
 {
+  echo
+  echo "With the relocalization check every 2 s (\`--relocalization_interval_s 2\`), switching filter, the kidnap bag:"
+  echo "$recovered of $SEEDS seeds re-converged after the kidnap (seconds after it, -1 = never:$times)."
   echo
   echo "converged after: the first frame after which the position error stays below 0.3 m to the end, or, on"
   echo "the kidnap bag, until the kidnap (-1: never). Errors are medians over the converged frames."

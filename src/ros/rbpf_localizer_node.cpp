@@ -4,6 +4,7 @@
 #include <tf2/exceptions.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <thread>
 
@@ -46,6 +47,19 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   c.mirror_fraction = P::getInRange(pnh, "mirror_fraction", c.mirror_fraction, 0.0, 0.5);
   c.mirror_relative_weight =
       P::getInRange(pnh, "mirror_relative_weight", c.mirror_relative_weight, 1e-6, 1.0);
+  c.refine_candidates = P::getInRange(pnh, "refine_candidates", c.refine_candidates, 0, 1000000);
+  c.refine_rounds = P::getInRange(pnh, "refine_rounds", c.refine_rounds, 0, 20);
+  c.refine_tries = P::getInRange(pnh, "refine_tries", c.refine_tries, 0, 1000);
+  c.refine_sigma_m = P::getInRange(pnh, "refine_sigma_m", c.refine_sigma_m, 0.0, 5.0);
+  c.refine_sigma_rad = P::getInRange(pnh, "refine_sigma_rad", c.refine_sigma_rad, 0.0, 3.2);
+  c.relocalization_interval_s =
+      P::getInRange(pnh, "relocalization_interval_s", c.relocalization_interval_s, 0.0, 1e6);
+  c.relocalization_pool_size =
+      P::getInRange(pnh, "relocalization_pool_size", c.relocalization_pool_size, 0, 10000000);
+  c.relocalization_margin =
+      P::getInRange(pnh, "relocalization_margin", c.relocalization_margin, -1e6, 1e6);
+  c.relocalization_fraction =
+      P::getInRange(pnh, "relocalization_fraction", c.relocalization_fraction, 1e-6, 1.0);
   c.recovery_alpha_slow =
       P::getInRange(pnh, "recovery_alpha_slow", c.recovery_alpha_slow, 0.0, 1.0);
   c.recovery_alpha_fast =
@@ -180,6 +194,12 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     return;
   }
   last_compute_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!std::isnan(last_.relocalization_score)) last_check_score_ = last_.relocalization_score;
+  if (last_.relocalized) {
+    ++relocalizations_;
+    ROS_WARN("rbpf_localizer: relocalized (a uniform pose beat the particles by %.2f)",
+             last_.relocalization_score);
+  }
   last_odom_ = odom;
   last_stamp_ = msg->header.stamp;
   ++frames_;
@@ -278,6 +298,8 @@ void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
              std::sqrt(e.covariance.topLeftCorner<2, 2>().trace()));
     stat.add("tempering", last_.tempering);
     stat.add("injected (last resampling)", last_.injected);
+    stat.add("relocalizations", relocalizations_);
+    stat.add("last relocalization check: best uniform minus best particle", last_check_score_);
     stat.add("compute time of the last frame (s)", last_compute_s_);
     stat.add("lighting mode", rbpf_->best().lighting.modeName(rbpf_->best().lighting.activeMode()));
   }

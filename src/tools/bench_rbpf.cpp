@@ -2,6 +2,10 @@
 // sequence (the field simulator, seed 1, bright lighting), tracking from the true start pose.
 //
 //   bench_rbpf [--particles N] [--threads T] [--frames F] [--pixel_stride S]
+//              [--relocalization_interval_s S]
+//
+// The relocalization check runs as configured by default (every 2 s a 5,000-pose search over the
+// next 4 images); --relocalization_interval_s 0 measures the filter alone.
 //
 // Without --particles/--threads it sweeps 100, 300 and 1000 particles on 1 thread and on all cores.
 // Last line: `bench_rbpf: frames_per_s=... (for the first configuration) ...` with one key per
@@ -21,12 +25,15 @@ using namespace adaptive_perception;
 
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
-                   "bench_rbpf [--particles N] [--threads T] [--frames F] [--pixel_stride S]");
+                   "bench_rbpf [--particles N] [--threads T] [--frames F] [--pixel_stride S] "
+                   "[--relocalization_interval_s S]");
   const long particles = args.getInt("particles", 0);
   const long threads = args.getInt("threads", 0);
   const int frames = static_cast<int>(args.getInt("frames", 40));
   const int stride = static_cast<int>(
       args.getInt("pixel_stride", localization::ImageLikelihoodConfig().pixel_stride));
+  const double relocalization = args.getDouble(
+      "relocalization_interval_s", localization::RbpfConfig().relocalization_interval_s);
   args.finish();
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::vector<std::pair<int, int>> configs;
@@ -66,14 +73,17 @@ int main(int argc, char** argv) {
     cfg.particles = n;
     cfg.threads = t;
     cfg.likelihood.pixel_stride = stride;
+    cfg.relocalization_interval_s = relocalization;
     localization::RbpfLocalizer rbpf(map, cam, priors, cfg);
     rbpf.initGaussian(start, Eigen::Vector3d(0.01, 0.01, 0.01).asDiagonal());
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < frames; ++k) rbpf.step(deltas[k], 0.1, images[k], heads[k]);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double fps = frames / s;
-    std::printf("%5d particles, %d thread(s), stride %d (%zu pixels): %.1f frames/s\n", n, t,
-                stride, rbpf.pixels().size(), fps);
+    std::printf(
+        "%5d particles, %d thread(s), stride %d (%zu pixels), relocalization check every %.1f "
+        "s: %.1f frames/s\n",
+        n, t, stride, rbpf.pixels().size(), relocalization, fps);
     char buf[96];
     if (first) {
       std::snprintf(buf, sizeof buf, " frames_per_s=%.1f", fps);

@@ -7,8 +7,10 @@
 //       [--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W]
 //       [--global_pool_size N] [--global_search_frames K]
 //       [--recovery_max_fraction F] [--recovery_alpha_fast A] [--recovery_alpha_slow A]
-//       [--recovery_gain_per_nat G] [--relocalization_interval_frames N]
-//       [--relocalization_pool_size N] [--relocalization_margin M] [--init global|truth]
+//       [--recovery_gain_per_nat G] [--relocalization_interval_s S]
+//       [--relocalization_pool_size N] [--relocalization_margin M] [--refine_candidates K]
+//       [--relocalization_fraction F] [--refine_rounds R] [--refine_tries T]
+//       [--init global|truth]
 //       [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
 // (defaults: those of localization::RbpfConfig)
 //
@@ -54,17 +56,20 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "evaluate_localization --bag FILE [--particles N] [--filter switching|single] "
-                   "[--threads T] [--seed N] "
-                   "[--pixel_stride S] [--exponent E] [--position_tolerance_m M] "
-                   "[--heading_tolerance_rad R] [--max_neighbourhood_cells C] "
-                   "[--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W] "
-                   "[--global_pool_size N] [--global_search_frames K] "
-                   "[--recovery_max_fraction F] [--recovery_alpha_fast A] "
-                   "[--recovery_alpha_slow A] [--recovery_gain_per_nat G] "
-                   "[--relocalization_interval_frames N] [--relocalization_pool_size N] "
-                   "[--relocalization_margin M] [--priors_dir DIR] [--init global|truth] [--output DIR] [--name LABEL]");
+  tools::Args args(
+      argc, argv,
+      "evaluate_localization --bag FILE [--particles N] [--filter switching|single] "
+      "[--threads T] [--seed N] "
+      "[--pixel_stride S] [--exponent E] [--position_tolerance_m M] "
+      "[--heading_tolerance_rad R] [--max_neighbourhood_cells C] "
+      "[--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W] "
+      "[--global_pool_size N] [--global_search_frames K] "
+      "[--recovery_max_fraction F] [--recovery_alpha_fast A] "
+      "[--recovery_alpha_slow A] [--recovery_gain_per_nat G] "
+      "[--relocalization_interval_s S] [--relocalization_pool_size N] "
+      "[--relocalization_margin M] [--relocalization_fraction F] "
+      "[--refine_candidates K] [--refine_rounds R] "
+      "[--refine_tries T] [--priors_dir DIR] [--init global|truth] [--output DIR] [--name LABEL]");
   const std::string bag = args.get("bag", "");
   localization::RbpfConfig cfg;
   cfg.particles = static_cast<int>(args.getInt("particles", cfg.particles));
@@ -78,11 +83,16 @@ int main(int argc, char** argv) {
   cfg.recovery_alpha_fast = args.getDouble("recovery_alpha_fast", cfg.recovery_alpha_fast);
   cfg.recovery_alpha_slow = args.getDouble("recovery_alpha_slow", cfg.recovery_alpha_slow);
   cfg.recovery_gain_per_nat = args.getDouble("recovery_gain_per_nat", cfg.recovery_gain_per_nat);
-  cfg.relocalization_interval_frames = static_cast<int>(
-      args.getInt("relocalization_interval_frames", cfg.relocalization_interval_frames));
+  cfg.relocalization_interval_s =
+      args.getDouble("relocalization_interval_s", cfg.relocalization_interval_s);
   cfg.relocalization_pool_size =
       static_cast<int>(args.getInt("relocalization_pool_size", cfg.relocalization_pool_size));
   cfg.relocalization_margin = args.getDouble("relocalization_margin", cfg.relocalization_margin);
+  cfg.relocalization_fraction =
+      args.getDouble("relocalization_fraction", cfg.relocalization_fraction);
+  cfg.refine_candidates = static_cast<int>(args.getInt("refine_candidates", cfg.refine_candidates));
+  cfg.refine_rounds = static_cast<int>(args.getInt("refine_rounds", cfg.refine_rounds));
+  cfg.refine_tries = static_cast<int>(args.getInt("refine_tries", cfg.refine_tries));
   cfg.min_ess_fraction = args.getDouble("min_ess_fraction", cfg.min_ess_fraction);
   cfg.global_pool_size = static_cast<int>(args.getInt("global_pool_size", cfg.global_pool_size));
   cfg.global_search_frames =

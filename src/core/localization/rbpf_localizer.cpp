@@ -82,14 +82,31 @@ void RbpfConfig::validate() const {
   if (!(min_ess_fraction >= 0.0 && min_ess_fraction <= 1.0))
     throw std::invalid_argument("min_ess_fraction = " + std::to_string(min_ess_fraction) +
                                 " (allowed: 0..1)");
-  if (relocalization_interval_frames < 0 || relocalization_interval_frames > 100000)
-    throw std::invalid_argument("relocalization_interval_frames = " +
-                                std::to_string(relocalization_interval_frames) +
-                                " (allowed: 0..100000)");
+  if (refine_candidates < 0 || refine_candidates > 1000000)
+    throw std::invalid_argument("refine_candidates = " + std::to_string(refine_candidates) +
+                                " (allowed: 0..1000000)");
+  if (refine_rounds < 0 || refine_rounds > 20)
+    throw std::invalid_argument("refine_rounds = " + std::to_string(refine_rounds) +
+                                " (allowed: 0..20)");
+  if (refine_tries < 0 || refine_tries > 1000)
+    throw std::invalid_argument("refine_tries = " + std::to_string(refine_tries) +
+                                " (allowed: 0..1000)");
+  if (!(refine_sigma_m >= 0.0 && refine_sigma_m <= 5.0))
+    throw std::invalid_argument("refine_sigma_m = " + std::to_string(refine_sigma_m) +
+                                " (allowed: 0..5)");
+  if (!(refine_sigma_rad >= 0.0 && refine_sigma_rad <= 3.2))
+    throw std::invalid_argument("refine_sigma_rad = " + std::to_string(refine_sigma_rad) +
+                                " (allowed: 0..3.2)");
+  if (!(relocalization_interval_s >= 0.0 && relocalization_interval_s <= 1e6))
+    throw std::invalid_argument("relocalization_interval_s = " +
+                                std::to_string(relocalization_interval_s) + " (allowed: 0..1e6)");
   if (relocalization_pool_size < 0 || relocalization_pool_size > 10000000)
-    throw std::invalid_argument("relocalization_pool_size = " +
-                                std::to_string(relocalization_pool_size) +
-                                " (allowed: 0..10000000)");
+    throw std::invalid_argument(
+        "relocalization_pool_size = " + std::to_string(relocalization_pool_size) +
+        " (allowed: 0..10000000)");
+  if (!(relocalization_fraction > 0.0 && relocalization_fraction <= 1.0))
+    throw std::invalid_argument("relocalization_fraction = " +
+                                std::to_string(relocalization_fraction) + " (allowed: 0 < f <= 1)");
   if (!std::isfinite(relocalization_margin))
     throw std::invalid_argument("relocalization_margin must be finite");
   if (!(recovery_max_fraction >= 0.0 && recovery_max_fraction <= 1.0))
@@ -199,7 +216,8 @@ void RbpfLocalizer::initUniform() {
   check_pool_.clear();
   check_ll_.clear();
   check_frames_ = 0;
-  frames_since_check_ = 0;
+  seconds_since_check_ = 0.0;
+  window_.clear();
 }
 
 void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& cov) {
@@ -219,7 +237,8 @@ void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& c
   check_pool_.clear();
   check_ll_.clear();
   check_frames_ = 0;
-  frames_since_check_ = 0;
+  seconds_since_check_ = 0.0;
+  window_.clear();
 }
 
 double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose,
@@ -410,11 +429,59 @@ void RbpfLocalizer::scorePool(std::vector<math::SE2>* pool, std::vector<double>*
   });
 }
 
-void RbpfLocalizer::drawParticlesFromPool(const std::vector<math::SE2>& pool,
-                                          const std::vector<double>& ll, size_t n,
-                                          const color::SwitchingColorFilter& lighting) {
+void RbpfLocalizer::pushWindow(const math::SE2& odom_delta, CoarseImage image,
+                               const color::SwitchingColorFilter& lighting,
+                               const Eigen::Isometry3d& base_to_optical, bool reset) {
+  if (reset) window_.clear();
+  for (WindowFrame& f : window_) f.to_last = f.to_last * odom_delta;
+  window_.push_back({std::move(image), math::SE2(), lighting, base_to_optical});
+}
+
+double RbpfLocalizer::windowLogLikelihood(const math::SE2& pose_at_last) const {
+  double sum = 0.0;
+  for (const WindowFrame& f : window_)
+    sum += logLikelihoodAt(f.image.pixels, f.image.cols, f.image.offsets, f.image.values,
+                           pose_at_last * f.to_last.inverse(), f.lighting, f.base_to_optical,
+                           nullptr, nullptr);
+  return sum;
+}
+
+void RbpfLocalizer::refinePool(std::vector<math::SE2>* pool, std::vector<double>* ll, size_t begin,
+                               size_t end, std::uint64_t seed) const {
+  if (config_.refine_rounds <= 0 || end <= begin || window_.empty()) return;
+  std::vector<size_t> top(end - begin);
+  for (size_t i = 0; i < top.size(); ++i) top[i] = begin + i;
+  const size_t k = std::min<size_t>(top.size(), static_cast<size_t>(config_.refine_candidates));
+  std::partial_sort(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(k), top.end(),
+                    [&](size_t a, size_t b) { return (*ll)[a] > (*ll)[b]; });
+  top.resize(k);
+  for (int round = 0; round < config_.refine_rounds; ++round) {
+    const double scale = std::ldexp(1.0, -round);
+    parallelFor(k, [&](size_t c) {
+      const size_t i = top[c];
+      math::Rng rng(mix(mix(seed, static_cast<std::uint64_t>(round)), i));
+      for (int t = 0; t < config_.refine_tries; ++t) {
+        const math::SE2& p = (*pool)[i];
+        const math::SE2 q(
+            p.x_m + rng.gaussian(0.0, scale * config_.refine_sigma_m),
+            p.y_m + rng.gaussian(0.0, scale * config_.refine_sigma_m),
+            math::wrapAngle(p.yaw_rad + rng.gaussian(0.0, scale * config_.refine_sigma_rad)));
+        const double l = windowLogLikelihood(q);
+        if (l > (*ll)[i]) {
+          (*pool)[i] = q;
+          (*ll)[i] = l;
+        }
+      }
+    });
+  }
+}
+
+std::vector<Particle> RbpfLocalizer::drawFromPool(const std::vector<math::SE2>& pool,
+                                                  const std::vector<double>& ll, size_t n,
+                                                  int count,
+                                                  const color::SwitchingColorFilter& lighting) {
   std::vector<double> w;
-  const double target = 0.5 * config_.particles;
+  const double target = 0.5 * count;
   auto weigh = [&](double lambda) {
     std::vector<double> logw(n);
     for (size_t i = 0; i < n; ++i) logw[i] = lambda * ll[i];
@@ -431,11 +498,11 @@ void RbpfLocalizer::drawParticlesFromPool(const std::vector<math::SE2>& pool,
     }
   }
   weigh(lo);
-  const auto idx =
-      math::resampleIndices(w, config_.particles, math::ResamplingScheme::kSystematic, rng_);
-  particles_.clear();
-  for (size_t i : idx) particles_.push_back({pool[i], lighting, 0.0});
-  weights_.assign(particles_.size(), 1.0 / particles_.size());
+  const auto idx = math::resampleIndices(w, count, math::ResamplingScheme::kSystematic, rng_);
+  std::vector<Particle> out;
+  out.reserve(idx.size());
+  for (size_t i : idx) out.push_back({pool[i], lighting, 0.0});
+  return out;
 }
 
 bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv,
@@ -443,7 +510,7 @@ bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv
                                  std::uint64_t frame_seed) {
   // Score the pool on a coarse pixel grid under the prior lighting, summing over images, and draw
   // the particles from it with the tempering that keeps half of them distinct.
-  const CoarseImage image = coarseImage(yuv, base_to_optical);
+  CoarseImage image = coarseImage(yuv, base_to_optical);
   const color::SwitchingColorFilter lighting(priors_, config_.model, config_.switching);
   const size_t n = static_cast<size_t>(config_.global_pool_size);
   const bool first = pool_.empty();
@@ -454,26 +521,35 @@ bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv
   }
   scorePool(&pool_, &pool_ll_, 0, !first, odom_delta, image, lighting, base_to_optical);
   ++pool_frames_;
-  drawParticlesFromPool(pool_, pool_ll_, n, lighting);
-  if (pool_frames_ < config_.global_search_frames) return false;
+  pushWindow(odom_delta, image, lighting, base_to_optical, first);
+  const bool done = pool_frames_ >= config_.global_search_frames;
+  if (done) refinePool(&pool_, &pool_ll_, 0, n, frame_seed);
+  particles_ = drawFromPool(pool_, pool_ll_, n, config_.particles, lighting);
+  weights_.assign(particles_.size(), 1.0 / particles_.size());
+  if (!done) return false;
+  window_.clear();
   global_pending_ = false;
   pool_.clear();
   pool_.shrink_to_fit();
   pool_ll_.clear();
   pool_ll_.shrink_to_fit();
   pool_frames_ = 0;
-  frames_since_check_ = 0;
+  seconds_since_check_ = 0.0;
   return true;
 }
 
-void RbpfLocalizer::relocalizationCheck(const math::SE2& odom_delta, const cv::Mat& yuv,
+void RbpfLocalizer::relocalizationCheck(const math::SE2& odom_delta, double dt_s,
+                                        const cv::Mat& yuv,
                                         const Eigen::Isometry3d& base_to_optical,
                                         std::uint64_t frame_seed, StepResult* result) {
-  if (config_.relocalization_interval_frames <= 0) return;
+  if (config_.relocalization_interval_s <= 0.0) return;
   const bool starting = check_frames_ == 0;
-  if (starting && ++frames_since_check_ < config_.relocalization_interval_frames) return;
+  if (starting) {
+    seconds_since_check_ += std::max(dt_s, 0.0);
+    if (seconds_since_check_ < config_.relocalization_interval_s) return;
+  }
   const color::SwitchingColorFilter lighting = best().lighting;
-  const CoarseImage image = coarseImage(yuv, base_to_optical);
+  CoarseImage image = coarseImage(yuv, base_to_optical);
   if (starting) {
     // The particles have this image's motion already; the uniform poses are drawn for it.
     check_uniform_ = static_cast<size_t>(config_.relocalization_pool_size);
@@ -484,20 +560,33 @@ void RbpfLocalizer::relocalizationCheck(const math::SE2& odom_delta, const cv::M
       check_pool_[check_uniform_ + i] = particles_[i].pose;
   }
   scorePool(&check_pool_, &check_ll_, 0, !starting, odom_delta, image, lighting, base_to_optical);
+  pushWindow(odom_delta, image, lighting, base_to_optical, starting);
   if (++check_frames_ < config_.global_search_frames) return;
+  // Both sides are refined alike, so neither wins by having been optimised on these images.
+  refinePool(&check_pool_, &check_ll_, 0, check_uniform_, frame_seed);
+  refinePool(&check_pool_, &check_ll_, check_uniform_, check_pool_.size(), frame_seed ^ 0x9E37ull);
   const auto mid = check_ll_.begin() + static_cast<std::ptrdiff_t>(check_uniform_);
   const double best_uniform =
       check_uniform_ > 0 ? *std::max_element(check_ll_.begin(), mid) : -1e300;
   const double best_particle = *std::max_element(mid, check_ll_.end());
   result->relocalization_score = best_uniform - best_particle;
   if (result->relocalization_score > config_.relocalization_margin) {
-    drawParticlesFromPool(check_pool_, check_ll_, check_uniform_, lighting);
+    const int n = static_cast<int>(particles_.size());
+    const int fresh = static_cast<int>(std::lround(config_.relocalization_fraction * n));
+    std::vector<Particle> next =
+        drawFromPool(check_pool_, check_ll_, check_uniform_, fresh, lighting);
+    for (size_t i :
+         math::resampleIndices(weights_, n - fresh, math::ResamplingScheme::kSystematic, rng_))
+      next.push_back(particles_[i]);
+    particles_ = std::move(next);
+    weights_.assign(particles_.size(), 1.0 / particles_.size());
     result->relocalized = true;
   }
   check_pool_.clear();
   check_ll_.clear();
   check_frames_ = 0;
-  frames_since_check_ = 0;
+  seconds_since_check_ = 0.0;
+  window_.clear();
 }
 
 RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, double dt_s,
@@ -608,7 +697,7 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
     }
     r.mirrored = mirror;
   }
-  relocalizationCheck(moved ? math::SE2() : odom_delta, yuv, base_to_optical, frame_seed, &r);
+  relocalizationCheck(moved ? math::SE2() : odom_delta, dt_s, yuv, base_to_optical, frame_seed, &r);
   return r;
 }
 
