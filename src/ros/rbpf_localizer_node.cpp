@@ -44,9 +44,17 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   c.global_pixel_stride = P::getInRange(pnh, "global_pixel_stride", c.global_pixel_stride, 1, 64);
   c.global_search_frames =
       P::getInRange(pnh, "global_search_frames", c.global_search_frames, 1, 100);
+  c.global_confirm_frames =
+      P::getInRange(pnh, "global_confirm_frames", c.global_confirm_frames, 0, 100);
+  c.global_confirm_fraction =
+      P::getInRange(pnh, "global_confirm_fraction", c.global_confirm_fraction, 0.0, 1.0);
   c.mirror_fraction = P::getInRange(pnh, "mirror_fraction", c.mirror_fraction, 0.0, 0.5);
   c.mirror_relative_weight =
       P::getInRange(pnh, "mirror_relative_weight", c.mirror_relative_weight, 1e-6, 1.0);
+  c.mirror_test_margin_nats =
+      P::getInRange(pnh, "mirror_test_margin_nats", c.mirror_test_margin_nats, 0.0, 1e6);
+  c.mirror_test_memory_s =
+      P::getInRange(pnh, "mirror_test_memory_s", c.mirror_test_memory_s, 1e-3, 1e6);
   c.refine_candidates = P::getInRange(pnh, "refine_candidates", c.refine_candidates, 0, 1000000);
   c.refine_rounds = P::getInRange(pnh, "refine_rounds", c.refine_rounds, 0, 20);
   c.refine_tries = P::getInRange(pnh, "refine_tries", c.refine_tries, 0, 1000);
@@ -200,6 +208,13 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     ROS_WARN("rbpf_localizer: relocalized (a uniform pose beat the particles by %.2f)",
              last_.relocalization_score);
   }
+  if (last_.mirror_flipped) {
+    ++mirror_flips_;
+    ROS_WARN(
+        "rbpf_localizer: moved the particles to their point mirrors (the goal and beacon "
+        "colours favoured the other half of the field by %.2f)",
+        -last_.mirror_evidence);
+  }
   last_odom_ = odom;
   last_stamp_ = msg->header.stamp;
   ++frames_;
@@ -300,6 +315,8 @@ void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
     stat.add("injected (last resampling)", last_.injected);
     stat.add("relocalizations", relocalizations_);
     stat.add("last relocalization check: best uniform minus best particle", last_check_score_);
+    stat.add("mirror flips", mirror_flips_);
+    stat.add("mirror test: evidence for the other half", last_.mirror_evidence);
     stat.add("compute time of the last frame (s)", last_compute_s_);
     stat.add("lighting mode", rbpf_->best().lighting.modeName(rbpf_->best().lighting.activeMode()));
   }

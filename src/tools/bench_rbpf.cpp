@@ -11,6 +11,7 @@
 // Last line: `bench_rbpf: frames_per_s=... (for the first configuration) ...` with one key per
 // configuration: frames_per_s_<particles>_<threads>.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <thread>
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
     heads.push_back(head.baseToOptical(simulator.state().pan_rad, simulator.state().tilt_rad));
     prev = simulator.state().odom_pose;
   }
+  const math::SE2 end_truth = simulator.state().true_pose;
   std::string summary = "bench_rbpf:";
   bool first = true;
   for (const auto& [n, t] : configs) {
@@ -77,13 +79,17 @@ int main(int argc, char** argv) {
     localization::RbpfLocalizer rbpf(map, cam, priors, cfg);
     rbpf.initGaussian(start, Eigen::Vector3d(0.01, 0.01, 0.01).asDiagonal());
     const auto t0 = std::chrono::steady_clock::now();
-    for (int k = 0; k < frames; ++k) rbpf.step(deltas[k], 0.1, images[k], heads[k]);
+    int flips = 0;
+    for (int k = 0; k < frames; ++k)
+      flips += rbpf.step(deltas[k], 0.1, images[k], heads[k]).mirror_flipped;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double fps = frames / s;
+    const math::SE2 e = rbpf.estimate().pose;
     std::printf(
         "%5d particles, %d thread(s), stride %d (%zu pixels), relocalization check every %.1f "
-        "s: %.1f frames/s\n",
-        n, t, stride, rbpf.pixels().size(), relocalization, fps);
+        "s: %.1f frames/s (final position error %.3f m, mirror flips %d)\n",
+        n, t, stride, rbpf.pixels().size(), relocalization, fps,
+        std::hypot(e.x_m - end_truth.x_m, e.y_m - end_truth.y_m), flips);
     char buf[96];
     if (first) {
       std::snprintf(buf, sizeof buf, " frames_per_s=%.1f", fps);

@@ -5,7 +5,9 @@
 //       [--seed 1] [--pixel_stride 4] [--exponent E] [--position_tolerance_m M]
 //       [--heading_tolerance_rad R] [--max_neighbourhood_cells C]
 //       [--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W]
-//       [--global_pool_size N] [--global_search_frames K]
+//       [--mirror_test_margin_nats M] [--mirror_test_memory_s S]
+//       [--global_pool_size N] [--global_search_frames K] [--global_confirm_frames K]
+//       [--global_confirm_fraction F]
 //       [--recovery_max_fraction F] [--recovery_alpha_fast A] [--recovery_alpha_slow A]
 //       [--recovery_gain_per_nat G] [--relocalization_interval_s S]
 //       [--relocalization_pool_size N] [--relocalization_margin M] [--refine_candidates K]
@@ -63,7 +65,9 @@ int main(int argc, char** argv) {
       "[--pixel_stride S] [--exponent E] [--position_tolerance_m M] "
       "[--heading_tolerance_rad R] [--max_neighbourhood_cells C] "
       "[--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W] "
-      "[--global_pool_size N] [--global_search_frames K] "
+      "[--mirror_test_margin_nats M] [--mirror_test_memory_s S] "
+      "[--global_pool_size N] [--global_search_frames K] [--global_confirm_frames K] "
+      "[--global_confirm_fraction F] "
       "[--recovery_max_fraction F] [--recovery_alpha_fast A] "
       "[--recovery_alpha_slow A] [--recovery_gain_per_nat G] "
       "[--relocalization_interval_s S] [--relocalization_pool_size N] "
@@ -97,12 +101,19 @@ int main(int argc, char** argv) {
   cfg.global_pool_size = static_cast<int>(args.getInt("global_pool_size", cfg.global_pool_size));
   cfg.global_search_frames =
       static_cast<int>(args.getInt("global_search_frames", cfg.global_search_frames));
+  cfg.global_confirm_frames =
+      static_cast<int>(args.getInt("global_confirm_frames", cfg.global_confirm_frames));
+  cfg.global_confirm_fraction =
+      args.getDouble("global_confirm_fraction", cfg.global_confirm_fraction);
   const std::string priors_dir = args.get("priors_dir", "config/color_priors");
   const std::string output = args.get("output", "results/evaluate_localization");
   const std::string name = args.get("name", fs::path(bag).stem().string());
   const std::string init = args.get("init", "global");
   cfg.mirror_fraction = args.getDouble("mirror_fraction", cfg.mirror_fraction);
   cfg.mirror_relative_weight = args.getDouble("mirror_relative_weight", cfg.mirror_relative_weight);
+  cfg.mirror_test_margin_nats =
+      args.getDouble("mirror_test_margin_nats", cfg.mirror_test_margin_nats);
+  cfg.mirror_test_memory_s = args.getDouble("mirror_test_memory_s", cfg.mirror_test_memory_s);
   cfg.likelihood.position_tolerance_m =
       args.getDouble("position_tolerance_m", cfg.likelihood.position_tolerance_m);
   cfg.likelihood.heading_tolerance_rad =
@@ -136,7 +147,8 @@ int main(int argc, char** argv) {
     std::ofstream csv(fs::path(output) / "frames.csv"), est_tum(fs::path(output) / "estimate.tum"),
         truth_tum(fs::path(output) / "truth.tum");
     csv << "t_s,position_error_m,heading_error_deg,ess,tempering,classification_rate,injected,"
-           "mean_pixel_log_likelihood,relocalization_score,relocalized\n";
+           "mean_pixel_log_likelihood,relocalization_score,relocalized,mirror_evidence,mirror_"
+           "flipped\n";
     const double t0 = frames.front().stamp.toSec();
     bool have_prev = false;
     Eigen::Isometry3d prev_odom = Eigen::Isometry3d::Identity();
@@ -222,7 +234,8 @@ int main(int argc, char** argv) {
           << "," << rate << "," << r.injected << "," << r.mean_pixel_log_likelihood << ","
           << (std::isnan(r.relocalization_score) ? std::string()
                                                  : std::to_string(r.relocalization_score))
-          << "," << int(r.relocalized) << "\n";
+          << "," << int(r.relocalized) << "," << r.mirror_evidence << "," << int(r.mirror_flipped)
+          << "\n";
       tum(est_tum, f.stamp.toSec(), est);
       tum(truth_tum, f.stamp.toSec(), truth);
       if (!t_s.empty() && std::hypot(truth.x_m - prev_truth.x_m, truth.y_m - prev_truth.y_m) > 0.5)

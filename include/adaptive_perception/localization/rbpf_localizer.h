@@ -85,6 +85,24 @@ struct RbpfConfig {
   // image. 0 turns the pool off (the N uniform particles are used as they are).
   int global_pool_size = 60000;
   int global_search_frames = 4;
+  // Second draw of a global search: the particles commit after global_search_frames images, but
+  // the pool goes on being scored until global_confirm_frames images; then
+  // global_confirm_fraction of the particles are drawn from the pool again (as at the commit,
+  // with the best particle's lighting) and the rest are kept (drawn by weight), so the next
+  // images choose between the particles' hypotheses and the pool's. A start that sees only a
+  // wall and a line for its first images commits to any of the places that look like that, and
+  // the view that tells them apart comes a second later, when no particle is left near the truth
+  // (the dark bag: 2 of 5 seeds converged with one draw, 5 of 5 with the second). Scoring the
+  // pool longer before committing does not serve instead: the pool's poses follow the odometry
+  // without noise, and over 8 images of turning on the spot they fall out of line with the images
+  // (the bright bag: 1 of 5 seeds converged when committing after 8). Nor does comparing the
+  // pool's best pose with the particles' (as the relocalization check does): on the dark bag
+  // the particles' best wrong pose scored within 1 nat of the pool's best over the 8 images; it
+  // is the pool's spread of hypotheses that holds the truth. The score of that comparison is
+  // still reported (StepResult::relocalization_score). At most global_search_frames, or a
+  // fraction of 0, turns it off.
+  int global_confirm_frames = 8;
+  double global_confirm_fraction = 0.5;
   // The field's lines are point-symmetric about the centre spot; only the goal and beacon colours
   // tell the halves apart, and they are in view for a few frames only. At each resampling this
   // fraction of the particles is replaced by the point mirror (-x, -y, yaw + pi) of other
@@ -96,6 +114,24 @@ struct RbpfConfig {
   // while the view is symmetric moved mirror_fraction of the weight across, and after a few
   // seconds of lines only the mirror held half the weight and the estimate could flip to it.
   double mirror_relative_weight = 0.05;
+  // Mirror test: after the particles have committed, every image scores the pose estimate and its
+  // point mirror side by side under one reference lighting, and sums the log-likelihood ratio
+  // (mirror minus estimate, tempered nats) over the images, older images fading with time
+  // constant mirror_test_memory_s. The lines score alike for both, so the sum is the evidence of
+  // the goals and beacons alone. When it exceeds mirror_test_margin_nats, the particles of the
+  // estimate's cluster move to their mirrors (and take the reference lighting) and the sum changes
+  // sign, as it does when the estimate moves to the mirror cluster on its own; a relocalization
+  // or another jump of the estimate by more than 0.5 m starts it again. The
+  // reference lighting is a switching filter from the priors updated with the green and white means
+  // only, the colours that look alike from both poses: a particle's own lighting learns the colours
+  // under its own labels, so a particle on the mirror learns that its "cyan" beacon band is yellow,
+  // and then it explains the very pixels that should have told it apart (on the bright bag the true
+  // pose led its mirror by some 30 nats over the run and still lost the weight to it). The memory
+  // lets new evidence overturn old within seconds: a kidnap that puts the robot near the mirror of
+  // where it was goes on fitting the lines, and with a sum clipped at 20 nats instead, the evidence
+  // from before the kidnap held the particles on the wrong half. 0 turns the test off.
+  double mirror_test_margin_nats = 3.0;
+  double mirror_test_memory_s = 4.0;
   int global_pixel_stride = 12;
   // Refinement of a search (the global search and the relocalization check) on its last image: a
   // pool of uniform poses lies some 0.14 m and 0.14 rad apart, coarser than the likelihood's pose
@@ -180,11 +216,16 @@ class RbpfLocalizer {
     double tempering = 1.0;  // the factor applied to this image's log-likelihood (1: none)
     double mean_pixel_log_likelihood = 0.0;  // per used pixel, of the average particle likelihood
     int pixels_used = 0;                     // by the best particle
-    // A relocalization check that ended with this image: the best uniform pose's summed
+    // A relocalization check (or the second draw of a global search) that ended with this
+    // image: the best uniform pose's summed
     // log-likelihood minus the best particle pose's (NaN: no check ended), and whether the
     // particles were redrawn.
     double relocalization_score = std::numeric_limits<double>::quiet_NaN();
     bool relocalized = false;
+    // The mirror test's evidence for the mirror of the estimate after this image (0: not run) and
+    // whether the particles were moved to their mirrors.
+    double mirror_evidence = 0.0;
+    bool mirror_flipped = false;
   };
   /// One image: odometry delta since the previous image (in the previous base frame), elapsed time,
   /// the YUV image (CV_8UC3) and the camera pose on the robot (base_link -> camera_optical_frame).
@@ -269,6 +310,21 @@ class RbpfLocalizer {
   void relocalizationCheck(const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv,
                            const Eigen::Isometry3d& base_to_optical, std::uint64_t frame_seed,
                            StepResult* result);
+  /// One image of the second draw of a global search (see global_confirm_frames).
+  void confirmSearch(const math::SE2& odom_delta, const cv::Mat& yuv,
+                     const Eigen::Isometry3d& base_to_optical, std::uint64_t frame_seed,
+                     StepResult* result);
+  /// The end of a relocalization check or a second draw: check_pool_ holds the search's poses
+  /// [0, check_uniform_) and the particles' poses after them, check_ll_ their window
+  /// log-likelihoods; both sides are refined and compared, and `fraction` of the particles
+  /// redrawn from the search's poses (with `lighting`) when the search wins by `margin`.
+  void finishCheck(const color::SwitchingColorFilter& lighting, std::uint64_t frame_seed,
+                   double margin, double fraction, StepResult* result);
+  /// The mirror test on the current image (see RbpfConfig::mirror_test_margin_nats).
+  void mirrorTest(const math::SE2& odom_delta, double dt_s,
+                  const Eigen::Isometry3d& base_to_optical, StepResult* result);
+  /// Forgets the mirror test's evidence and reference lighting.
+  void resetMirrorTest();
   template <typename F>
   void parallelFor(size_t n, F&& f) const;
 
@@ -289,9 +345,10 @@ class RbpfLocalizer {
   double w_slow_ = 0.0, w_fast_ = 0.0;
   bool have_average_ = false;
   bool global_pending_ = false;
-  std::vector<math::SE2> pool_;  // the global search's poses, moved by odometry
-  std::vector<double> pool_ll_;  // and their summed log-likelihoods
-  int pool_frames_ = 0;          // images scored on the pool so far
+  std::vector<math::SE2> pool_;   // the global search's poses, moved by odometry
+  std::vector<double> pool_ll_;   // and their summed log-likelihoods
+  int pool_frames_ = 0;           // images scored on the pool so far
+  bool confirm_pending_ = false;  // the particles committed; the pool goes on to confirm them
   // The images of the running search, on the coarse grid, with the odometry to the last one.
   struct WindowFrame {
     CoarseImage image;
@@ -306,6 +363,11 @@ class RbpfLocalizer {
   size_t check_uniform_ = 0;
   int check_frames_ = 0;              // images scored in the running check (0: none running)
   double seconds_since_check_ = 0.0;  // since the particles committed or the last check ended
+  // The mirror test: the estimate it last scored, its evidence and its reference lighting.
+  bool mirror_have_pose_ = false;
+  math::SE2 mirror_pose_;
+  double mirror_evidence_ = 0.0;
+  color::SwitchingColorFilter mirror_lighting_;
 };
 
 }  // namespace adaptive_perception::localization

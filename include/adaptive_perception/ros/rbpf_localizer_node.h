@@ -94,7 +94,8 @@ class RbpfLocalizerNode {
   diagnostic_updater::Updater diagnostics_;
   double min_freq_ = 0.5, max_freq_ = 100.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
-  long frames_ = 0, skipped_no_tf_ = 0, skipped_bad_image_ = 0, resets_ = 0, relocalizations_ = 0;
+  long frames_ = 0, skipped_no_tf_ = 0, skipped_bad_image_ = 0, resets_ = 0, relocalizations_ = 0,
+       mirror_flips_ = 0;
   double last_check_score_ = std::numeric_limits<double>::quiet_NaN();
   localization::RbpfLocalizer::StepResult last_;
   double last_compute_s_ = 0.0;

@@ -67,6 +67,12 @@ void RbpfConfig::validate() const {
   if (global_pool_size < 0 || global_pool_size > 10000000)
     throw std::invalid_argument("global_pool_size = " + std::to_string(global_pool_size) +
                                 " (allowed: 0..10000000)");
+  if (!(global_confirm_fraction >= 0.0 && global_confirm_fraction <= 1.0))
+    throw std::invalid_argument("global_confirm_fraction = " +
+                                std::to_string(global_confirm_fraction) + " (allowed: 0..1)");
+  if (global_confirm_frames < 0 || global_confirm_frames > 100)
+    throw std::invalid_argument("global_confirm_frames = " + std::to_string(global_confirm_frames) +
+                                " (allowed: 0..100, at most global_search_frames turns it off)");
   if (global_search_frames < 1 || global_search_frames > 100)
     throw std::invalid_argument("global_search_frames = " + std::to_string(global_search_frames) +
                                 " (allowed: 1..100)");
@@ -109,6 +115,13 @@ void RbpfConfig::validate() const {
                                 std::to_string(relocalization_fraction) + " (allowed: 0 < f <= 1)");
   if (!std::isfinite(relocalization_margin))
     throw std::invalid_argument("relocalization_margin must be finite");
+  if (!(mirror_test_margin_nats >= 0.0 && std::isfinite(mirror_test_margin_nats)))
+    throw std::invalid_argument(
+        "mirror_test_margin_nats = " + std::to_string(mirror_test_margin_nats) +
+        " (allowed: >= 0, 0 turns the test off)");
+  if (!(mirror_test_memory_s > 0.0 && mirror_test_memory_s <= 1e6))
+    throw std::invalid_argument("mirror_test_memory_s = " + std::to_string(mirror_test_memory_s) +
+                                " (allowed: 0 < s <= 1e6)");
   if (!(recovery_max_fraction >= 0.0 && recovery_max_fraction <= 1.0))
     throw std::invalid_argument("recovery_max_fraction = " + std::to_string(recovery_max_fraction) +
                                 " (allowed: 0..1)");
@@ -186,7 +199,12 @@ std::vector<NeighbourOffset> neighbourOffsets(const world::PinholeCamera& camera
 RbpfLocalizer::RbpfLocalizer(const world::FieldMap& map, const world::PinholeCamera& camera,
                              const std::vector<color::LightingPrior>& priors,
                              const RbpfConfig& config)
-    : map_(map), renderer_(map, camera), priors_(priors), config_(config), rng_(config.seed) {
+    : map_(map),
+      renderer_(map, camera),
+      priors_(priors),
+      config_(config),
+      rng_(config.seed),
+      mirror_lighting_(priors, config.model, config.switching) {
   config_.validate();
   pixels_ = pixelGrid(camera, config_.likelihood.pixel_stride, &grid_cols_);
   initUniform();
@@ -218,6 +236,8 @@ void RbpfLocalizer::initUniform() {
   check_frames_ = 0;
   seconds_since_check_ = 0.0;
   window_.clear();
+  confirm_pending_ = false;
+  resetMirrorTest();
 }
 
 void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& cov) {
@@ -239,6 +259,8 @@ void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& c
   check_frames_ = 0;
   seconds_since_check_ = 0.0;
   window_.clear();
+  confirm_pending_ = false;
+  resetMirrorTest();
 }
 
 double RbpfLocalizer::imageLogLikelihood(const math::SE2& pose,
@@ -527,8 +549,13 @@ bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv
   particles_ = drawFromPool(pool_, pool_ll_, n, config_.particles, lighting);
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   if (!done) return false;
-  window_.clear();
   global_pending_ = false;
+  seconds_since_check_ = 0.0;
+  if (config_.global_confirm_frames > config_.global_search_frames) {
+    confirm_pending_ = true;  // the pool goes on (confirmSearch)
+    return true;
+  }
+  window_.clear();
   pool_.clear();
   pool_.shrink_to_fit();
   pool_ll_.clear();
@@ -562,6 +589,43 @@ void RbpfLocalizer::relocalizationCheck(const math::SE2& odom_delta, double dt_s
   scorePool(&check_pool_, &check_ll_, 0, !starting, odom_delta, image, lighting, base_to_optical);
   pushWindow(odom_delta, image, lighting, base_to_optical, starting);
   if (++check_frames_ < config_.global_search_frames) return;
+  finishCheck(lighting, frame_seed, config_.relocalization_margin, config_.relocalization_fraction,
+              result);
+}
+
+void RbpfLocalizer::confirmSearch(const math::SE2& odom_delta, const cv::Mat& yuv,
+                                  const Eigen::Isometry3d& base_to_optical,
+                                  std::uint64_t frame_seed, StepResult* result) {
+  CoarseImage image = coarseImage(yuv, base_to_optical);
+  const color::SwitchingColorFilter lighting(priors_, config_.model, config_.switching);
+  scorePool(&pool_, &pool_ll_, 0, true, odom_delta, image, lighting, base_to_optical);
+  pushWindow(odom_delta, image, lighting, base_to_optical, false);
+  if (++pool_frames_ < config_.global_confirm_frames) return;
+  // The particles' poses are scored over the same images as the pool (each moved back by the
+  // odometry) for the score, and global_confirm_fraction of them are drawn from the pool.
+  confirm_pending_ = false;
+  check_uniform_ = pool_.size();
+  check_pool_ = std::move(pool_);
+  check_ll_ = std::move(pool_ll_);
+  pool_.clear();
+  pool_ll_.clear();
+  pool_frames_ = 0;
+  check_pool_.resize(check_uniform_ + particles_.size());
+  check_ll_.resize(check_pool_.size());
+  parallelFor(particles_.size(), [&](size_t i) {
+    check_pool_[check_uniform_ + i] = particles_[i].pose;
+    check_ll_[check_uniform_ + i] = windowLogLikelihood(particles_[i].pose);
+  });
+  const color::SwitchingColorFilter best_lighting = best().lighting;
+  finishCheck(best_lighting, frame_seed, -std::numeric_limits<double>::infinity(),
+              config_.global_confirm_fraction, result);
+  check_pool_.shrink_to_fit();
+  check_ll_.shrink_to_fit();
+}
+
+void RbpfLocalizer::finishCheck(const color::SwitchingColorFilter& lighting,
+                                std::uint64_t frame_seed, double margin, double fraction,
+                                StepResult* result) {
   // Both sides are refined alike, so neither wins by having been optimised on these images.
   refinePool(&check_pool_, &check_ll_, 0, check_uniform_, frame_seed);
   refinePool(&check_pool_, &check_ll_, check_uniform_, check_pool_.size(), frame_seed ^ 0x9E37ull);
@@ -570,9 +634,9 @@ void RbpfLocalizer::relocalizationCheck(const math::SE2& odom_delta, double dt_s
       check_uniform_ > 0 ? *std::max_element(check_ll_.begin(), mid) : -1e300;
   const double best_particle = *std::max_element(mid, check_ll_.end());
   result->relocalization_score = best_uniform - best_particle;
-  if (result->relocalization_score > config_.relocalization_margin) {
+  if (result->relocalization_score > margin && fraction > 0.0) {
     const int n = static_cast<int>(particles_.size());
-    const int fresh = static_cast<int>(std::lround(config_.relocalization_fraction * n));
+    const int fresh = static_cast<int>(std::lround(fraction * n));
     std::vector<Particle> next =
         drawFromPool(check_pool_, check_ll_, check_uniform_, fresh, lighting);
     for (size_t i :
@@ -697,8 +761,73 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
     }
     r.mirrored = mirror;
   }
-  relocalizationCheck(moved ? math::SE2() : odom_delta, dt_s, yuv, base_to_optical, frame_seed, &r);
+  if (confirm_pending_ && !moved)
+    confirmSearch(odom_delta, yuv, base_to_optical, frame_seed, &r);
+  else if (!confirm_pending_)
+    relocalizationCheck(moved ? math::SE2() : odom_delta, dt_s, yuv, base_to_optical, frame_seed,
+                        &r);
+  mirrorTest(moved ? math::SE2() : odom_delta, dt_s, base_to_optical, &r);
   return r;
+}
+
+void RbpfLocalizer::resetMirrorTest() {
+  mirror_have_pose_ = false;
+  mirror_evidence_ = 0.0;
+  mirror_lighting_.reset();
+}
+
+void RbpfLocalizer::mirrorTest(const math::SE2& odom_delta, double dt_s,
+                               const Eigen::Isometry3d& base_to_optical, StepResult* result) {
+  if (config_.mirror_test_margin_nats <= 0.0) return;
+  auto mirrored = [](const math::SE2& p) {
+    return math::SE2(-p.x_m, -p.y_m, p.yaw_rad + math::kPi);
+  };
+  const math::SE2 pose = estimate().pose;
+  if (result->relocalized) mirror_have_pose_ = false;  // the evidence was for another place
+  if (!mirror_have_pose_) mirror_evidence_ = 0.0;
+  if (mirror_have_pose_) {
+    // The evidence belongs to the hypothesis it was summed for: when the estimate moves to the
+    // other cluster (the mirror copies can outweigh it for a while) the sum changes sign, and when
+    // it jumps anywhere else it starts again. (Starting again on the move to the other cluster as
+    // well cost the bright bag: the estimate went back and forth between the clusters, and two
+    // seeds in five converged 2.5 and 4.75 s later.)
+    const math::SE2 predicted = mirror_pose_ * odom_delta;
+    constexpr double kJumpM = 0.5;
+    const math::SE2 other = mirrored(predicted);
+    if (std::hypot(pose.x_m - predicted.x_m, pose.y_m - predicted.y_m) > kJumpM) {
+      if (std::hypot(pose.x_m - other.x_m, pose.y_m - other.y_m) <= kJumpM)
+        mirror_evidence_ = -mirror_evidence_;
+      else
+        mirror_evidence_ = 0.0;
+    }
+  }
+  mirror_lighting_.predict(std::max(dt_s, 0.0));
+  color::ColorObservation obs;
+  const double ll_pose = imageLogLikelihood(pose, mirror_lighting_, base_to_optical, &obs, nullptr);
+  const double ll_mirror =
+      imageLogLikelihood(mirrored(pose), mirror_lighting_, base_to_optical, nullptr, nullptr);
+  mirror_evidence_ =
+      mirror_evidence_ * std::exp(-std::max(dt_s, 0.0) / config_.mirror_test_memory_s) + ll_mirror -
+      ll_pose;
+  // Only the colours that look alike from both poses teach the reference lighting.
+  const auto& classes = config_.model.classes;
+  for (size_t k = 0; k < obs.counts.size() && k < classes.size(); ++k)
+    if (classes[k] != world::kGreen && classes[k] != world::kWhite) obs.counts[k] = 0;
+  mirror_lighting_.update(obs);
+  mirror_pose_ = pose;
+  mirror_have_pose_ = true;
+  if (mirror_evidence_ > config_.mirror_test_margin_nats) {
+    // Only the hypothesis the evidence was summed for moves; other clusters (a relocalization's
+    // draw) keep their places.
+    for (size_t i : mainCluster()) {
+      particles_[i].pose = mirrored(particles_[i].pose);
+      particles_[i].lighting = mirror_lighting_;
+    }
+    mirror_pose_ = mirrored(pose);
+    mirror_evidence_ = -mirror_evidence_;
+    result->mirror_flipped = true;
+  }
+  result->mirror_evidence = mirror_evidence_;
 }
 
 std::vector<size_t> RbpfLocalizer::mainCluster() const {

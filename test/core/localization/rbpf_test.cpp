@@ -238,6 +238,39 @@ TEST(Rbpf, GlobalSearchSpansTheConfiguredFrames) {
   EXPECT_THROW(RbpfLocalizer(s.map, s.cam, s.priors, cfg), std::invalid_argument);
 }
 
+// The second draw: the pool goes on after the particles commit, and after global_confirm_frames
+// images global_confirm_fraction of the particles are drawn from it again (reported as a
+// relocalization); with a fraction of 0 it is only scored.
+TEST(Rbpf, SecondDrawOfTheGlobalSearch) {
+  Scene s;
+  sim::FieldSimConfig sc;
+  for (double fraction : {0.5, 0.0}) {
+    sim::FieldSimulator sim(s.map, s.cam, s.head, sc);
+    RbpfConfig cfg;
+    cfg.particles = 100;
+    cfg.global_pool_size = 2000;
+    cfg.global_search_frames = 3;
+    cfg.global_confirm_frames = 5;
+    cfg.global_confirm_fraction = fraction;
+    RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
+    math::SE2 prev_odom = sim.state().odom_pose;
+    for (int k = 1; k <= 7; ++k) {
+      sim.advanceTo(0.25 * k);
+      const auto img = sim.renderCamera();
+      const auto r = rbpf.step(math::between(prev_odom, sim.state().odom_pose), 0.25,
+                               color::unpackUyvy(img.uyvy),
+                               s.head.baseToOptical(sim.state().pan_rad, sim.state().tilt_rad));
+      prev_odom = sim.state().odom_pose;
+      EXPECT_EQ(std::isnan(r.relocalization_score), k != 5) << "image " << k;
+      EXPECT_EQ(r.relocalized, k == 5 && fraction > 0.0) << "image " << k;
+      EXPECT_EQ(rbpf.particles().size(), 100u);
+    }
+  }
+  RbpfConfig bad;
+  bad.global_confirm_fraction = 1.5;
+  EXPECT_THROW(RbpfLocalizer(s.map, s.cam, s.priors, bad), std::invalid_argument);
+}
+
 // Mirrored particles keep the other half's hypothesis alive without moving weight to it: after a
 // resampling each weighs mirror_relative_weight w of the others: 1 / (N - m + m w) against
 // w / (N - m + m w) for the m mirrored.
@@ -285,13 +318,14 @@ namespace {
 // that is smaller and `or_mirror` is set, and counts the relocalizations.
 double runFrom(const Scene& s, const sim::FieldSimConfig& sc, const RbpfConfig& cfg,
                const math::SE2& start, double seconds, int* relocalizations, double* max_score,
-               bool or_mirror = false) {
+               bool or_mirror = false, int* mirror_flips = nullptr) {
   sim::FieldSimulator sim(s.map, s.cam, s.head, sc);
   RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
   rbpf.initGaussian(start, Eigen::Vector3d(0.01, 0.01, 0.005).asDiagonal());
   math::SE2 prev_odom = sim.state().odom_pose;
   *relocalizations = 0;
   *max_score = -1e300;
+  if (mirror_flips) *mirror_flips = 0;
   for (double t = 0.25; t <= seconds + 1e-9; t += 0.25) {
     sim.advanceTo(t);
     const auto img = sim.renderCamera();
@@ -300,6 +334,7 @@ double runFrom(const Scene& s, const sim::FieldSimConfig& sc, const RbpfConfig& 
                              s.head.baseToOptical(sim.state().pan_rad, sim.state().tilt_rad));
     prev_odom = sim.state().odom_pose;
     *relocalizations += r.relocalized;
+    if (mirror_flips) *mirror_flips += r.mirror_flipped;
     if (!std::isnan(r.relocalization_score))
       *max_score = std::max(*max_score, r.relocalization_score);
   }
@@ -356,4 +391,56 @@ TEST(Rbpf, RelocalizationCheckLeavesACorrectTrackAlone) {
   EXPECT_LT(max_score, cfg.relocalization_margin);
   cfg.relocalization_fraction = 0.0;
   EXPECT_THROW(RbpfLocalizer(s.map, s.cam, s.priors, cfg), std::invalid_argument);
+}
+
+namespace {
+math::SE2 pointMirror(const math::SE2& p) { return math::SE2(-p.x_m, -p.y_m, p.yaw_rad + M_PI); }
+}  // namespace
+
+// The mirror test moves a track that started on the point mirror of the truth over to the truth
+// once the goals and beacons have been in view; without it the particles stay on the mirror (the
+// lines fit there as well, and each particle's lighting learns the swapped goal colours).
+TEST(Rbpf, MirrorTestMovesAMirroredTrackToTheTruth) {
+  Scene s;
+  sim::FieldSimConfig sc;
+  sc.seed = 2;
+  const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+  RbpfConfig cfg;
+  cfg.particles = 300;
+  cfg.threads = 2;
+  cfg.mirror_fraction = 0.0;  // no mirror copies: only the test can cross over
+  int relocalizations = 0, flips = 0;
+  double max_score = 0.0;
+  cfg.mirror_test_margin_nats = 0.0;
+  const double stays =
+      runFrom(s, sc, cfg, pointMirror(truth), 10.0, &relocalizations, &max_score, false, &flips);
+  EXPECT_GT(stays, 0.5) << "without the test the track must stay on the mirror";
+  EXPECT_EQ(flips, 0);
+  cfg.mirror_test_margin_nats = 3.0;
+  const double moved =
+      runFrom(s, sc, cfg, pointMirror(truth), 10.0, &relocalizations, &max_score, false, &flips);
+  EXPECT_LT(moved, 0.15);
+  EXPECT_GE(flips, 1);
+}
+
+// On a track that starts at the truth the test never moves the particles.
+TEST(Rbpf, MirrorTestLeavesATrueTrackAlone) {
+  Scene s;
+  for (std::uint64_t seed : {1, 2}) {
+    sim::FieldSimConfig sc;
+    sc.seed = seed;
+    const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+    RbpfConfig cfg;
+    cfg.particles = 300;
+    cfg.threads = 2;
+    int relocalizations = 0, flips = 0;
+    double max_score = 0.0;
+    const double error =
+        runFrom(s, sc, cfg, truth, 10.0, &relocalizations, &max_score, false, &flips);
+    EXPECT_LT(error, 0.15) << "seed " << seed;
+    EXPECT_EQ(flips, 0) << "seed " << seed;
+  }
+  RbpfConfig bad;
+  bad.mirror_test_memory_s = 0.0;
+  EXPECT_THROW(RbpfLocalizer(s.map, s.cam, s.priors, bad), std::invalid_argument);
 }
