@@ -2,21 +2,25 @@
 # Runs rbpf_localizer's offline evaluation (evaluate_localization) on the bundled field bags and on a
 # kidnap bag made by the simulator (fixed seed): from a global start with seed 1 (plotted: error.png,
 # field.png), from a global start with seeds 2..SEEDS (how often a global start converges), and from
-# the true start pose (tracking). Writes results/localization/summary.md. Needs a built workspace
-# (scripts/setup.sh).
+# the true start pose (tracking); then kidnap recovery over KIDNAPS simulated kidnaps x SEEDS seeds,
+# by default and with the relocalization check. Writes results/localization/summary.md. Needs a
+# built workspace (scripts/setup.sh).
 # Usage: scripts/evaluate_localization.sh [--output DIR] [--particles N] [--threads T] [--seeds N]
+#                                         [--kidnaps K]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 OUT="$AP_ROOT/results/localization"
 PARTICLES=500
 THREADS=0
 SEEDS=5
+KIDNAPS=4
 while [ $# -gt 0 ]; do
   case "$1" in
     --output) OUT="$2"; shift 2 ;;
     --particles) PARTICLES="$2"; shift 2 ;;
     --threads) THREADS="$2"; shift 2 ;;
     --seeds) SEEDS="$2"; shift 2 ;;
+    --kidnaps) KIDNAPS="$2"; shift 2 ;;
     *) echo "evaluate_localization.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -64,21 +68,38 @@ for bag in rosbag/field_bright.bag rosbag/field_dark.bag rosbag/field_switching.
     python3 "$AP_ROOT/scripts/plot_localization.py" "$run" config/field_4legged.yaml "$name, $filter filter, global start"
   done
 done
-# The relocalization check (off by default) on the kidnap bag: how many of the seeds re-converge.
-recovered=0
-times=""
-for seed in $(seq 1 "$SEEDS"); do
-  line="$("$BIN/evaluate_localization" --bag "$KIDNAP" --particles "$PARTICLES" --threads "$THREADS" \
-    --seed "$seed" --relocalization_interval_s 2 --output "$OUT/relocalization/kidnap_$seed" | tail -n 1)"
-  k="$(echo "$line" | key reconverged_after_kidnap_s)"
-  times="$times $k"
-  case "$k" in -1*) ;; *) recovered=$((recovered + 1)) ;; esac
-done
-echo "field_kidnap switching, relocalization check every 2 s: $recovered of $SEEDS re-converged after the kidnap (s:$times)"
+# Kidnap recovery over several simulated kidnaps (simulator seeds 4..3+KIDNAPS; each robot is
+# teleported at 10 s to a random free pose at least 1.5 m away), seeds 1..SEEDS each, by default
+# and with the relocalization check every 1 s (off by default): how many re-converge within 5 s.
+recovery() {  # LABEL [extra evaluate_localization arguments]
+  local label="$1" within=0 total=0 times="" bag k
+  shift
+  for sim in $(seq 4 $((3 + KIDNAPS))); do
+    bag="$OUT/field_kidnap_sim$sim.bag"
+    [ "$sim" = 4 ] && bag="$KIDNAP"  # the table's kidnap bag
+    [ -f "$bag" ] || "$BIN/simulate_field" --script kidnap --seed "$sim" --duration_s 20 --rate_hz 4 \
+      --output "$bag" > /dev/null
+    for seed in $(seq 1 "$SEEDS"); do
+      k="$("$BIN/evaluate_localization" --bag "$bag" --particles "$PARTICLES" --threads "$THREADS" \
+        --seed "$seed" "$@" --output "$OUT/recovery/${label}_sim${sim}_$seed" | tail -n 1 |
+        key reconverged_after_kidnap_s)"
+      times="$times $k"
+      total=$((total + 1))
+      awk -v k="$k" 'BEGIN { exit !(k >= 0 && k <= 5.0) }' && within=$((within + 1))
+    done
+  done
+  echo "$label: $within of $total kidnaps re-converged within 5 s (seconds after the kidnap, -1 = never:$times)"
+}
+recovery_default="$(recovery default)"
+recovery_check="$(recovery check_1s --relocalization_interval_s 1)"
+echo "field_kidnap switching, $recovery_default"
+echo "field_kidnap switching, $recovery_check"
 {
   echo
-  echo "With the relocalization check every 2 s (\`--relocalization_interval_s 2\`), switching filter, the kidnap bag:"
-  echo "$recovered of $SEEDS seeds re-converged after the kidnap (seconds after it, -1 = never:$times)."
+  echo "Kidnap recovery, switching filter, $KIDNAPS simulated kidnaps (simulate_field --script kidnap --seed 4..$((3 + KIDNAPS))) x $SEEDS seeds:"
+  echo
+  echo "- by default: ${recovery_default#default: }"
+  echo "- with the relocalization check every 1 s (\`--relocalization_interval_s 1\`): ${recovery_check#check_1s: }"
   echo
   echo "converged after: the first frame after which the position error stays below 0.3 m to the end, or, on"
   echo "the kidnap bag, until the kidnap (-1: never). Errors are medians over the converged frames."

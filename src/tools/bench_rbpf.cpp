@@ -4,8 +4,9 @@
 //   bench_rbpf [--particles N] [--threads T] [--frames F] [--pixel_stride S]
 //              [--relocalization_interval_s S]
 //
-// The relocalization check runs as configured by default (every 2 s a 5,000-pose search over the
-// next 4 images); --relocalization_interval_s 0 measures the filter alone.
+// The relocalization check runs as configured by default (off: RbpfConfig); with
+// --relocalization_interval_s S a 5,000-pose search over 4 images starts every S seconds of the
+// 10 Hz sequence.
 //
 // Without --particles/--threads it sweeps 100, 300 and 1000 particles on 1 thread and on all cores.
 // Last line: `bench_rbpf: frames_per_s=... (for the first configuration) ...` with one key per

@@ -575,7 +575,9 @@ void RbpfLocalizer::relocalizationCheck(const math::SE2& odom_delta, double dt_s
     seconds_since_check_ += std::max(dt_s, 0.0);
     if (seconds_since_check_ < config_.relocalization_interval_s) return;
   }
-  const color::SwitchingColorFilter lighting = best().lighting;
+  // The priors' lighting, as in the global search, not the particles' own (see
+  // RbpfConfig::relocalization_interval_s).
+  const color::SwitchingColorFilter lighting(priors_, config_.model, config_.switching);
   CoarseImage image = coarseImage(yuv, base_to_optical);
   if (starting) {
     // The particles have this image's motion already; the uniform poses are drawn for it.
