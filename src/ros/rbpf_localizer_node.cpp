@@ -68,6 +68,9 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       P::getInRange(pnh, "relocalization_margin", c.relocalization_margin, -1e6, 1e6);
   c.relocalization_fraction =
       P::getInRange(pnh, "relocalization_fraction", c.relocalization_fraction, 1e-6, 1.0);
+  c.relocalization_restart = P::get<bool>(pnh, "relocalization_restart", c.relocalization_restart);
+  c.relocalization_refine_candidates = P::getInRange(
+      pnh, "relocalization_refine_candidates", c.relocalization_refine_candidates, 0, 1000000);
   c.recovery_alpha_slow =
       P::getInRange(pnh, "recovery_alpha_slow", c.recovery_alpha_slow, 0.0, 1.0);
   c.recovery_alpha_fast =

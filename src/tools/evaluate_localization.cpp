@@ -11,7 +11,8 @@
 //       [--recovery_max_fraction F] [--recovery_alpha_fast A] [--recovery_alpha_slow A]
 //       [--recovery_gain_per_nat G] [--relocalization_interval_s S]
 //       [--relocalization_pool_size N] [--relocalization_margin M] [--refine_candidates K]
-//       [--relocalization_fraction F] [--refine_rounds R] [--refine_tries T]
+//       [--relocalization_fraction F] [--relocalization_restart 0|1]
+//       [--relocalization_refine_candidates K] [--refine_rounds R] [--refine_tries T]
 //       [--init global|truth]
 //       [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
 // (defaults: those of localization::RbpfConfig)
@@ -72,6 +73,7 @@ int main(int argc, char** argv) {
       "[--recovery_alpha_slow A] [--recovery_gain_per_nat G] "
       "[--relocalization_interval_s S] [--relocalization_pool_size N] "
       "[--relocalization_margin M] [--relocalization_fraction F] "
+      "[--relocalization_restart 0|1] [--relocalization_refine_candidates K] "
       "[--refine_candidates K] [--refine_rounds R] "
       "[--refine_tries T] [--priors_dir DIR] [--init global|truth] [--output DIR] [--name LABEL]");
   const std::string bag = args.get("bag", "");
@@ -94,6 +96,10 @@ int main(int argc, char** argv) {
   cfg.relocalization_margin = args.getDouble("relocalization_margin", cfg.relocalization_margin);
   cfg.relocalization_fraction =
       args.getDouble("relocalization_fraction", cfg.relocalization_fraction);
+  cfg.relocalization_refine_candidates = static_cast<int>(
+      args.getInt("relocalization_refine_candidates", cfg.relocalization_refine_candidates));
+  cfg.relocalization_restart =
+      args.getInt("relocalization_restart", cfg.relocalization_restart ? 1 : 0) != 0;
   cfg.refine_candidates = static_cast<int>(args.getInt("refine_candidates", cfg.refine_candidates));
   cfg.refine_rounds = static_cast<int>(args.getInt("refine_rounds", cfg.refine_rounds));
   cfg.refine_tries = static_cast<int>(args.getInt("refine_tries", cfg.refine_tries));

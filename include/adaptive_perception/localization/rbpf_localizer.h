@@ -150,24 +150,32 @@ struct RbpfConfig {
   // relocalization_pool_size uniform poses (in point-mirrored pairs) and the particles' own poses
   // are scored side by side over the next global_search_frames images as the global search scores
   // its pool (every global_pixel_stride-th pixel, each pose moved by the odometry, log-likelihoods
-  // summed), all under the priors' lighting, as in the global search; the best poses of both
-  // sides are refined alike (refine_*). If the best uniform pose beats the best particle pose by
-  // more than relocalization_margin (tempered log-likelihood summed over those images),
-  // relocalization_fraction of the particles are drawn from the uniform poses as at the end of a
-  // global search, with the priors' lighting; the rest are kept (drawn by weight), so
-  // when a few ambiguous images fooled the check the next images hand the weight back. A likelihood
-  // ratio against the rest of the field, not the likelihood's level: the level swings with what the
-  // camera sees and with the light, and falls as far when the head turns to a bare stretch of
-  // carpet as after a kidnap. Not the particles' own lighting: it has learnt the colours under the
-  // particles' labels, after a kidnap those of the wrong place, and it favours their hypothesis
-  // (scored under the best particle's lighting, a check every 1 s recovered 12 of 20 simulated
-  // kidnaps within 5 s and moved correct tracks away on 2 of 5 global starts of one bag; under the
-  // priors' lighting 15 of 20, and those starts kept their tracks). 0 turns it off (the default:
-  // a check costs as much as some 30 images of 100 particles on one core; see the README).
-  double relocalization_interval_s = 0.0;
-  int relocalization_pool_size = 5000;
+  // summed), all under the priors' lighting, as in the global search; the
+  // relocalization_refine_candidates best poses of both sides are refined alike (refine_rounds,
+  // refine_tries, refine_sigma_*). If the best uniform pose beats the best particle pose by more
+  // than relocalization_margin (tempered log-likelihood summed over those images), the check has
+  // found that the particles are lost, and by default (relocalization_restart) the global search
+  // starts again on the next image, with its full pool and its second draw. With
+  // relocalization_restart false, relocalization_fraction of the particles are drawn from the
+  // check's own poses instead (with the priors' lighting) and the rest are kept (drawn by weight).
+  // The check then only has to tell that something beats the particles, not where the robot is,
+  // so it is small: on 4 simulated kidnaps x 5 seeds (scripts/evaluate_localization.sh), a check
+  // every 1 s of 2000 poses and 20 refined candidates with the restart re-converged 18 of 20
+  // within 5 s; the draw from 5000 poses and 100 candidates 15 of 20, at twice the cost. Every 2 s
+  // instead of 1 s, 2 of 20: a check whose 4 images fit several places misses, so it has to come
+  // often. A likelihood ratio against the rest of the field, not the likelihood's level: the level
+  // swings with what the camera sees and with the light, and falls as far when the head turns to a
+  // bare stretch of carpet as after a kidnap. Not the particles' own lighting: it has learnt the
+  // colours under the particles' labels, after a kidnap those of the wrong place, and it favours
+  // their hypothesis (with the draw, 12 of 20 kidnaps instead of 15, and correct tracks moved away
+  // on 2 of 5 global starts of one bag). Cost: bench_rbpf --particles 100 --threads 1 gives about
+  // half the frame rate without the check (see the README). 0 turns it off.
+  double relocalization_interval_s = 1.0;
+  int relocalization_pool_size = 2000;
   double relocalization_margin = 2.0;
   double relocalization_fraction = 0.5;
+  bool relocalization_restart = true;
+  int relocalization_refine_candidates = 20;
   int threads = 1;
   std::uint64_t seed = 1;
 
@@ -297,10 +305,10 @@ class RbpfLocalizer {
   void pushWindow(const math::SE2& odom_delta, CoarseImage image,
                   const color::SwitchingColorFilter& lighting,
                   const Eigen::Isometry3d& base_to_optical, bool reset);
-  /// Hill-climbs the refine_candidates best poses of pool[begin..end) over the window (see
+  /// Hill-climbs the `candidates` best poses of pool[begin..end) over the window (see
   /// refine_rounds); ll holds their window log-likelihoods and is updated with them.
   void refinePool(std::vector<math::SE2>* pool, std::vector<double>* ll, size_t begin, size_t end,
-                  std::uint64_t seed) const;
+                  int candidates, std::uint64_t seed) const;
   /// `count` particles drawn from pool[0..n) weighted by the summed log-likelihoods, flattened
   /// as far as needed to leave half of them distinct.
   std::vector<Particle> drawFromPool(const std::vector<math::SE2>& pool,
@@ -317,12 +325,21 @@ class RbpfLocalizer {
   void confirmSearch(const math::SE2& odom_delta, const cv::Mat& yuv,
                      const Eigen::Isometry3d& base_to_optical, std::uint64_t frame_seed,
                      StepResult* result);
+  /// What the end of a search does: redraw when the search's best pose beats the particles' by
+  /// `margin`; then either restart the global search (`restart`) or draw `fraction` of the
+  /// particles from the search's poses. Both sides' refine_candidates best poses are refined.
+  struct CheckPolicy {
+    double margin;
+    double fraction;
+    bool restart;
+    int refine_candidates;
+  };
   /// The end of a relocalization check or a second draw: check_pool_ holds the search's poses
   /// [0, check_uniform_) and the particles' poses after them, check_ll_ their window
-  /// log-likelihoods; both sides are refined and compared, and `fraction` of the particles
-  /// redrawn from the search's poses (with `lighting`) when the search wins by `margin`.
+  /// log-likelihoods; both sides are refined and compared, and the particles redrawn (with
+  /// `lighting`) as `policy` says when the search wins.
   void finishCheck(const color::SwitchingColorFilter& lighting, std::uint64_t frame_seed,
-                   double margin, double fraction, StepResult* result);
+                   const CheckPolicy& policy, StepResult* result);
   /// The mirror test on the current image (see RbpfConfig::mirror_test_margin_nats).
   void mirrorTest(const math::SE2& odom_delta, double dt_s,
                   const Eigen::Isometry3d& base_to_optical, StepResult* result);

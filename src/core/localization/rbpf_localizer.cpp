@@ -115,6 +115,10 @@ void RbpfConfig::validate() const {
                                 std::to_string(relocalization_fraction) + " (allowed: 0 < f <= 1)");
   if (!std::isfinite(relocalization_margin))
     throw std::invalid_argument("relocalization_margin must be finite");
+  if (relocalization_refine_candidates < 0 || relocalization_refine_candidates > 1000000)
+    throw std::invalid_argument(
+        "relocalization_refine_candidates = " + std::to_string(relocalization_refine_candidates) +
+        " (allowed: 0..1000000)");
   if (!(mirror_test_margin_nats >= 0.0 && std::isfinite(mirror_test_margin_nats)))
     throw std::invalid_argument(
         "mirror_test_margin_nats = " + std::to_string(mirror_test_margin_nats) +
@@ -469,11 +473,11 @@ double RbpfLocalizer::windowLogLikelihood(const math::SE2& pose_at_last) const {
 }
 
 void RbpfLocalizer::refinePool(std::vector<math::SE2>* pool, std::vector<double>* ll, size_t begin,
-                               size_t end, std::uint64_t seed) const {
+                               size_t end, int candidates, std::uint64_t seed) const {
   if (config_.refine_rounds <= 0 || end <= begin || window_.empty()) return;
   std::vector<size_t> top(end - begin);
   for (size_t i = 0; i < top.size(); ++i) top[i] = begin + i;
-  const size_t k = std::min<size_t>(top.size(), static_cast<size_t>(config_.refine_candidates));
+  const size_t k = std::min<size_t>(top.size(), static_cast<size_t>(std::max(candidates, 0)));
   std::partial_sort(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(k), top.end(),
                     [&](size_t a, size_t b) { return (*ll)[a] > (*ll)[b]; });
   top.resize(k);
@@ -545,7 +549,7 @@ bool RbpfLocalizer::globalSearch(const math::SE2& odom_delta, const cv::Mat& yuv
   ++pool_frames_;
   pushWindow(odom_delta, image, lighting, base_to_optical, first);
   const bool done = pool_frames_ >= config_.global_search_frames;
-  if (done) refinePool(&pool_, &pool_ll_, 0, n, frame_seed);
+  if (done) refinePool(&pool_, &pool_ll_, 0, n, config_.refine_candidates, frame_seed);
   particles_ = drawFromPool(pool_, pool_ll_, n, config_.particles, lighting);
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   if (!done) return false;
@@ -591,7 +595,9 @@ void RbpfLocalizer::relocalizationCheck(const math::SE2& odom_delta, double dt_s
   scorePool(&check_pool_, &check_ll_, 0, !starting, odom_delta, image, lighting, base_to_optical);
   pushWindow(odom_delta, image, lighting, base_to_optical, starting);
   if (++check_frames_ < config_.global_search_frames) return;
-  finishCheck(lighting, frame_seed, config_.relocalization_margin, config_.relocalization_fraction,
+  finishCheck(lighting, frame_seed,
+              {config_.relocalization_margin, config_.relocalization_fraction,
+               config_.relocalization_restart, config_.relocalization_refine_candidates},
               result);
 }
 
@@ -619,26 +625,39 @@ void RbpfLocalizer::confirmSearch(const math::SE2& odom_delta, const cv::Mat& yu
     check_ll_[check_uniform_ + i] = windowLogLikelihood(particles_[i].pose);
   });
   const color::SwitchingColorFilter best_lighting = best().lighting;
-  finishCheck(best_lighting, frame_seed, -std::numeric_limits<double>::infinity(),
-              config_.global_confirm_fraction, result);
+  finishCheck(best_lighting, frame_seed,
+              {-std::numeric_limits<double>::infinity(), config_.global_confirm_fraction, false,
+               config_.refine_candidates},
+              result);
   check_pool_.shrink_to_fit();
   check_ll_.shrink_to_fit();
 }
 
 void RbpfLocalizer::finishCheck(const color::SwitchingColorFilter& lighting,
-                                std::uint64_t frame_seed, double margin, double fraction,
+                                std::uint64_t frame_seed, const CheckPolicy& policy,
                                 StepResult* result) {
   // Both sides are refined alike, so neither wins by having been optimised on these images.
-  refinePool(&check_pool_, &check_ll_, 0, check_uniform_, frame_seed);
-  refinePool(&check_pool_, &check_ll_, check_uniform_, check_pool_.size(), frame_seed ^ 0x9E37ull);
+  refinePool(&check_pool_, &check_ll_, 0, check_uniform_, policy.refine_candidates, frame_seed);
+  refinePool(&check_pool_, &check_ll_, check_uniform_, check_pool_.size(), policy.refine_candidates,
+             frame_seed ^ 0x9E37ull);
   const auto mid = check_ll_.begin() + static_cast<std::ptrdiff_t>(check_uniform_);
   const double best_uniform =
       check_uniform_ > 0 ? *std::max_element(check_ll_.begin(), mid) : -1e300;
   const double best_particle = *std::max_element(mid, check_ll_.end());
   result->relocalization_score = best_uniform - best_particle;
-  if (result->relocalization_score > margin && fraction > 0.0) {
+  const bool win = result->relocalization_score > policy.margin && policy.fraction > 0.0;
+  if (win && policy.restart) {
+    check_pool_.clear();
+    check_ll_.clear();
+    check_frames_ = 0;
+    window_.clear();
+    initUniform();
+    result->relocalized = true;
+    return;
+  }
+  if (win) {
     const int n = static_cast<int>(particles_.size());
-    const int fresh = static_cast<int>(std::lround(fraction * n));
+    const int fresh = static_cast<int>(std::lround(policy.fraction * n));
     std::vector<Particle> next =
         drawFromPool(check_pool_, check_ll_, check_uniform_, fresh, lighting);
     for (size_t i :

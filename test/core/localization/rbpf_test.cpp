@@ -346,9 +346,11 @@ double runFrom(const Scene& s, const sim::FieldSimConfig& sc, const RbpfConfig& 
 }  // namespace
 
 // The relocalization check undoes a wrong start (as after a kidnap): the particles start 1.4 m and
-// 1 rad from the truth; without the check they stay lost, with it they end at the truth or at its
-// point mirror (the field's lines are point-symmetric; which half it is, only the goal and beacon
-// colours tell, and this sequence shows them too briefly: see the localization README section).
+// 1 rad from the truth; without the check they stay lost, with it (by default: a restart of the
+// global search when it wins; or half the particles drawn from its poses) they end at the truth or
+// at its point mirror (the field's lines are point-symmetric; which half it is, only the goal and
+// beacon colours tell, and this sequence shows them too briefly: see the localization README
+// section).
 TEST(Rbpf, RelocalizationCheckRecoversFromAWrongStart) {
   Scene s;
   sim::FieldSimConfig sc;
@@ -364,11 +366,14 @@ TEST(Rbpf, RelocalizationCheckRecoversFromAWrongStart) {
   const double lost = runFrom(s, sc, cfg, wrong, 8.0, &relocalizations, &max_score);
   EXPECT_GT(lost, 0.5) << "the wrong start must stay lost without the check";
   EXPECT_EQ(relocalizations, 0);
-  cfg.relocalization_interval_s = 2.0;
-  const double found = runFrom(s, sc, cfg, wrong, 8.0, &relocalizations, &max_score, true);
-  EXPECT_LT(found, 0.3);  // evaluate_localization's convergence threshold (0.26 m when written)
-  EXPECT_GE(relocalizations, 1);
-  EXPECT_GT(max_score, cfg.relocalization_margin);
+  for (const bool restart : {true, false}) {
+    cfg.relocalization_interval_s = RbpfConfig().relocalization_interval_s;
+    cfg.relocalization_restart = restart;
+    const double found = runFrom(s, sc, cfg, wrong, 8.0, &relocalizations, &max_score, true);
+    EXPECT_LT(found, 0.3) << "restart " << restart;  // evaluate_localization's convergence bound
+    EXPECT_GE(relocalizations, 1) << "restart " << restart;
+    EXPECT_GT(max_score, cfg.relocalization_margin) << "restart " << restart;
+  }
 }
 
 // On a correct track the check finds nothing better than the particles: no relocalization, and the
@@ -409,6 +414,9 @@ TEST(Rbpf, MirrorTestMovesAMirroredTrackToTheTruth) {
   cfg.particles = 300;
   cfg.threads = 2;
   cfg.mirror_fraction = 0.0;  // no mirror copies: only the test can cross over
+  // Nor the relocalization check, which also finds the truth from the mirror (the uniform poses
+  // are scored under the priors' lighting, not the particles' learnt swapped goal colours).
+  cfg.relocalization_interval_s = 0.0;
   int relocalizations = 0, flips = 0;
   double max_score = 0.0;
   cfg.mirror_test_margin_nats = 0.0;
