@@ -1,4 +1,5 @@
-// rostest: rbpf_localizer on the bundled switching bag from a global start.
+// rostest: rbpf_localizer on a bag from a global start (rbpf_localizer_switching.test: the bundled
+// switching bag; rbpf_localizer_kidnap.test: a simulated kidnap), checked against its ground truth.
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
@@ -98,10 +99,10 @@ TEST_F(RbpfLocalizerSwitching, GlobalStartConvergesAndPublishesEverything) {
   const double pos = std::hypot(e.x_m - g.x_m, e.y_m - g.y_m);
   double head = std::fabs(std::remainder(e.yaw_rad - g.yaw_rad, 2 * M_PI)) * 180.0 / M_PI;
   std::printf(
-      "rbpf_localizer_switching: final estimate (%.3f, %.3f, %.1f deg), truth (%.3f, %.3f, "
+      "%s: final estimate (%.3f, %.3f, %.1f deg), truth (%.3f, %.3f, "
       "%.1f deg): position error %.3f m, heading error %.2f deg, %zu estimates\n",
-      e.x_m, e.y_m, e.yaw_rad * 180 / M_PI, g.x_m, g.y_m, g.yaw_rad * 180 / M_PI, pos, head,
-      estimates_.size());
+      ros::this_node::getName().c_str(), e.x_m, e.y_m, e.yaw_rad * 180 / M_PI, g.x_m, g.y_m,
+      g.yaw_rad * 180 / M_PI, pos, head, estimates_.size());
   EXPECT_LT(pos, max_pos_m_);
   EXPECT_LT(head, max_head_deg_);
   EXPECT_EQ(est->header.frame_id, "map");
