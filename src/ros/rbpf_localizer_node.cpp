@@ -208,8 +208,14 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   if (!std::isnan(last_.relocalization_score)) last_check_score_ = last_.relocalization_score;
   if (last_.relocalized) {
     ++relocalizations_;
-    ROS_WARN("rbpf_localizer: relocalized (a uniform pose beat the particles by %.2f)",
-             last_.relocalization_score);
+    if (rbpf_->globalSearchPending())
+      ROS_WARN(
+          "rbpf_localizer: the relocalization check found the particles lost (a uniform pose beat "
+          "them by %.2f); global search restarted",
+          last_.relocalization_score);
+    else
+      ROS_INFO("rbpf_localizer: particles redrawn from a search (its best pose minus theirs: %.2f)",
+               last_.relocalization_score);
   }
   if (last_.mirror_flipped) {
     ++mirror_flips_;
