@@ -161,9 +161,10 @@ struct RbpfConfig {
   // The check then only has to tell that something beats the particles, not where the robot is,
   // so it is small: on 4 simulated kidnaps x 5 seeds (scripts/evaluate_localization.sh), a check
   // every 1 s of 2000 poses and 20 refined candidates with the restart re-converged 18 of 20
-  // within 5 s; the draw from 5000 poses and 100 candidates 15 of 20, at twice the cost. Every 2 s
-  // instead of 1 s, 2 of 20: a check whose 4 images fit several places misses, so it has to come
-  // often. A likelihood ratio against the rest of the field, not the likelihood's level: the level
+  // within 5 s; the draw from 5000 poses and 100 candidates 15 of 20, at twice the cost. A
+  // restart check of 5000 poses every 2 s instead of 1 s, 2 of 20: a check whose 4 images fit
+  // several places misses, so it has to come often (every 0.5 s gained nothing: 17 of 20). A
+  // likelihood ratio against the rest of the field, not the likelihood's level: the level
   // swings with what the camera sees and with the light, and falls as far when the head turns to a
   // bare stretch of carpet as after a kidnap. Not the particles' own lighting: it has learnt the
   // colours under the particles' labels, after a kidnap those of the wrong place, and it favours
