@@ -647,11 +647,7 @@ void RbpfLocalizer::finishCheck(const color::SwitchingColorFilter& lighting,
   result->relocalization_score = best_uniform - best_particle;
   const bool win = result->relocalization_score > policy.margin && policy.fraction > 0.0;
   if (win && policy.restart) {
-    check_pool_.clear();
-    check_ll_.clear();
-    check_frames_ = 0;
-    window_.clear();
-    initUniform();
+    initUniform();  // also ends this check (its pool and window)
     result->relocalized = true;
     return;
   }
