@@ -34,13 +34,19 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
   m.known_radius_m = P::getInRange(pnh, "known_radius_m", m.known_radius_m, 0.01, 100.0);
   use_odom_ = P::get<bool>(pnh, "use_odom", true);
   gate_ = ros_conv::ImageGate("appearance_localizer",
-                              P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0));
+                              P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0),
+                              P::loadStampOrder(pnh));
   publish_tf_ = P::get<bool>(pnh, "publish_tf", false);
-  map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
-  odom_frame_ = P::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
+  map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
+  odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   const int seed = P::getInRange(pnh, "seed", 1, 0, 1 << 30);
 
   const places::PlaceDatabase db = places::PlaceDatabase::open(path, true);
+  if (db.recoveredJournal())
+    ROS_WARN(
+        "appearance_localizer: %s: a write that was interrupted (a killed train_places?) "
+        "was rolled back; the database is as it was before that write",
+        path.c_str());
   classifier_ = std::make_unique<places::RoomClassifier>(c);
   classifier_->setFrames(db.loadFrames());
   std::vector<localization::PosedFrame> posed;
@@ -90,10 +96,11 @@ bool AppearanceLocalizerNode::onGlobalLocalization(std_srvs::Empty::Request&,
   return true;
 }
 
-void AppearanceLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+void AppearanceLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
+  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
   cv::Mat bgr;
   bool restart = false;
-  const auto verdict = gate_.accept(*msg, &bgr, &restart);
+  const auto verdict = gate_.accept(*msg, event.getPublisherName(), &bgr, &restart);
   if (restart) {  // a looped bag: the filter starts again as at start-up (same seed, same output)
     make_filter_();
     last_odom_.reset();

@@ -6,8 +6,10 @@
 
 #include "adaptive_perception/ColorModel.h"
 #include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/tf_lookup.h"
 #include "adaptive_perception/ros/topics.h"
 
 namespace adaptive_perception {
@@ -43,8 +45,9 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   config_.edge_margin_px = P::getInRange(pnh, "edge_margin_px", config_.edge_margin_px, 0, 20);
   config_.lut_rebuild_sigma =
       P::getInRange(pnh, "lut_rebuild_sigma", config_.lut_rebuild_sigma, 0.0, 5.0);
-  map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
-  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", 0.1, 0.0, 5.0);
+  map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
+  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", tf_timeout_s_, 0.0, 5.0);
+  stamp_order_ = ros_conv::StampOrder("color_estimator", "image", P::loadStampOrder(pnh));
 
   std::string filter, dir;
   priors_ = P::loadLightingPriors(pnh, &filter, &dir);
@@ -55,10 +58,13 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_model", 5);
   classified_pub_ = nh.advertise<sensor_msgs::Image>("color_estimator/classified", 2);
   classified_color_pub_ = nh.advertise<sensor_msgs::Image>("color_estimator/classified_color", 2);
-  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 1, &ColorEstimatorNode::onImage, this);
+  // Two deep: an image re-sent older right after a newer one is seen, and dropped, rather than
+  // displacing the newer one in the queue.
+  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &ColorEstimatorNode::onImage, this);
   info_sub_ = nh.subscribe(ros_topics::kCameraInfo, 1, &ColorEstimatorNode::onCameraInfo, this);
-  reset_srv_ = pnh.advertiseService("reset", &ColorEstimatorNode::onReset, this);
-  save_srv_ = pnh.advertiseService("save_prior", &ColorEstimatorNode::onSavePrior, this);
+  ros::NodeHandle service_nh = service_queue_.handle(pnh);
+  reset_srv_ = service_nh.advertiseService("reset", &ColorEstimatorNode::onReset, this);
+  save_srv_ = service_nh.advertiseService("save_prior", &ColorEstimatorNode::onSavePrior, this);
 
   diagnostics_.setHardwareID("color_estimator");
   freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
@@ -68,7 +74,7 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 
   reconfigure_ =
       std::make_unique<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>(
-          reconfigure_mutex_, pnh);
+          reconfigure_mutex_, service_nh);
   adaptive_perception::ColorEstimatorConfig initial;
   initial.drift_std_per_sqrt_s = m.drift_std_per_sqrt_s;
   initial.unknown_mahalanobis = m.unknown_mahalanobis;
@@ -82,13 +88,37 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
            dir.c_str());
 }
 
+namespace {
+
+/// `c` showing the values of `config` (what dynamic_reconfigure reports back as in force).
+void showConfig(const color::ColorEstimatorConfig& config,
+                adaptive_perception::ColorEstimatorConfig* c) {
+  c->drift_std_per_sqrt_s = config.model.drift_std_per_sqrt_s;
+  c->unknown_mahalanobis = config.model.unknown_mahalanobis;
+  c->mode_stay_probability = config.switching.mode_stay_probability;
+  c->lut_rebuild_sigma = config.lut_rebuild_sigma;
+}
+
+}  // namespace
+
 void ColorEstimatorNode::onReconfigure(adaptive_perception::ColorEstimatorConfig& c, uint32_t) {
   std::lock_guard<std::mutex> lock(mutex_);
-  const bool gate_changed = c.unknown_mahalanobis != config_.model.unknown_mahalanobis;
-  config_.model.drift_std_per_sqrt_s = c.drift_std_per_sqrt_s;
-  config_.model.unknown_mahalanobis = c.unknown_mahalanobis;
-  config_.switching.mode_stay_probability = c.mode_stay_probability;
-  config_.lut_rebuild_sigma = c.lut_rebuild_sigma;
+  // dynamic_reconfigure's min/max clamp lets NaN through: the whole new set is validated before
+  // any of it is taken, and a refused set leaves every value as it was (and says so in the reply).
+  color::ColorEstimatorConfig next = config_;
+  next.model.drift_std_per_sqrt_s = c.drift_std_per_sqrt_s;
+  next.model.unknown_mahalanobis = c.unknown_mahalanobis;
+  next.switching.mode_stay_probability = c.mode_stay_probability;
+  next.lut_rebuild_sigma = c.lut_rebuild_sigma;
+  try {
+    next.validate();
+  } catch (const std::exception& e) {
+    ROS_ERROR("color_estimator: reconfigure refused, every setting stays as it was: %s", e.what());
+    showConfig(config_, &c);
+    return;
+  }
+  const bool gate_changed = next.model.unknown_mahalanobis != config_.model.unknown_mahalanobis;
+  config_ = next;
   if (!estimator_) return;
   if (gate_changed) {
     estimator_
@@ -97,9 +127,15 @@ void ColorEstimatorNode::onReconfigure(adaptive_perception::ColorEstimatorConfig
         "color_estimator: unknown_mahalanobis changed: the estimator restarts from its priors");
     return;
   }
-  estimator_->filter().setDrift(c.drift_std_per_sqrt_s);
-  estimator_->filter().setConfig(config_.switching);
-  estimator_->setLutRebuildSigma(c.lut_rebuild_sigma);
+  try {
+    estimator_->filter().setDrift(config_.model.drift_std_per_sqrt_s);
+    estimator_->filter().setConfig(config_.switching);
+    estimator_->setLutRebuildSigma(config_.lut_rebuild_sigma);
+  } catch (const std::exception& e) {  // validated above; a failure here is a bug, not a crash
+    ROS_ERROR("color_estimator: reconfigure failed (%s): the estimator restarts from its priors",
+              e.what());
+    estimator_.reset();
+  }
 }
 
 void ColorEstimatorNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg) {
@@ -117,7 +153,16 @@ bool ColorEstimatorNode::ensureEstimator(int width, int height) {
   return true;
 }
 
-void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+void ColorEstimatorNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
+  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // An image a little older than the last is dropped; time really going back resets the model
+    // (ColorEstimator::process).
+    if (stamp_order_.check(msg->header.stamp, event.getPublisherName()) ==
+        ros_conv::StampOrder::Verdict::kDrop)
+      return;
+  }
   cv::Mat yuv;
   try {
     yuv = ros_conv::imageToYuv(*msg);
@@ -129,8 +174,8 @@ void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   }
   geometry_msgs::TransformStamped pose;
   try {
-    pose = tf_buffer_.lookupTransform(map_frame_, msg->header.frame_id, msg->header.stamp,
-                                      ros::Duration(tf_timeout_s_));
+    pose = ros_conv::lookupTransformWithin(tf_buffer_, map_frame_, msg->header.frame_id,
+                                           msg->header.stamp, tf_timeout_s_);
   } catch (const tf2::TransformException& e) {
     ROS_WARN_THROTTLE(5.0, "color_estimator: no pose for the image (%s): frame skipped", e.what());
     std::lock_guard<std::mutex> lock(mutex_);
@@ -138,9 +183,15 @@ void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     return;
   }
   std::lock_guard<std::mutex> lock(mutex_);
-  if (!ensureEstimator(yuv.cols, yuv.rows)) return;
-  const color::ColorEstimator::Result r =
-      estimator_->process(msg->header.stamp.toSec(), yuv, ros_conv::toIsometry(pose.transform));
+  color::ColorEstimator::Result r;
+  try {
+    if (!ensureEstimator(yuv.cols, yuv.rows)) return;
+    r = estimator_->process(msg->header.stamp.toSec(), yuv, ros_conv::toIsometry(pose.transform));
+  } catch (const std::exception& e) {  // no exception leaves a callback
+    ROS_ERROR_THROTTLE(10.0, "color_estimator: frame dropped: %s", e.what());
+    ++skipped_bad_image_;
+    return;
+  }
   if (r.time_reset)
     ROS_WARN("color_estimator: time went backwards (bag looped?): filter reset to its priors");
   last_log_likelihood_ = r.log_likelihood;
@@ -179,23 +230,24 @@ bool ColorEstimatorNode::onSavePrior(SavePrior::Request& req, SavePrior::Respons
     res.message = "path is empty";
     return true;
   }
-  if (fs::exists(req.path) && !req.overwrite) {
-    res.message = req.path + " exists; call again with overwrite: true to replace it";
+  const std::string path = io::absolutePath(req.path);  // the reply names the full path
+  std::error_code ec;
+  if (fs::exists(path, ec) && !req.overwrite) {
+    res.message = path + " exists; call again with overwrite: true to replace it";
     return true;
   }
   const color::ColorFilter& a = estimator_->filter().active();
   color::LightingPrior p;
-  p.name = req.name.empty() ? fs::path(req.path).stem().string() : req.name;
+  p.name = req.name.empty() ? fs::path(path).stem().string() : req.name;
   for (auto c : config_.model.classes) p.color_names.push_back(world::colorClassName(c));
   p.mean = a.mean();
   p.cov = a.cov();
   p.pixel_noise_var = a.pixelNoiseVar();
   try {
-    p.saveYaml(req.path);
+    p.saveYaml(path);
     res.success = true;
     res.message = "saved the posterior of mode '" +
-                  estimator_->filter().modeName(estimator_->filter().activeMode()) + "' to " +
-                  req.path;
+                  estimator_->filter().modeName(estimator_->filter().activeMode()) + "' to " + path;
   } catch (const std::exception& e) {
     res.message = e.what();
   }
@@ -212,6 +264,7 @@ void ColorEstimatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& s
   }
   stat.add("frames", frames_);
   stat.add("frames skipped (no tf)", skipped_no_tf_);
+  stat.add("frames dropped (older than the last)", stamp_order_.dropped());
   stat.add("frames skipped (bad image)", skipped_bad_image_);
   stat.add("last log likelihood", last_log_likelihood_);
 }

@@ -43,7 +43,8 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   e.validate();
   publish_overlay_ = P::get<bool>(pnh, "publish_overlay", true);
   gate_ = ros_conv::ImageGate("condensation_tracker",
-                              P::getInRange(pnh, "max_rate_hz", 30.0, 0.01, 1000.0));
+                              P::getInRange(pnh, "max_rate_hz", 30.0, 0.01, 1000.0),
+                              P::loadStampOrder(pnh));
   seed_ = static_cast<std::uint64_t>(P::getInRange(pnh, "seed", 1, 0, 1 << 30));
   const std::vector<double> roi = P::getNumbers(pnh, "initial_roi", {});
   if (!roi.empty()) {
@@ -83,6 +84,19 @@ bool CondensationTrackerNode::requestTarget(const cv::Rect2d& roi, std::string* 
     *why = "the region must be at least 4 x 4 pixels";
     return false;
   }
+  // Judged against the last image's size (a target may also come before the first image: it is
+  // then judged when that image arrives); a refused target leaves the running track as it was.
+  if (!image_size_.empty()) {
+    const cv::Rect2d inside = roi & cv::Rect2d(0, 0, image_size_.width, image_size_.height);
+    if (inside.width < 4 || inside.height < 4) {
+      char buf[160];
+      std::snprintf(buf, sizeof(buf),
+                    "the region (%.0f, %.0f, %.0f x %.0f) lies outside the %d x %d image", roi.x,
+                    roi.y, roi.width, roi.height, image_size_.width, image_size_.height);
+      *why = buf;
+      return false;
+    }
+  }
   pending_target_ = roi;
   last_target_ = roi;
   return true;
@@ -109,10 +123,14 @@ bool CondensationTrackerNode::onSetTarget(SetTarget::Request& req, SetTarget::Re
   return true;
 }
 
-void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+void CondensationTrackerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
+  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
   cv::Mat bgr;
   bool restart = false;
-  if (gate_.accept(*msg, &bgr, &restart) != ros_conv::ImageGate::Result::kProcess) return;
+  if (gate_.accept(*msg, event.getPublisherName(), &bgr, &restart) !=
+      ros_conv::ImageGate::Result::kProcess)
+    return;
+  image_size_ = bgr.size();
   if (restart && last_target_ && !pending_target_) {
     // A looped bag: start again from the last target given, on this image.
     ROS_WARN("condensation_tracker: restarting from the last target given");
@@ -121,21 +139,22 @@ void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   if (pending_target_) {
     const cv::Rect2d roi = *pending_target_;
     pending_target_.reset();
-    try {
+    try {  // a new tracker replaces the running one only once it started
       if (ellipse_mode_) {
-        ellipse_ = std::make_unique<tracking::EllipseTracker>(ellipse_config_);
-        ellipse_->init(bgr, tracking::Ellipse::inscribed(roi));
+        auto next = std::make_unique<tracking::EllipseTracker>(ellipse_config_);
+        next->init(bgr, tracking::Ellipse::inscribed(roi));
+        ellipse_ = std::move(next);
       } else {
-        tracker_ = std::make_unique<tracking::CondensationTracker>(config_, seed_);
-        tracker_->init(bgr, cv::Rect(roi));
+        auto next = std::make_unique<tracking::CondensationTracker>(config_, seed_);
+        next->init(bgr, cv::Rect(roi));
+        tracker_ = std::move(next);
       }
       lost_ = false;
       ROS_INFO("condensation_tracker: target at %.0f, %.0f (%.0f x %.0f)", roi.x, roi.y, roi.width,
                roi.height);
     } catch (const std::invalid_argument& e) {
-      ROS_ERROR("condensation_tracker: cannot start on the target: %s", e.what());
-      tracker_.reset();
-      ellipse_.reset();
+      ROS_ERROR("condensation_tracker: cannot start on the target (%s): %s", e.what(),
+                tracker_ || ellipse_ ? "the running track goes on" : "no track");
     }
     return;
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/math/chi_square.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
@@ -48,13 +49,14 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   P::loadMotionModel(pnh, &c.motion);
   P::loadInitialPose(pnh, {1e-3, 1e-3, 1e-3}, &initial_pose_, &initial_cov_);
   external_gate_ = P::getInRange(pnh, "external_gate_probability", external_gate_, 0.5, 0.999999);
-  map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
-  odom_frame_ = P::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
-  base_frame_ = P::getName(pnh, "base_frame", ros_topics::kBaseFrame);
+  map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
+  odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
+  base_frame_ = P::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
   publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
   transform_tolerance_s_ =
       P::getInRange(pnh, "transform_tolerance_s", transform_tolerance_s_, 0.0, 10.0);
   tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", tf_timeout_s_, 0.0, 5.0);
+  stamp_order_ = ros_conv::StampOrder("ekf_slam_mapper", "lines", P::loadStampOrder(pnh));
   map_file_ = P::get<std::string>(pnh, "map_file", "line_map.yaml");
   path_max_poses_ = P::getInRange(pnh, "path_max_poses", path_max_poses_, 1, 10000000);
   try {
@@ -71,7 +73,8 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   lines_sub_ = nh.subscribe("lines", 20, &EkfSlamMapperNode::onLines, this);
   if (config_.variant == slam::Variant::kExternal)
     external_sub_ = nh.subscribe("external_pose", 20, &EkfSlamMapperNode::onExternalPose, this);
-  save_srv_ = pnh.advertiseService("save_map", &EkfSlamMapperNode::onSaveMap, this);
+  save_srv_ =
+      service_queue_.handle(pnh).advertiseService("save_map", &EkfSlamMapperNode::onSaveMap, this);
   diagnostics_.setHardwareID("ekf_slam_mapper");
   freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
@@ -92,7 +95,15 @@ void EkfSlamMapperNode::reset(const char* why) {
   ++resets_;
 }
 
-void EkfSlamMapperNode::onLines(const LineSegmentArrayConstPtr& msg) {
+void EkfSlamMapperNode::onLines(const ros::MessageEvent<const LineSegmentArray>& event) {
+  const boost::shared_ptr<const LineSegmentArray> msg = event.getConstMessage();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // Lines a little older than the last are dropped; time really going back restarts below.
+    if (stamp_order_.check(msg->header.stamp, event.getPublisherName()) ==
+        ros_conv::StampOrder::Verdict::kDrop)
+      return;
+  }
   ros_conv::OdomAndMount tf;
   try {
     tf = ros_conv::lookupOdomAndMount(tf_buffer_, odom_frame_, base_frame_, msg->header.frame_id,
@@ -280,18 +291,27 @@ visualization_msgs::MarkerArray EkfSlamMapperNode::mapMarkers(const std_msgs::He
 }
 
 bool EkfSlamMapperNode::onSaveMap(SaveMap::Request& req, SaveMap::Response& res) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const std::string path = req.path.empty() ? map_file_ : req.path;
+  // The reply names the file by its full path (an empty request saves to ~map_file, relative to
+  // the node's current directory: $ROS_HOME under roslaunch).
+  const std::string path = io::absolutePath(req.path.empty() ? map_file_ : req.path);
   res.success = false;
-  if (fs::exists(path) && !req.overwrite) {
+  std::error_code ec;
+  if (fs::exists(path, ec) && !req.overwrite) {
     res.message = path + " exists; call again with overwrite: true to replace it";
     return true;
   }
+  // A copy of the filter is taken under the lock (a few ms even for hundreds of landmarks); the
+  // file is written from it on the service thread while scans go on.
+  std::unique_ptr<const slam::LineEkfSlam> snapshot;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    snapshot = std::make_unique<const slam::LineEkfSlam>(*slam_);
+  }
   try {
-    slam::writeLineMapYaml(path, *slam_);
+    slam::writeLineMapYaml(path, *snapshot);
     res.success = true;
-    res.message = "saved " + std::to_string(slam_->numLandmarks()) + " landmarks and " +
-                  std::to_string(slam_->numFixedLandmarks()) + " fixed landmarks to " + path;
+    res.message = "saved " + std::to_string(snapshot->numLandmarks()) + " landmarks and " +
+                  std::to_string(snapshot->numFixedLandmarks()) + " fixed landmarks to " + path;
   } catch (const std::exception& e) {
     res.message = e.what();
   }
@@ -313,6 +333,7 @@ void EkfSlamMapperNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   stat.add("update time max (ms)", max_update_ms_);
   stat.add("scans", scans_);
   stat.add("scans skipped (no tf)", skipped_no_tf_);
+  stat.add("scans dropped (older than the last)", stamp_order_.dropped());
   stat.add("scans skipped (update failed)", update_failures_);
   stat.add("segments dropped (bad values)", bad_segments_);
   stat.add("external poses used", external_used_);

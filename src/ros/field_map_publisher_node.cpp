@@ -111,7 +111,7 @@ visualization_msgs::MarkerArray fieldMapMarkers(const world::FieldMap& map,
 FieldMapPublisherNode::FieldMapPublisherNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   const std::string file = ros_params::resolvePackagePath(
       ros_params::getName(pnh, "field_file", "config/field_4legged.yaml"));
-  const std::string frame = ros_params::getName(pnh, "frame_id", ros_topics::kMapFrame);
+  const std::string frame = ros_params::getFrameId(pnh, "frame_id", ros_topics::kMapFrame);
   const world::FieldMap map = world::FieldMap::loadYaml(file);
   pub_ = nh.advertise<visualization_msgs::MarkerArray>(ros_topics::kFieldMap, 1, /*latch=*/true);
   pub_.publish(fieldMapMarkers(map, frame, ros::Time(0)));

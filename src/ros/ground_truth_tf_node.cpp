@@ -7,9 +7,9 @@
 namespace adaptive_perception {
 
 GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
-  map_frame_ = ros_params::getName(pnh, "map_frame", ros_topics::kMapFrame);
-  odom_frame_ = ros_params::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
-  base_frame_ = ros_params::getName(pnh, "base_frame", ros_topics::kBaseFrame);
+  map_frame_ = ros_params::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
+  odom_frame_ = ros_params::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
+  base_frame_ = ros_params::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
   path_length_ = ros_params::getInRange(pnh, "path_length", 2000, 0, 100000);
   publish_tf_ = ros_params::get<bool>(pnh, "publish_tf", true);
 

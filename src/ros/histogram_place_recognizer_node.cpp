@@ -43,7 +43,8 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
   rc.filter.likelihood_sharpness =
       P::getInRange(pnh, "likelihood_sharpness", rc.filter.likelihood_sharpness, 1e-3, 1e3);
   gate_ = ros_conv::ImageGate("histogram_place_recognizer",
-                              P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0));
+                              P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0),
+                              P::loadStampOrder(pnh));
   train_batch_ = P::getInRange(pnh, "train_batch", train_batch_, 1, 100000);
   train_every_n_ = P::getInRange(pnh, "train_every_n", train_every_n_, 1, 100000);
   try {
@@ -145,10 +146,12 @@ void HistogramPlaceRecognizerNode::onLabel(const std_msgs::StringConstPtr& msg) 
   label_ = msg->data;
 }
 
-void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+void HistogramPlaceRecognizerNode::onImage(
+    const ros::MessageEvent<const sensor_msgs::Image>& event) {
+  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
   cv::Mat bgr;
   bool restart = false;
-  const auto verdict = gate_.accept(*msg, &bgr, &restart);
+  const auto verdict = gate_.accept(*msg, event.getPublisherName(), &bgr, &restart);
   if (restart) recognizer_->reset();
   if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   places::ImageHistograms h;

@@ -6,14 +6,12 @@
 
 namespace adaptive_perception::ros_conv {
 
-ImageGate::Result ImageGate::accept(const sensor_msgs::Image& msg, cv::Mat* bgr,
-                                    bool* time_went_back) {
-  *time_went_back = !last_stamp_.isZero() && msg.header.stamp < last_stamp_;
-  if (*time_went_back) {
-    ROS_WARN("%s: image time went backwards (bag looped?): restarting", node_.c_str());
-    last_processed_ = ros::Time();
-  }
-  last_stamp_ = msg.header.stamp;
+ImageGate::Result ImageGate::accept(const sensor_msgs::Image& msg, const std::string& publisher,
+                                    cv::Mat* bgr, bool* time_went_back) {
+  const StampOrder::Verdict order = order_.check(msg.header.stamp, publisher);
+  *time_went_back = order == StampOrder::Verdict::kRestart;
+  if (order == StampOrder::Verdict::kDrop) return Result::kOutOfOrder;
+  if (*time_went_back) last_processed_ = ros::Time();
   if (!last_processed_.isZero() &&
       (msg.header.stamp - last_processed_).toSec() < 1.0 / max_rate_hz_)
     return Result::kTooSoon;

@@ -31,6 +31,22 @@ visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const
   return out;
 }
 
+namespace {
+
+/// `cfg` showing the settings of `c` (what dynamic_reconfigure reports as in force).
+void showConfig(const laser::LineExtractionConfig& c, const std::string& split_method,
+                adaptive_perception::LineExtractorConfig* cfg) {
+  cfg->split_threshold_m = c.split_threshold_m;
+  cfg->min_points = c.min_points;
+  cfg->min_length_m = c.min_length_m;
+  cfg->max_gap_m = c.max_gap_m;
+  cfg->breakpoint_lambda_rad = c.breakpoint_lambda_rad;
+  cfg->merge_collinear = c.merge_collinear;
+  cfg->split_method = split_method;
+}
+
+}  // namespace
+
 LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   namespace P = ros_params;
   laser::LineExtractionConfig c;
@@ -52,6 +68,8 @@ LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
     throw P::ParamError("parameter " + pnh.resolveName("split_method") + ": " + e.what());
   }
   extractor_.setConfig(c);
+  split_method_ = method;
+  stamp_order_ = ros_conv::StampOrder("line_extractor", "scan", P::loadStampOrder(pnh));
   lines_pub_ = nh.advertise<LineSegmentArray>("lines", 10);
   markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("lines/markers", 2);
   scan_sub_ = nh.subscribe(ros_topics::kScan, 5, &LineExtractorNode::onScan, this);
@@ -63,13 +81,7 @@ LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
       std::make_unique<dynamic_reconfigure::Server<adaptive_perception::LineExtractorConfig>>(
           reconfigure_mutex_, pnh);
   adaptive_perception::LineExtractorConfig initial;
-  initial.split_threshold_m = c.split_threshold_m;
-  initial.min_points = c.min_points;
-  initial.min_length_m = c.min_length_m;
-  initial.max_gap_m = c.max_gap_m;
-  initial.breakpoint_lambda_rad = c.breakpoint_lambda_rad;
-  initial.merge_collinear = c.merge_collinear;
-  initial.split_method = method;
+  showConfig(c, method, &initial);
   reconfigure_->updateConfig(initial);
   reconfigure_->setCallback([this](adaptive_perception::LineExtractorConfig& cfg, uint32_t level) {
     onReconfigure(cfg, level);
@@ -85,15 +97,18 @@ void LineExtractorNode::onReconfigure(adaptive_perception::LineExtractorConfig& 
   c.max_gap_m = cfg.max_gap_m;
   c.breakpoint_lambda_rad = cfg.breakpoint_lambda_rad;
   c.merge_collinear = cfg.merge_collinear;
-  try {
+  try {  // setConfig validates the whole set before taking any of it
     c.split_method = laser::parseSplitMethod(cfg.split_method);
     extractor_.setConfig(c);
-  } catch (const std::invalid_argument& e) {
-    ROS_ERROR("line_extractor: reconfigure rejected: %s", e.what());
+    split_method_ = cfg.split_method;
+  } catch (const std::exception& e) {
+    ROS_ERROR("line_extractor: reconfigure refused, every setting stays as it was: %s", e.what());
+    showConfig(extractor_.config(), split_method_, &cfg);  // the reply shows what holds
   }
 }
 
-void LineExtractorNode::onScan(const sensor_msgs::LaserScanConstPtr& msg) {
+void LineExtractorNode::onScan(const ros::MessageEvent<const sensor_msgs::LaserScan>& event) {
+  const boost::shared_ptr<const sensor_msgs::LaserScan> msg = event.getConstMessage();
   if (!(msg->angle_increment != 0.0f) || !std::isfinite(msg->angle_increment) ||
       !(msg->range_max > 0.0f)) {
     ROS_ERROR_THROTTLE(10.0, "line_extractor: scan with angle_increment %g, range_max %g dropped",
@@ -101,12 +116,13 @@ void LineExtractorNode::onScan(const sensor_msgs::LaserScanConstPtr& msg) {
     ++bad_scans_;
     return;
   }
-  if (!last_stamp_.isZero() && msg->header.stamp < last_stamp_)
-    ROS_WARN("line_extractor: scan time went backwards (bag looped?)");
-  last_stamp_ = msg->header.stamp;
   std::vector<laser::LineSegment> segs;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    // An older scan is not passed on (the mapper would take it for a looped bag).
+    if (stamp_order_.check(msg->header.stamp, event.getPublisherName()) ==
+        ros_conv::StampOrder::Verdict::kDrop)
+      return;
     segs = extractor_.extract(ros_conv::fromLaserScan(*msg));
   }
   const LineSegmentArray lines = ros_conv::toLineSegmentArray(segs, msg->header);

@@ -2,6 +2,8 @@
 
 #include <ros/package.h>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,6 +13,19 @@ namespace adaptive_perception::ros_params {
 std::string getName(const ros::NodeHandle& nh, const std::string& name, const std::string& def) {
   const std::string v = get<std::string>(nh, name, def);
   if (v.empty()) throw ParamError("parameter " + nh.resolveName(name) + " must not be empty");
+  return v;
+}
+
+std::string getFrameId(const ros::NodeHandle& nh, const std::string& name, const std::string& def) {
+  const std::string v = getName(nh, name, def);
+  const auto bad = std::find_if(v.begin(), v.end(), [](char ch) {
+    return !(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' || ch == '.' ||
+             ch == '/');
+  });
+  if (v[0] == '/' || bad != v.end() || v.find("//") != std::string::npos)
+    throw ParamError("parameter " + nh.resolveName(name) + " = '" + v +
+                     "' is not a tf frame id (no leading '/', no spaces; letters, digits and "
+                     "_ - . / only)");
   return v;
 }
 
@@ -115,6 +130,13 @@ bool loadInitialPose(const ros::NodeHandle& pnh, const std::vector<double>& defa
   if (initial.size() != 3) return false;
   *pose = math::SE2(initial[0], initial[1], initial[2]);
   return true;
+}
+
+ros_conv::StampOrderConfig loadStampOrder(const ros::NodeHandle& pnh) {
+  ros_conv::StampOrderConfig c;
+  c.restart_after_back_s =
+      getInRange(pnh, "time_back_restart_s", c.restart_after_back_s, 0.01, 3600.0);
+  return c;
 }
 
 }  // namespace adaptive_perception::ros_params

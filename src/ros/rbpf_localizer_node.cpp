@@ -1,7 +1,9 @@
 #include "adaptive_perception/ros/rbpf_localizer_node.h"
 
 #include <geometry_msgs/PoseArray.h>
+#include <malloc.h>
 #include <tf2/exceptions.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -18,6 +20,40 @@ namespace adaptive_perception {
 
 namespace fs = std::filesystem;
 using ros_params::ParamError;
+
+namespace {
+
+/// The heap one particle takes (its lighting filter keeps its own copy of the priors), measured
+/// by building one (glibc's allocator statistics).
+std::size_t particleBytes(const std::vector<color::LightingPrior>& priors,
+                          const localization::RbpfConfig& c) {
+  const std::size_t before = ::mallinfo2().uordblks;
+  const auto one = std::make_unique<localization::Particle>(localization::Particle{
+      math::SE2(), color::SwitchingColorFilter(priors, c.model, c.switching), 0.0});
+  return sizeof(localization::Particle) + (::mallinfo2().uordblks - before);
+}
+
+/// Refuses a particle count whose filter would not fit in half of this machine's memory (the
+/// particles exist twice while resampling), naming the estimate and the largest count that fits.
+void checkParticleMemory(const ros::NodeHandle& pnh,
+                         const std::vector<color::LightingPrior>& priors,
+                         const localization::RbpfConfig& c) {
+  const double per_particle = static_cast<double>(particleBytes(priors, c));
+  const double physical =
+      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  const double need = 2.0 * per_particle * c.particles;
+  if (physical > 0 && need > 0.5 * physical) {
+    char buf[320];
+    std::snprintf(buf, sizeof(buf),
+                  "parameter %s = %d would take about %.1f GB (%.1f kB a particle, twice while "
+                  "resampling); this machine has %.1f GB: at most %.0f particles fit in half of it",
+                  pnh.resolveName("particles").c_str(), c.particles, need / 1e9, per_particle / 1e3,
+                  physical / 1e9, 0.25 * physical / per_particle);
+    throw ros_params::ParamError(buf);
+  }
+}
+
+}  // namespace
 
 RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
@@ -87,6 +123,7 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 
   std::string filter, dir;
   priors_ = P::loadLightingPriors(pnh, &filter, &dir);
+  checkParticleMemory(pnh, priors_, c);
   map_ = world::FieldMap::loadYaml(
       P::resolvePackagePath(P::getName(pnh, "field_file", "config/field_4legged.yaml")));
 
@@ -95,13 +132,14 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   if (P::loadInitialPose(pnh, {0.2, 0.2, 0.17}, &initial, &initial_cov))
     pending_pose_ = configured_pose_ = std::make_pair(initial, initial_cov);
 
-  map_frame_ = P::getName(pnh, "map_frame", ros_topics::kMapFrame);
-  odom_frame_ = P::getName(pnh, "odom_frame", ros_topics::kOdomFrame);
-  base_frame_ = P::getName(pnh, "base_frame", ros_topics::kBaseFrame);
+  map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
+  odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
+  base_frame_ = P::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
   publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
   transform_tolerance_s_ =
       P::getInRange(pnh, "transform_tolerance_s", transform_tolerance_s_, 0.0, 10.0);
   tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", tf_timeout_s_, 0.0, 5.0);
+  stamp_order_ = ros_conv::StampOrder("rbpf_localizer", "image", P::loadStampOrder(pnh));
   try {
     config_.validate();
   } catch (const std::invalid_argument& e) {
@@ -113,11 +151,13 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_model", 5);
   classified_pub_ = nh.advertise<sensor_msgs::Image>("rbpf_localizer/classified", 2);
   classified_color_pub_ = nh.advertise<sensor_msgs::Image>("rbpf_localizer/classified_color", 2);
-  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 1, &RbpfLocalizerNode::onImage, this);
+  // Two deep: an image re-sent older right after a newer one is seen, and dropped, rather than
+  // displacing the newer one in the queue.
+  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &RbpfLocalizerNode::onImage, this);
   info_sub_ = nh.subscribe(ros_topics::kCameraInfo, 1, &RbpfLocalizerNode::onCameraInfo, this);
   initial_pose_sub_ = nh.subscribe("initialpose", 1, &RbpfLocalizerNode::onInitialPose, this);
-  global_srv_ =
-      nh.advertiseService("global_localization", &RbpfLocalizerNode::onGlobalLocalization, this);
+  global_srv_ = service_queue_.handle(nh).advertiseService(
+      "global_localization", &RbpfLocalizerNode::onGlobalLocalization, this);
 
   diagnostics_.setHardwareID("rbpf_localizer");
   freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
@@ -152,7 +192,15 @@ bool RbpfLocalizerNode::ensureLocalizer(int width, int height) {
   return true;
 }
 
-void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+void RbpfLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
+  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // An image a little older than the last is dropped; time really going back restarts below.
+    if (stamp_order_.check(msg->header.stamp, event.getPublisherName()) ==
+        ros_conv::StampOrder::Verdict::kDrop)
+      return;
+  }
   cv::Mat yuv;
   try {
     yuv = ros_conv::imageToYuv(*msg);
@@ -331,6 +379,7 @@ void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   }
   stat.add("frames", frames_);
   stat.add("frames skipped (no tf)", skipped_no_tf_);
+  stat.add("frames dropped (older than the last)", stamp_order_.dropped());
   stat.add("frames skipped (bad image)", skipped_bad_image_);
   stat.add("re-initialisations", resets_);
 }

@@ -72,6 +72,9 @@ int main(int argc, char** argv) {
   try {
     fc.validate();
     const places::PlaceDatabase db = places::PlaceDatabase::open(db_path, true);
+    if (db.recoveredJournal())
+      std::cerr << "evaluate_places: " << db_path
+                << ": an interrupted write (a killed train_places?) was rolled back\n";
     const std::vector<int> spaces =
         spaces_arg.empty() ? db.settings().spaces : places::parseSpaces(spaces_arg);
     const std::vector<Distance> methods = places::parseDistances(methods_arg);

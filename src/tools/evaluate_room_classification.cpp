@@ -66,6 +66,9 @@ int main(int argc, char** argv) {
   try {
     cfg.validate();
     const places::PlaceDatabase db = places::PlaceDatabase::open(db_path, true);
+    if (db.recoveredJournal())
+      std::cerr << "evaluate_room_classification: " << db_path
+                << ": an interrupted write (a killed train_places?) was rolled back\n";
     places::RoomClassifier classifier(cfg);
     const auto t_load = Clock::now();
     classifier.setFrames(db.loadFrames());

@@ -13,7 +13,10 @@
 // --features also stores each image's SIFT descriptors, its line-structure descriptor (default
 // LineStructureConfig) and, from bags, its ground_truth/pose (the training frames of the room
 // classifier and the appearance localizer, papers/002).
-// Each place is written in one transaction. Last line:
+// The whole run is one transaction, and holds the database's write lock from the start: a run
+// killed at any point leaves the database as it was, and a second writer is refused at once. A
+// place already in the database gets its images replaced (a rerun does not duplicate them); its
+// edges stay and new ones are added. Last line:
 // `train_places: database=DB places=N images_added=M images_total=T edges=E seconds=S`.
 #include <chrono>
 #include <cstdio>
@@ -66,6 +69,7 @@ int main(int argc, char** argv) {
     const places::DatabaseSettings wanted = places::DatabaseSettings::fromHistogramConfig(hc);
     places::PlaceDatabase db = places::PlaceDatabase::openOrCreate(db_path, wanted);
     if (explicit_settings) db.requireSettings(wanted);
+    db.beginBatch();
     const places::HistogramConfig use = db.settings().histogramConfig();
 
     // Histograms of every image, grouped by place in arrival order.
@@ -94,12 +98,16 @@ int main(int argc, char** argv) {
       const size_t k = per_place == 0 ? total : std::min<size_t>(total, per_place);
       for (size_t i = 0; i < k; ++i)
         chosen.push_back(std::move(images[(2 * i + 1) * total / (2 * k)]));
-      added += db.addImages(place, chosen);
+      int replaced = 0;
+      added += db.replaceImages(place, chosen, &replaced);
       std::cerr << "train_places: " << place << ": " << chosen.size() << " of " << total
-                << " images\n";
+                << " images";
+      if (replaced > 0) std::cerr << " (replacing the " << replaced << " it had)";
+      std::cerr << "\n";
     }
     if (adjacency)
       for (const auto& [a, b] : edges) db.setAdjacent(a, b);
+    db.commitBatch();
     const double secs =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
     std::printf(

@@ -139,6 +139,32 @@ TEST_F(BadFiles, TrackingDynamics) {
          "A1: [1, 2, 3]\nA0: [0]\nd: [0]\nB: [1]\n"});
 }
 
+// Settings that used to be taken at start-up and fail later (issue 27): each must stop the node
+// at once with a message naming the parameter.
+TEST(BadSettings, FrameIdsThatTf2WouldRefuseStopTheNodeAtStartUp) {
+  struct Setting {
+    std::string node, args, param;
+  };
+  for (const Setting& s : std::vector<Setting>{
+           {"rbpf_localizer", "_map_frame:=/map", "map_frame"},
+           {"ekf_slam_mapper", "\"_odom_frame:=my odom\"", "odom_frame"},
+           {"color_estimator", "_map_frame:=map//x", "map_frame"}}) {
+    SCOPED_TRACE(s.node + " " + s.args);
+    const NodeRun r = runNode(s.node, s.args);
+    EXPECT_EQ(r.status, 1) << "the node did not stop; output:\n" << r.output;
+    EXPECT_NE(r.output.find(s.param), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("not a tf frame id"), std::string::npos) << r.output;
+  }
+}
+
+TEST(BadSettings, AParticleCountThatWouldNotFitInMemoryStopsTheNodeWithTheEstimate) {
+  const NodeRun r = runNode("rbpf_localizer", "_particles:=1000000");
+  EXPECT_EQ(r.status, 1) << "the node did not stop; output:\n" << r.output;
+  EXPECT_NE(r.output.find("particles = 1000000 would take about"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("at most"), std::string::npos) << r.output;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <opencv2/core.hpp>
 
+#include "adaptive_perception/SetTarget.h"
 #include "adaptive_perception/TrackedObject.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "rostest_support.h"
@@ -36,6 +37,24 @@ TEST(CondensationTrackerSim, TracksTheTarget) {
                                            });
   ros::AsyncSpinner spinner(2);
   spinner.start();
+  // Once tracking runs, a target outside the image is refused in the reply and the track goes on
+  // (the success rate below covers every frame after it).
+  ASSERT_TRUE(ap::rostest_support::waitUntil(
+      [&] {
+        std::lock_guard<std::mutex> l(mutex);
+        return objects.size() >= 10;
+      },
+      120.0))
+      << "no tracked object";
+  ap::SetTarget outside;
+  outside.request.roi.x_offset = 5000;
+  outside.request.roi.y_offset = 5000;
+  outside.request.roi.width = 20;
+  outside.request.roi.height = 20;
+  ASSERT_TRUE(ros::service::call("condensation_tracker/set_target", outside));
+  EXPECT_FALSE(outside.response.success) << outside.response.message;
+  EXPECT_NE(outside.response.message.find("outside"), std::string::npos)
+      << outside.response.message;
   ASSERT_TRUE(player.waitFor("done", 170.0)) << "the player did not finish";
   std::lock_guard<std::mutex> l(mutex);
   ASSERT_GT(truth.size(), 50u);

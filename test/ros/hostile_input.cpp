@@ -1,21 +1,32 @@
 // rostest harness: hostile input, then good input, for one node (test/ros/hostile_*.test).
 //
-// The test plays a bag itself (with /clock; the launch sets use_sim_time) so it controls every phase:
+// The test plays a bag itself (with /clock; the launch sets use_sim_time) so it controls every
+// phase:
 //   A      the bag at `rate`: the node's reference output;
 //   hostile  malformed messages on the node's inputs (unsupported encodings, zero-size and
-//            mismatched-step images, NaN / inf / negative ranges, zero-beam scans, frames with no tf,
-//            stale stamps, non-finite line covariances, ...), all stamped after the bag's end;
+//            mismatched-step images, NaN / inf / negative ranges, zero-beam scans, frames with no
+//            tf, stale stamps, non-finite line covariances, ...), all stamped after the bag's end;
 //   storm  the bag again at `storm_factor` x `rate` (time jumps backwards at its start): every
-//          output's latency (wall time from the input with its stamp to the output) must stay bounded;
+//          output's latency (wall time from the input with its stamp to the output) must stay
+//          bounded;
 //   B      the bag once more at `rate` (time jumps backwards again): the output must be correct,
 //          judged by `compare` against A or against the bag's ground truth.
+//          With jitter_s > 0, every trigger input is re-sent right after it, jitter_s seconds
+//          older (a second publisher): the node must drop those, not answer or restart on them
+//          (its outputs' stamps never go back), and pass B is still judged by `compare`.
+//   stall  (when stall_service is set) the clock stops; one input arrives whose frame has no tf
+//          and will never get one; the node's service must still answer within
+//          stall_answer_timeout_s of wall time (a tf wait measured in sim time never ends).
+// With bad_reconfigure set, the node's dynamic_reconfigure server is given each bad setting before
+// the storm (every value in its reply must be finite: a refused setting is not taken), and its
+// original settings back before pass B; the storm and pass B then show it survived them.
 // At the end the node must still answer over XML-RPC (a crashed node stays registered).
 //
 // Parameters (private):
 //   bag (string)                 the good input, waited for up to startup_timeout_s (60) when a
-//                                launch node makes it (remove_bag_dir: delete its folder at the end);
-//                                or `bag_command` (string) makes it first: a shell command run with
-//                                $BAG set to a temporary path
+//                                launch node makes it (remove_bag_dir: delete its folder at the
+//                                end); or `bag_command` (string) makes it first: a shell command
+//                                run with $BAG set to a temporary path
 //   replay_topics (string list)  bag topics to publish (tf_static latched); /clock is added
 //   trigger_topic (string)       the input whose stamp an output carries (latency, output fraction)
 //   output_topic (string)        the output watched; its message must start with a Header
@@ -28,20 +39,28 @@
 //            image      | min_pixel_agreement (mean share of equal pixels, same-stamp images)
 //            pose_truth | truth_topic (PoseStamped in the bag), max_final_position_error_m,
 //                          max_final_heading_error_deg (last output of B)
-//            box        | min_box_iou_fraction (TrackedObject: share of same-stamp frames whose boxes
+//            box        | min_box_iou_fraction (TrackedObject: share of same-stamp frames whose
+//            boxes
 //                          in A and B overlap with IoU >= 0.5)
 //            place      | min_place_agreement (PlaceRecognition: share of same-stamp results naming
 //                          the same place)
+//   bad_reconfigure (string list, "name=value": doubles, "nan" and "inf" included), sent one at a
+//   time to <node>/set_parameters
+//   stall_service (string: the service's full name), stall_service_type (std_srvs/Trigger |
+//   std_srvs/Empty | adaptive_perception/SaveMap), stall_answer_timeout_s (10)
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
+#include <ros/network.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/LaserScan.h>
-#include <ros/network.h>
+#include <std_srvs/Empty.h>
+#include <std_srvs/Trigger.h>
 #include <topic_tools/shape_shifter.h>
 #include <xmlrpcpp/XmlRpc.h>
 
@@ -50,14 +69,18 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <limits>
 #include <map>
 #include <mutex>
+#include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/PlaceRecognition.h"
+#include "adaptive_perception/SaveMap.h"
 #include "adaptive_perception/TrackedObject.h"
 #include "rostest_support.h"
 
@@ -105,6 +128,22 @@ class OutputRecorder {
   std::map<std::string, std::vector<Recorded>> phases_;
 };
 
+/// A copy of `m` (a message that starts with a Header) stamped `shift_s` seconds later.
+ShapeShifter::Ptr withStampShifted(const ShapeShifter& m, double shift_s) {
+  std::vector<uint8_t> buf = support::serialized(m);
+  std_msgs::Header h;
+  std::size_t n = 0;
+  if (!support::leadingHeader(buf, &h, &n)) return nullptr;
+  h.stamp += ros::Duration(shift_s);  // same length on the wire: written over the old header
+  ros::serialization::OStream out(buf.data(), static_cast<uint32_t>(n));
+  ros::serialization::serialize(out, h);
+  auto s = boost::make_shared<ShapeShifter>();
+  s->morph(m.getMD5Sum(), m.getDataType(), m.getMessageDefinition(), "");
+  ros::serialization::IStream in(buf.data(), static_cast<uint32_t>(buf.size()));
+  s->read(in);
+  return s;
+}
+
 struct BagMessage {
   std::string topic;
   ros::Time time;
@@ -145,8 +184,10 @@ class Replayer {
     c.clock = t;
     clock_.publish(c);
   }
-  /// Plays the whole bag at `rate`; returns the number of trigger messages sent.
-  int play(double rate) {
+  /// Plays the whole bag at `rate`; returns the number of trigger messages sent. With jitter_s > 0
+  /// every trigger message is sent again right after it, stamped jitter_s seconds earlier (a second
+  /// publisher re-sending old messages); those stamps are remembered (jittered()).
+  int play(double rate, double jitter_s = 0.0) {
     const ros::WallTime start = ros::WallTime::now();
     int triggers = 0;
     for (const BagMessage& m : messages_) {
@@ -165,8 +206,24 @@ class Replayer {
         ++triggers;
       }
       pubs_.at(m.topic).publish(*m.msg);
+      if (jitter_s > 0.0 && m.topic == trigger_) {
+        if (ShapeShifter::Ptr old = withStampShifted(*m.msg, -jitter_s)) {
+          std_msgs::Header h;
+          std::size_t n = 0;
+          support::leadingHeader(support::serialized(*old), &h, &n);
+          {
+            std::lock_guard<std::mutex> l(mutex_);
+            jittered_.insert(h.stamp);
+          }
+          pubs_.at(m.topic).publish(*old);
+        }
+      }
     }
     return triggers;
+  }
+  bool jittered(const ros::Time& stamp) {
+    std::lock_guard<std::mutex> l(mutex_);
+    return jittered_.count(stamp) > 0;
   }
   /// Wall time at which the trigger with this stamp was last sent (zero when never).
   ros::WallTime sentAt(const ros::Time& stamp) {
@@ -182,6 +239,7 @@ class Replayer {
   ros::Publisher clock_;
   std::mutex mutex_;
   std::map<ros::Time, ros::WallTime> sent_;
+  std::set<ros::Time> jittered_;
 };
 
 template <typename T>
@@ -191,10 +249,11 @@ boost::shared_ptr<T> firstOf(const Replayer& r, const std::string& topic) {
   return nullptr;
 }
 
-// ---- hostile messages ----------------------------------------------------------------------------
+// ---- hostile messages
+// ----------------------------------------------------------------------------
 
-std::vector<std::pair<std::string, sensor_msgs::Image>> hostileImages(const sensor_msgs::Image& good,
-                                                                      const ros::Time& stamp) {
+std::vector<std::pair<std::string, sensor_msgs::Image>> hostileImages(
+    const sensor_msgs::Image& good, const ros::Time& stamp) {
   std::vector<std::pair<std::string, sensor_msgs::Image>> cases;
   auto add = [&](const std::string& name, sensor_msgs::Image m) {
     m.header.stamp = stamp + ros::Duration(0.01 * static_cast<double>(cases.size() + 1));
@@ -354,6 +413,60 @@ std::vector<std::pair<std::string, ap::LineSegmentArray>> hostileLines(const std
   return cases;
 }
 
+// ---- dynamic_reconfigure and services
+// ------------------------------------------------------------
+
+/// Sends `request` to <node>/set_parameters; the reply is the configuration the node holds after
+/// it.
+bool reconfigure(const std::string& node, const dynamic_reconfigure::Config& request,
+                 dynamic_reconfigure::Config* reply) {
+  dynamic_reconfigure::Reconfigure srv;
+  srv.request.config = request;
+  const std::string name = "/" + node + "/set_parameters";
+  if (!ros::service::waitForService(name, ros::Duration(10.0))) return false;
+  if (!ros::service::call(name, srv)) return false;
+  *reply = srv.response.config;
+  return true;
+}
+
+/// "name=value" as a one-double reconfigure request.
+dynamic_reconfigure::Config doubleSetting(const std::string& setting) {
+  dynamic_reconfigure::Config c;
+  dynamic_reconfigure::DoubleParameter d;
+  const std::size_t eq = setting.find('=');
+  d.name = setting.substr(0, eq);
+  d.value = std::strtod(setting.substr(eq + 1).c_str(), nullptr);  // "nan", "inf" parse
+  c.doubles.push_back(d);
+  return c;
+}
+
+/// Calls a service of one of the types the nodes offer; false when the call failed.
+bool callService(const std::string& name, const std::string& type, std::string* what) {
+  if (type == "std_srvs/Trigger") {
+    std_srvs::Trigger srv;
+    const bool ok = ros::service::call(name, srv);
+    *what = srv.response.message;
+    return ok;
+  }
+  if (type == "std_srvs/Empty") {
+    std_srvs::Empty srv;
+    return ros::service::call(name, srv);
+  }
+  if (type == "adaptive_perception/SaveMap") {
+    ap::SaveMap srv;
+    srv.request.path = (std::filesystem::temp_directory_path() /
+                        ("hostile_stall_map_" + std::to_string(::getpid()) + ".yaml"))
+                           .string();
+    srv.request.overwrite = true;
+    const bool ok = ros::service::call(name, srv);
+    *what = srv.response.message;
+    std::filesystem::remove(srv.request.path);
+    return ok;
+  }
+  *what = "unknown stall_service_type " + type;
+  return false;
+}
+
 double yawOf(const geometry_msgs::Quaternion& q) {
   return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
 }
@@ -363,8 +476,8 @@ double iou(const sensor_msgs::RegionOfInterest& a, const sensor_msgs::RegionOfIn
   const double x1 = std::min(a.x_offset + a.width, b.x_offset + b.width);
   const double y1 = std::min(a.y_offset + a.height, b.y_offset + b.height);
   const double inter = std::max(0.0, x1 - x0) * std::max(0.0, y1 - y0);
-  const double uni = static_cast<double>(a.width) * a.height +
-                     static_cast<double>(b.width) * b.height - inter;
+  const double uni =
+      static_cast<double>(a.width) * a.height + static_cast<double>(b.width) * b.height - inter;
   return uni > 0.0 ? inter / uni : 0.0;
 }
 
@@ -380,8 +493,8 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
   const std::string bag_command = p.param<std::string>("bag_command", "");
   std::filesystem::path temp_dir;
   if (!bag_command.empty()) {
-    temp_dir = std::filesystem::temp_directory_path() /
-               ("hostile_input_" + std::to_string(::getpid()));
+    temp_dir =
+        std::filesystem::temp_directory_path() / ("hostile_input_" + std::to_string(::getpid()));
     std::filesystem::create_directories(temp_dir);
     bag_path = (temp_dir / "input.bag").string();
     const std::string cmd = "BAG='" + bag_path + "' bash -c '" + bag_command + "' > /dev/null 2>&1";
@@ -405,8 +518,8 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
 
   // A launch node may still be making the bag (and the node's database) when the test starts.
   const double startup_timeout = p.param("startup_timeout_s", 60.0);
-  ASSERT_TRUE(support::waitUntil([&] { return std::filesystem::exists(bag_path); },
-                                 startup_timeout, 0.5))
+  ASSERT_TRUE(
+      support::waitUntil([&] { return std::filesystem::exists(bag_path); }, startup_timeout, 0.5))
       << bag_path << " did not appear within " << startup_timeout << " s";
   if (p.param("remove_bag_dir", false)) temp_dir = std::filesystem::path(bag_path).parent_path();
   Replayer replay(nh, bag_path, topics, trigger);
@@ -463,6 +576,25 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
   }
   ros::WallDuration(settle).sleep();
 
+  // Bad settings through dynamic_reconfigure (NaN passes its min/max clamp).
+  std::vector<std::string> bad_settings;
+  p.getParam("bad_reconfigure", bad_settings);
+  dynamic_reconfigure::Config original;
+  if (!bad_settings.empty()) {
+    ASSERT_TRUE(reconfigure(node, dynamic_reconfigure::Config(), &original))
+        << node << "/set_parameters does not answer";
+    for (const std::string& setting : bad_settings) {
+      dynamic_reconfigure::Config reply;
+      std::printf("hostile_input: %s reconfigure %s\n", node.c_str(), setting.c_str());
+      ASSERT_TRUE(reconfigure(node, doubleSetting(setting), &reply))
+          << node << " did not answer reconfigure " << setting;
+      for (const auto& d : reply.doubles)
+        EXPECT_TRUE(std::isfinite(d.value))
+            << node << " took " << d.name << " = " << d.value << " from " << setting;
+      ros::WallDuration(0.5).sleep();
+    }
+  }
+
   // The storm: the bag at storm_factor x the rate; time jumps backwards at its start.
   recorder.setPhase("storm");
   const int storm_triggers = replay.play(rate * storm_factor);
@@ -481,12 +613,34 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
   EXPECT_GT(timed, 0) << node << " published nothing during the storm";
   EXPECT_LE(max_latency, max_storm_latency) << node << " fell behind the storm";
 
-  // Pass B: good input again, from the start.
+  if (!bad_settings.empty()) {
+    dynamic_reconfigure::Config reply;
+    ASSERT_TRUE(reconfigure(node, original, &reply)) << node << " died after the bad settings";
+  }
+
+  // Pass B: good input again, from the start; with jitter_s, every input is re-sent that much
+  // older.
+  const double jitter = p.param("jitter_s", 0.0);
   recorder.setPhase("B");
-  replay.play(rate);
+  replay.play(rate, jitter);
   ros::WallDuration(settle).sleep();
   recorder.setPhase("end");
   const std::vector<Recorded> b = recorder.phase("B");
+  if (jitter > 0.0) {
+    // A node may take an older copy when its queue dropped the newer original before it saw it;
+    // it must never take one after a newer input: its outputs' stamps never go back.
+    long older_copies = 0, went_back = 0;
+    ros::Time newest;
+    for (const Recorded& r : b) {
+      older_copies += replay.jittered(r.stamp);
+      if (r.stamp < newest) ++went_back;
+      newest = std::max(newest, r.stamp);
+    }
+    std::printf("hostile_input: %s pass B with every input re-sent %.3f s older: %zu outputs, "
+                "%ld for older copies, %ld stamped before an earlier output\n",
+                node.c_str(), jitter, b.size(), older_copies, went_back);
+    EXPECT_EQ(went_back, 0) << node << " took inputs older than one it had taken";
+  }
   std::printf("hostile_input: %s survived %d hostile cases; pass B: %zu outputs for %d inputs\n",
               node.c_str(), hostile_cases, b.size(), triggers);
   EXPECT_GE(static_cast<double>(b.size()), min_output_fraction * triggers)
@@ -570,6 +724,46 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
     EXPECT_LE(yb, p.param("max_final_heading_error_deg", 10.0));
   } else {
     FAIL() << "unknown compare '" << compare << "'";
+  }
+
+  // The clock stops while an input waits for a transform that never comes: services still answer.
+  const std::string stall_service = p.param<std::string>("stall_service", "");
+  if (!stall_service.empty()) {
+    const std::string type = p.param<std::string>("stall_service_type", "std_srvs/Trigger");
+    const double answer_timeout = p.param("stall_answer_timeout_s", 10.0);
+    ASSERT_TRUE(ros::service::waitForService(stall_service, ros::Duration(10.0)))
+        << stall_service << " is not advertised";
+    const ros::Time stopped = replay.end() + ros::Duration(5.0);
+    replay.publishClock(stopped);
+    ros::WallDuration(0.5).sleep();
+    const std::string kNoTfFrame = "hostile_stall_no_tf";
+    if (!lines_topic.empty()) {
+      ap::LineSegmentArray lines;
+      lines.header.stamp = stopped;
+      lines.header.frame_id = kNoTfFrame;
+      lines_pub.publish(lines);
+    } else {
+      ASSERT_FALSE(image_topic.empty()) << "stall_service needs image_topic or lines_topic";
+      sensor_msgs::Image image = *firstOf<sensor_msgs::Image>(replay, image_topic);
+      image.header.stamp = stopped;
+      image.header.frame_id = kNoTfFrame;
+      replay.publisher(image_topic).publish(image);
+    }
+    ros::WallDuration(1.0).sleep();  // the input now waits for tf, and the clock stands still
+    auto answer = std::make_shared<std::promise<std::pair<bool, std::string>>>();
+    std::future<std::pair<bool, std::string>> answered = answer->get_future();
+    std::thread([answer, stall_service, type] {
+      std::string what;
+      const bool ok = callService(stall_service, type, &what);
+      answer->set_value({ok, what});
+    }).detach();  // a node that never answers leaves the thread blocked; the test fails below
+    const bool in_time = answered.wait_for(std::chrono::duration<double>(answer_timeout)) ==
+                         std::future_status::ready;
+    std::printf("hostile_input: %s stalled clock: %s %s\n", node.c_str(), stall_service.c_str(),
+                in_time ? "answered" : "did not answer");
+    ASSERT_TRUE(in_time) << stall_service << " did not answer within " << answer_timeout
+                         << " s of wall time while the clock stood still";
+    EXPECT_TRUE(answered.get().first) << stall_service << " call failed";
   }
 
   // Still alive: the master knows it and its process answers (a dead node stays registered).

@@ -55,6 +55,11 @@ struct ImageLikelihoodConfig {
   double position_tolerance_m = 0.05;
   double heading_tolerance_rad = 0.02;
   int max_neighbourhood_cells = 4;
+  // The strides (pixel_stride, RbpfConfig::global_pixel_stride) are in pixels of an image this
+  // wide (the ERS-7's). A camera of another width samples the same directions: its strides are
+  // scaled with its width, and the exponent by the reference grid's pixel count over its own, so
+  // that an image weighs the same at any resolution (RbpfConfig::forCamera).
+  int reference_width_px = 208;
   void validate() const;
 };
 
@@ -189,6 +194,10 @@ struct RbpfConfig {
   /// with 25, 1 in 5 with 100).
   static color::ColorModelConfig rbpfModelConfig();
   void validate() const;
+  /// This configuration as a camera of that size runs it: strides scaled with the width over
+  /// likelihood.reference_width_px, the exponent with the pixel count (the same configuration for a
+  /// camera of the reference width). RbpfLocalizer applies it; config() returns the result.
+  RbpfConfig forCamera(const world::PinholeCamera& camera) const;
 };
 
 /// How many grid steps a pixel's neighbours lie left/right (du) and up/down (dv).

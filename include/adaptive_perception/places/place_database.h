@@ -4,7 +4,10 @@
 // settings it was built with.
 //
 // Safety: every change runs in one transaction (SQLite's rollback journal, synchronous=FULL), so a
-// writer killed at any point leaves the database as it was before the change or after it. A file
+// writer killed at any point leaves the database as it was before the change or after it. A batch
+// (beginBatch .. commitBatch: a whole training run) is one transaction too, and holds the write
+// lock from its start: a second writer is refused at once with a message saying so. A reader that
+// finds the hot journal of a killed writer rolls it back first (recoveredJournal() tells). A file
 // that is not SQLite, or SQLite that is not a place database (application_id, format key), is
 // refused with an error naming the file and is never written. A database built with other
 // settings (bins, colour spaces, mask) is refused by requireSettings with both settings named.
@@ -93,6 +96,18 @@ class PlaceDatabase {
   /// Throws std::invalid_argument when an image lacks a space of the settings or has other bins;
   /// nothing is stored then.
   int addImages(const std::string& place, const std::vector<TrainingImage>& images);
+  /// Replaces the images of `place` (created when new; its edges stay) by `images`, in one
+  /// transaction; returns the stored count, and the count it had before in *replaced.
+  int replaceImages(const std::string& place, const std::vector<TrainingImage>& images,
+                    int* replaced = nullptr);
+  /// Opens one transaction for every change until commitBatch(); a batch not committed (an
+  /// exception, a kill, the database destroyed) leaves the database as it was. Throws
+  /// std::runtime_error at once when another connection is writing.
+  void beginBatch();
+  void commitBatch();
+  /// True when open() found a write that a killed writer left unfinished and rolled it back.
+  bool recoveredJournal() const { return recovered_journal_; }
+
   /// Removes a place with its images and edges; false when there is no such place.
   bool removePlace(const std::string& place);
   /// Adds (or with connected = false removes) the undirected edge a - b; both places must exist.
@@ -120,6 +135,8 @@ class PlaceDatabase {
   sqlite3* db_ = nullptr;
   std::string path_;
   bool read_only_ = false;
+  bool in_batch_ = false;
+  bool recovered_journal_ = false;
   DatabaseSettings settings_;
 };
 

@@ -9,6 +9,8 @@
 //   (0.05), ~stable_spread_m (0.5), ~stable_min_weight (0.15), ~full_reinit_after (8),
 //   ~unknown_fraction (0.25), ~known_radius_m (1.5), ~use_odom (true), ~max_rate_hz (5),
 //   ~publish_tf (false), ~map_frame (map), ~odom_frame (odom), ~seed (1).
+//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
+//   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed: camera/image_raw (bgr8, rgb8, yuv422), odom (nav_msgs/Odometry; without it the
 //   training run's average step drives the particles).
 // Published: appearance_localizer/pose (PoseWithCovarianceStamped in ~map_frame),
@@ -43,7 +45,7 @@ class AppearanceLocalizerNode {
   ~AppearanceLocalizerNode();
 
  private:
-  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
   void onOdom(const nav_msgs::OdometryConstPtr& msg);
   bool onGlobalLocalization(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);

@@ -10,6 +10,8 @@
 //   pixel_over_count), ~observation_noise_floor_var, ~min_pixels_per_color, ~unknown_mahalanobis,
 //   ~edge_margin_px, ~lut_rebuild_sigma. ~field_file (string), ~map_frame (string, map),
 //   ~tf_timeout_s (double, 0..5).
+//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
+//   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed:
 //   camera/image_raw (sensor_msgs/Image: yuv422 | bgr8 | rgb8), camera/camera_info (optional; until
 //   one arrives a 208x160 image is taken to be the AIBO ERS-7 camera), tf map -> image frame at the
@@ -40,6 +42,8 @@
 #include "adaptive_perception/SavePrior.h"
 #include "adaptive_perception/color/color_estimator.h"
 #include "adaptive_perception/ros/camera_model_source.h"
+#include "adaptive_perception/ros/service_queue.h"
+#include "adaptive_perception/ros/stamp_order.h"
 
 namespace adaptive_perception {
 
@@ -49,7 +53,7 @@ class ColorEstimatorNode {
   ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh);
 
  private:
-  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg);
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSavePrior(SavePrior::Request& req, SavePrior::Response& res);
@@ -66,11 +70,14 @@ class ColorEstimatorNode {
   std::unique_ptr<color::ColorEstimator> estimator_;
   std::string map_frame_;
   double tf_timeout_s_ = 0.1;
+  ros_conv::StampOrder stamp_order_{"color_estimator", "image"};
 
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   ros::Subscriber image_sub_, info_sub_;
   ros::Publisher model_pub_, classified_pub_, classified_color_pub_;
+  // reset, save_prior and dynamic_reconfigure answer while an image waits for tf.
+  ros_conv::ServiceQueue service_queue_;
   ros::ServiceServer reset_srv_, save_srv_;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>

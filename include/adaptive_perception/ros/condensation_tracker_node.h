@@ -10,6 +10,8 @@
 //   ([x, y, w, h] pixels of the first image; empty = wait for a target), ~ellipse_search_radius_px
 //   (10), ~ellipse_update_rate (0.1), ~ellipse_update_threshold (0.65), ~ellipse_lost_threshold
 //   (0.35), ~max_rate_hz (30), ~publish_overlay (true), ~seed (1).
+//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
+//   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed: camera/image_raw (bgr8, rgb8, mono8, yuv422), condensation_tracker/target
 //   (geometry_msgs/PolygonStamped: the box of its points becomes the target on the next image).
 // Published: tracked_object (TrackedObject), condensation_tracker/segmentation (mono8, the best
@@ -41,7 +43,7 @@ class CondensationTrackerNode {
   ~CondensationTrackerNode();
 
  private:
-  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
   void onTarget(const geometry_msgs::PolygonStampedConstPtr& msg);
   bool onSetTarget(SetTarget::Request& req, SetTarget::Response& res);
   bool requestTarget(const cv::Rect2d& roi, std::string* why);
@@ -55,6 +57,7 @@ class CondensationTrackerNode {
   std::unique_ptr<tracking::EllipseTracker> ellipse_;
   std::optional<cv::Rect2d> pending_target_;  // started on the next image
   std::optional<cv::Rect2d> last_target_;     // started again when time goes backwards
+  cv::Size image_size_;                       // of the last image taken (empty before the first)
   bool publish_overlay_ = true;
   ros_conv::ImageGate gate_{"condensation_tracker", 30.0};
   ros::Subscriber image_sub_, target_sub_;

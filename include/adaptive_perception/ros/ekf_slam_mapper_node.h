@@ -15,6 +15,8 @@
 //   rejected (outliers).
 //   ~map_frame, ~odom_frame, ~base_frame, ~publish_tf (bool), ~transform_tolerance_s,
 //   ~tf_timeout_s, ~map_file (save_map's default path), ~path_max_poses.
+//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
+//   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed:
 //   lines (adaptive_perception/LineSegmentArray from line_extractor, in the laser frame),
 //   tf odom -> base_link and base_link -> the lines' frame at the scan stamp,
@@ -45,6 +47,8 @@
 
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/SaveMap.h"
+#include "adaptive_perception/ros/service_queue.h"
+#include "adaptive_perception/ros/stamp_order.h"
 #include "adaptive_perception/slam/line_ekf_slam.h"
 
 namespace adaptive_perception {
@@ -55,7 +59,7 @@ class EkfSlamMapperNode {
   EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh);
 
  private:
-  void onLines(const LineSegmentArrayConstPtr& msg);
+  void onLines(const ros::MessageEvent<const LineSegmentArray>& event);
   void onExternalPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool onSaveMap(SaveMap::Request& req, SaveMap::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
@@ -73,6 +77,7 @@ class EkfSlamMapperNode {
   double transform_tolerance_s_ = 0.1, tf_timeout_s_ = 0.2, external_gate_ = 0.999;
   int path_max_poses_ = 20000;
   ros::Time last_stamp_;
+  ros_conv::StampOrder stamp_order_{"ekf_slam_mapper", "lines"};
   nav_msgs::Path path_;
 
   long scans_ = 0, skipped_no_tf_ = 0, bad_segments_ = 0, resets_ = 0, external_used_ = 0,
@@ -85,6 +90,7 @@ class EkfSlamMapperNode {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   ros::Subscriber lines_sub_, external_sub_;
   ros::Publisher pose_pub_, map_pub_, path_pub_;
+  ros_conv::ServiceQueue service_queue_;  // save_map answers while a scan waits for tf
   ros::ServiceServer save_srv_;
   diagnostic_updater::Updater diagnostics_;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;

@@ -11,6 +11,8 @@
 //   ~use_filter (true), ~stay_probability (0.8), ~teleport_probability (0.02),
 //   ~likelihood_sharpness (4), ~max_rate_hz (5; images beyond it are dropped), ~train_batch (15),
 //   ~train_every_n (1).
+//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
+//   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed: camera/image_raw (bgr8, rgb8, yuv422); ground_truth/place (std_msgs/String; train
 //   mode labels each image with the latest one).
 // Published: place (adaptive_perception/PlaceRecognition, per image, over the last ~window
@@ -50,7 +52,7 @@ class HistogramPlaceRecognizerNode {
   ~HistogramPlaceRecognizerNode();
 
  private:
-  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
   void onLabel(const std_msgs::StringConstPtr& msg);
   bool onAddImages(AddPlaceImages::Request& req, AddPlaceImages::Response& res);
   bool onRemovePlace(RemovePlace::Request& req, RemovePlace::Response& res);

@@ -1,29 +1,37 @@
 #pragma once
-// The image intake the camera nodes share: notices image time going backwards (a looped bag), drops
-// images that come faster than a rate on their stamps, and converts the rest to bgr8, reporting an
-// unreadable image with a throttled error naming the node and the problem.
+// The image intake the camera nodes share: keeps the images in stamp order (ros_conv::StampOrder:
+// an older image is dropped, time really going back restarts), drops images that come faster than
+// a rate on their stamps, and converts the rest to bgr8, reporting an unreadable image with a
+// throttled error naming the node and the problem.
 #include <sensor_msgs/Image.h>
 
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "adaptive_perception/ros/stamp_order.h"
+
 namespace adaptive_perception::ros_conv {
 
 class ImageGate {
  public:
-  ImageGate(std::string node, double max_rate_hz)
-      : node_(std::move(node)), max_rate_hz_(max_rate_hz) {}
+  ImageGate(std::string node, double max_rate_hz, ros_conv::StampOrderConfig order = {})
+      : node_(node), max_rate_hz_(max_rate_hz), order_(std::move(node), "image", order) {}
 
-  enum class Result { kProcess, kTooSoon, kBadImage };
-  /// kProcess with *bgr filled, or why not. *time_went_back is set when this image is older than
-  /// the previous one (the caller restarts its filter; the image is still judged).
-  Result accept(const sensor_msgs::Image& msg, cv::Mat* bgr, bool* time_went_back);
+  enum class Result { kProcess, kTooSoon, kOutOfOrder, kBadImage };
+  /// kProcess with *bgr filled, or why not. `publisher` (the caller id) is named in warnings.
+  /// *time_went_back is set when time really went back (StampOrder's kRestart: the caller restarts
+  /// its filter; the image is still judged); an image only a little older than the last is
+  /// kOutOfOrder.
+  Result accept(const sensor_msgs::Image& msg, const std::string& publisher, cv::Mat* bgr,
+                bool* time_went_back);
   long badImages() const { return bad_images_; }
+  long outOfOrder() const { return order_.dropped(); }
 
  private:
   std::string node_;
   double max_rate_hz_;
-  ros::Time last_stamp_, last_processed_;
+  StampOrder order_;
+  ros::Time last_processed_;
   long bad_images_ = 0;
 };
 

@@ -5,6 +5,8 @@
 //   ~range_noise_std_m, ~bearing_noise_std_rad, ~breakpoint_lambda_rad, ~max_gap_m,
 //   ~split_threshold_m, ~merge_collinear, ~min_points, ~min_length_m, ~split_method (recursive |
 //   hull_tree).
+//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
+//   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed: scan (sensor_msgs/LaserScan).
 // Published: lines (adaptive_perception/LineSegmentArray, the scan's stamp and frame),
 //   lines/markers (visualization_msgs/MarkerArray, only computed when subscribed), /diagnostics.
@@ -20,10 +22,12 @@
 
 #include <memory>
 #include <mutex>
+#include <string>
 
 #include "adaptive_perception/LineExtractorConfig.h"
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/laser/line_extraction.h"
+#include "adaptive_perception/ros/stamp_order.h"
 
 namespace adaptive_perception {
 
@@ -41,10 +45,11 @@ class LineExtractorNode {
   LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh);
 
  private:
-  void onScan(const sensor_msgs::LaserScanConstPtr& msg);
+  void onScan(const ros::MessageEvent<const sensor_msgs::LaserScan>& event);
   void onReconfigure(adaptive_perception::LineExtractorConfig& c, uint32_t level);
   std::mutex mutex_;
   laser::LineExtractor extractor_;
+  std::string split_method_;  // the split_method in force, as named
   ros::Subscriber scan_sub_;
   ros::Publisher lines_pub_, markers_pub_;
   boost::recursive_mutex reconfigure_mutex_;
@@ -53,7 +58,7 @@ class LineExtractorNode {
   diagnostic_updater::Updater diagnostics_;
   double min_freq_ = 1.0, max_freq_ = 1000.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
-  ros::Time last_stamp_;
+  ros_conv::StampOrder stamp_order_{"line_extractor", "scan"};
   long scans_ = 0, bad_scans_ = 0;
 };
 

@@ -11,6 +11,7 @@
 #include "adaptive_perception/color/color_model.h"
 #include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/math/se2.h"
+#include "adaptive_perception/ros/stamp_order.h"
 
 namespace adaptive_perception::ros_params {
 
@@ -47,8 +48,12 @@ T getInRange(const ros::NodeHandle& nh, const std::string& name, const T& def, c
 std::vector<double> getNumbers(const ros::NodeHandle& nh, const std::string& name,
                                const std::vector<double>& def);
 
-/// A frame id or topic: must be non-empty.
+/// A file name or topic: must be non-empty.
 std::string getName(const ros::NodeHandle& nh, const std::string& name, const std::string& def);
+
+/// A tf frame id, checked at start-up as tf2 would check it later: non-empty, no leading '/', and
+/// only letters, digits and `_ - . /` (no spaces).
+std::string getFrameId(const ros::NodeHandle& nh, const std::string& name, const std::string& def);
 
 /// A file in the package's share directory (e.g. "config/field_4legged.yaml") when `value` is
 /// relative and not found from the current directory; `value` itself otherwise.
@@ -69,5 +74,8 @@ void loadMotionModel(const ros::NodeHandle& pnh, localization::MotionModelConfig
 /// throws ParamError on a wrong length or a non-positive deviation.
 bool loadInitialPose(const ros::NodeHandle& pnh, const std::vector<double>& default_std,
                      math::SE2* pose, Eigen::Matrix3d* cov);
+
+/// ~time_back_restart_s (ros_conv::StampOrderConfig: how far back a stamp must go to restart).
+ros_conv::StampOrderConfig loadStampOrder(const ros::NodeHandle& pnh);
 
 }  // namespace adaptive_perception::ros_params

@@ -5,8 +5,9 @@
 //
 // Parameters (private; defaults and ranges in config/rbpf_localizer.yaml):
 //   ~particles (int), ~threads (int, 0 = all cores), ~seed (int).
-//   ~pixel_stride (int, px), ~outlier_probability, ~exponent: the image likelihood (eq. 16).
-//   ~min_ess_fraction, ~resample_ess_fraction: adaptive tempering and resampling thresholds.
+//   ~pixel_stride (int, px of a 208-wide image: scaled with the camera's width),
+//   ~outlier_probability, ~exponent (scaled by the grid's pixel count): the image likelihood (eq.
+//   16). ~min_ess_fraction, ~resample_ess_fraction: adaptive tempering and resampling thresholds.
 //   ~global_pool_size, ~global_pixel_stride: the global search from the first image.
 //   ~recovery_alpha_slow, ~recovery_alpha_fast, ~recovery_gain_per_nat, ~recovery_max_fraction:
 //   augmented-MCL injection of uniform particles.
@@ -17,6 +18,8 @@
 //   ~initial_pose_std ([x_m, y_m, yaw_rad]).
 //   ~map_frame, ~odom_frame, ~base_frame, ~publish_tf (bool), ~transform_tolerance_s,
 //   ~tf_timeout_s.
+//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
+//   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed:
 //   camera/image_raw (sensor_msgs/Image: yuv422 | bgr8 | rgb8, 208x160 or camera/camera_info's
 //   size), camera/camera_info (optional), initialpose (geometry_msgs/PoseWithCovarianceStamped,
@@ -48,6 +51,8 @@
 #include "adaptive_perception/color/color_lut.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
 #include "adaptive_perception/ros/camera_model_source.h"
+#include "adaptive_perception/ros/service_queue.h"
+#include "adaptive_perception/ros/stamp_order.h"
 
 namespace adaptive_perception {
 
@@ -58,7 +63,7 @@ class RbpfLocalizerNode {
   RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
 
  private:
-  void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg);
   void onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool onGlobalLocalization(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
@@ -83,6 +88,7 @@ class RbpfLocalizerNode {
   double transform_tolerance_s_ = 0.1, tf_timeout_s_ = 0.1;
   std::optional<Eigen::Isometry3d> last_odom_;
   ros::Time last_stamp_;
+  ros_conv::StampOrder stamp_order_{"rbpf_localizer", "image"};
   color::ColorLutCache lut_;
 
   tf2_ros::Buffer tf_buffer_;
@@ -90,6 +96,7 @@ class RbpfLocalizerNode {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   ros::Subscriber image_sub_, info_sub_, initial_pose_sub_;
   ros::Publisher pose_pub_, particles_pub_, model_pub_, classified_pub_, classified_color_pub_;
+  ros_conv::ServiceQueue service_queue_;  // global_localization answers while a step waits
   ros::ServiceServer global_srv_;
   diagnostic_updater::Updater diagnostics_;
   double min_freq_ = 0.5, max_freq_ = 100.0;

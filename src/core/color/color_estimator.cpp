@@ -1,5 +1,6 @@
 #include "adaptive_perception/color/color_estimator.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
@@ -9,7 +10,7 @@ namespace adaptive_perception::color {
 void ColorEstimatorConfig::validate() const {
   model.validate();
   switching.validate();
-  if (!(lut_rebuild_sigma >= 0.0)) throw std::invalid_argument("lut_rebuild_sigma = " + std::to_string(lut_rebuild_sigma) + " (allowed: >= 0)");
+  if (!(lut_rebuild_sigma >= 0.0 && std::isfinite(lut_rebuild_sigma))) throw std::invalid_argument("lut_rebuild_sigma = " + std::to_string(lut_rebuild_sigma) + " (allowed: finite, >= 0)");
   if (edge_margin_px < 0 || edge_margin_px > 20) throw std::invalid_argument("edge_margin_px = " + std::to_string(edge_margin_px) + " (allowed: 0..20)");
   if (withheld_class < -1 || withheld_class > 5) throw std::invalid_argument("withheld_class = " + std::to_string(withheld_class) + " (allowed: -1..5)");
 }

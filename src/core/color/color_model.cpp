@@ -56,8 +56,9 @@ void ColorModelConfig::validate() const {
          " (allowed: 0..10000)");
   if (min_pixels_per_color < 1)
     fail("min_pixels_per_color = " + std::to_string(min_pixels_per_color) + " (allowed: >= 1)");
-  if (!(unknown_mahalanobis > 0.0))
-    fail("unknown_mahalanobis = " + std::to_string(unknown_mahalanobis) + " (allowed: > 0)");
+  if (!(unknown_mahalanobis > 0.0 && std::isfinite(unknown_mahalanobis)))
+    fail("unknown_mahalanobis = " + std::to_string(unknown_mahalanobis) +
+         " (allowed: finite, > 0)");
 }
 
 double observationVariance(const ColorModelConfig& config, const Eigen::Vector3d& nu, int count,

@@ -16,7 +16,7 @@ void SwitchingFilterConfig::validate() const {
   if (!(mode_stay_probability > 0.0 && mode_stay_probability <= 1.0))
     throw std::invalid_argument("mode_stay_probability = " + std::to_string(mode_stay_probability) +
                                 " (allowed: 0 < p <= 1)");
-  if (!(imm_prior_pull_per_s >= 0.0))
+  if (!(imm_prior_pull_per_s >= 0.0 && std::isfinite(imm_prior_pull_per_s)))
     throw std::invalid_argument("imm_prior_pull_per_s = " + std::to_string(imm_prior_pull_per_s) +
                                 " (allowed: >= 0)");
 }

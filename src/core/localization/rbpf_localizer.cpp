@@ -28,6 +28,9 @@ std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
 }  // namespace
 
 void ImageLikelihoodConfig::validate() const {
+  if (reference_width_px < 16 || reference_width_px > 10000)
+    throw std::invalid_argument("reference_width_px = " + std::to_string(reference_width_px) +
+                                " (allowed: 16..10000)");
   if (pixel_stride < 1 || pixel_stride > 64)
     throw std::invalid_argument("pixel_stride = " + std::to_string(pixel_stride) +
                                 " (allowed: 1..64)");
@@ -136,6 +139,14 @@ void RbpfConfig::validate() const {
 }
 
 // A regular grid of every s-th pixel in x and y, row-major; *cols is its width.
+namespace {
+/// The number of grid pixels pixelGrid gives for an image of w x h at stride s.
+double gridPixelCount(int w, int h, int s) {
+  auto along = [s](int n) { return n > s / 2 ? (n - 1 - s / 2) / s + 1 : 0; };
+  return static_cast<double>(along(w)) * along(h);
+}
+}  // namespace
+
 std::vector<world::PixelCoord> pixelGrid(const world::PinholeCamera& camera, int s, int* cols) {
   std::vector<world::PixelCoord> pixels;
   *cols = 0;
@@ -200,16 +211,34 @@ std::vector<NeighbourOffset> neighbourOffsets(const world::PinholeCamera& camera
   return out;
 }
 
+RbpfConfig RbpfConfig::forCamera(const world::PinholeCamera& camera) const {
+  RbpfConfig c = *this;
+  const int ref_w = likelihood.reference_width_px;
+  if (camera.width_px == ref_w || ref_w <= 0) return c;
+  const double scale = static_cast<double>(camera.width_px) / ref_w;
+  auto scaled = [scale](int stride) {
+    return std::max(1, static_cast<int>(std::lround(stride * scale)));
+  };
+  c.likelihood.pixel_stride = scaled(likelihood.pixel_stride);
+  c.global_pixel_stride = scaled(global_pixel_stride);
+  // The reference: this camera's aspect at the reference width, sampled at the given stride.
+  const int ref_h = std::max(1, static_cast<int>(std::lround(camera.height_px / scale)));
+  const double ref_count = gridPixelCount(ref_w, ref_h, likelihood.pixel_stride);
+  const double count = gridPixelCount(camera.width_px, camera.height_px, c.likelihood.pixel_stride);
+  if (ref_count > 0 && count > 0) c.likelihood.exponent = likelihood.exponent * ref_count / count;
+  return c;
+}
+
 RbpfLocalizer::RbpfLocalizer(const world::FieldMap& map, const world::PinholeCamera& camera,
                              const std::vector<color::LightingPrior>& priors,
                              const RbpfConfig& config)
     : map_(map),
       renderer_(map, camera),
       priors_(priors),
-      config_(config),
+      config_(config.forCamera(camera)),
       rng_(config.seed),
       mirror_lighting_(priors, config.model, config.switching) {
-  config_.validate();
+  config.validate();
   pixels_ = pixelGrid(camera, config_.likelihood.pixel_stride, &grid_cols_);
   initUniform();
 }

@@ -82,17 +82,24 @@ class Statement {
   sqlite3_stmt* stmt_ = nullptr;
 };
 
-// Rolls back unless committed.
+// Rolls back unless committed. Inside a batch (PlaceDatabase::beginBatch: a transaction already
+// open) it is a savepoint, so the change still succeeds or fails as a whole and the batch commits
+// everything at once.
 class Transaction {
  public:
-  Transaction(sqlite3* db, const std::string& path) : db_(db), path_(path) {
-    run("BEGIN IMMEDIATE");
+  Transaction(sqlite3* db, const std::string& path)
+      : db_(db), path_(path), nested_(sqlite3_get_autocommit(db) == 0) {
+    run(nested_ ? "SAVEPOINT change" : "BEGIN IMMEDIATE");
   }
   ~Transaction() {
-    if (!done_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    if (done_) return;
+    if (nested_)
+      sqlite3_exec(db_, "ROLLBACK TO change; RELEASE change", nullptr, nullptr, nullptr);
+    else
+      sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
   }
   void commit() {
-    run("COMMIT");
+    run(nested_ ? "RELEASE change" : "COMMIT");
     done_ = true;
   }
 
@@ -107,6 +114,7 @@ class Transaction {
   }
   sqlite3* db_;
   std::string path_;
+  bool nested_;
   bool done_ = false;
 };
 
@@ -152,23 +160,82 @@ PlaceDatabase::PlaceDatabase(sqlite3* db, std::string path, bool read_only)
     : db_(db), path_(std::move(path)), read_only_(read_only) {}
 
 PlaceDatabase::PlaceDatabase(PlaceDatabase&& o) noexcept
-    : db_(o.db_), path_(std::move(o.path_)), read_only_(o.read_only_), settings_(o.settings_) {
+    : db_(o.db_),
+      path_(std::move(o.path_)),
+      read_only_(o.read_only_),
+      in_batch_(o.in_batch_),
+      recovered_journal_(o.recovered_journal_),
+      settings_(o.settings_) {
   o.db_ = nullptr;
+  o.in_batch_ = false;
 }
 
 PlaceDatabase& PlaceDatabase::operator=(PlaceDatabase&& o) noexcept {
   if (this != &o) {
+    if (db_ && in_batch_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     sqlite3_close(db_);
     db_ = o.db_;
     o.db_ = nullptr;
     path_ = std::move(o.path_);
     read_only_ = o.read_only_;
+    in_batch_ = o.in_batch_;
+    o.in_batch_ = false;
+    recovered_journal_ = o.recovered_journal_;
     settings_ = o.settings_;
   }
   return *this;
 }
 
-PlaceDatabase::~PlaceDatabase() { sqlite3_close(db_); }
+PlaceDatabase::~PlaceDatabase() {
+  if (db_ && in_batch_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+  sqlite3_close(db_);
+}
+
+void PlaceDatabase::beginBatch() {
+  if (read_only_) throw std::runtime_error(path_ + ": opened read-only: cannot write");
+  if (in_batch_) throw std::logic_error(path_ + ": beginBatch: a batch is already open");
+  // No wait for another writer: it may hold the database for a whole training run.
+  sqlite3_busy_timeout(db_, 0);
+  char* err = nullptr;
+  const int rc = sqlite3_exec(db_, "BEGIN IMMEDIATE", nullptr, nullptr, &err);
+  sqlite3_free(err);
+  sqlite3_busy_timeout(db_, 5000);
+  if ((rc & 0xff) == SQLITE_BUSY)
+    throw std::runtime_error(path_ +
+                             ": another process is writing to this place database (a "
+                             "train_places run or a node's add_images); try again when it has "
+                             "finished");
+  if (rc != SQLITE_OK)
+    throw std::runtime_error(path_ + ": cannot start writing: " + sqlite3_errmsg(db_));
+  in_batch_ = true;
+}
+
+void PlaceDatabase::commitBatch() {
+  if (!in_batch_) throw std::logic_error(path_ + ": commitBatch: no batch is open");
+  exec("COMMIT");
+  in_batch_ = false;
+}
+
+int PlaceDatabase::replaceImages(const std::string& place, const std::vector<TrainingImage>& images,
+                                 int* replaced) {
+  Transaction t(db_, path_);
+  int before = 0;
+  const int pid = placeId(place, false);
+  if (pid >= 0) {
+    const std::string in_place =
+        " WHERE image_id IN (SELECT id FROM images WHERE place_id = " + std::to_string(pid) + ");";
+    Statement count(db_, "SELECT COUNT(*) FROM images WHERE place_id = ?", path_);
+    count.bind(1, static_cast<long long>(pid));
+    if (count.step()) before = static_cast<int>(count.integer(0));
+    exec("DELETE FROM features" + in_place + "DELETE FROM poses" + in_place +
+         "DELETE FROM structure" + in_place + "DELETE FROM histograms" + in_place +
+         "DELETE FROM images WHERE place_id = " + std::to_string(pid) + ";");
+  }
+  const int added = addImages(place, images);
+  t.commit();
+  if (replaced) *replaced = before;
+  return added;
+}
 
 void PlaceDatabase::exec(const std::string& sql) const {
   char* err = nullptr;
@@ -230,8 +297,30 @@ PlaceDatabase PlaceDatabase::open(const std::string& path, bool read_only) {
   if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
   if (!std::filesystem::is_regular_file(path))
     throw std::runtime_error(path + ": not a regular file");
+  // A writer killed mid-transaction leaves a hot rollback journal beside the file, which only a
+  // read-write connection may roll back (a read-only one gets "attempt to write a readonly
+  // database"). A reader therefore lets a short read-write connection do it first.
+  bool recovered = false;
+  std::error_code ec;
+  const std::string journal = path + "-journal";
+  if (read_only && std::filesystem::exists(journal, ec) &&
+      std::filesystem::file_size(journal, ec) > 0) {
+    sqlite3* rw = nullptr;
+    try {
+      rw = openRaw(path, SQLITE_OPEN_READWRITE);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(
+          path + ": a write to it was interrupted (the hot journal " + journal +
+          " remains) and it cannot be opened for writing to roll that back: " + e.what());
+    }
+    // The first read of a connection rolls a hot journal back.
+    const int rc = sqlite3_exec(rw, "PRAGMA application_id", nullptr, nullptr, nullptr);
+    sqlite3_close(rw);
+    recovered = rc == SQLITE_OK && !std::filesystem::exists(journal, ec);
+  }
   PlaceDatabase db(openRaw(path, read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE), path,
                    read_only);
+  db.recovered_journal_ = recovered;
   long long app_id = 0, version = 0;
   try {
     Statement q(db.db_, "PRAGMA application_id", path);

@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <array>
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -59,17 +61,25 @@ void writeLineMapYaml(const std::string& path, const LineEkfSlam& slam) {
     l["pieces"] = pieces(f.info);
     root["fixed_landmarks"].push_back(l);
   }
+  std::string text = "# line-landmark map written by adaptive_perception (see slam/map_io.h)\n" +
+                     YAML::Dump(root) + "\n";
+  // The covariance is most of the file (n^2 values for 3 + 2 * landmarks states): written
+  // directly, one row a line, each value in its shortest form that reads back exactly
+  // (std::to_chars), rather than through n^2 yaml-cpp nodes.
   const Eigen::MatrixXd& p = slam.covariance();
-  YAML::Node data(YAML::NodeType::Sequence);
-  for (int r = 0; r < p.rows(); ++r)
-    for (int c = 0; c < p.cols(); ++c) data.push_back(p(r, c));
-  data.SetStyle(YAML::EmitterStyle::Flow);
-  root["state_covariance"]["dim"] = static_cast<int>(p.rows());
-  root["state_covariance"]["data"] = data;
-
-  io::writeTextFileAtomically(
-      path, "# line-landmark map written by adaptive_perception (see slam/map_io.h)\n" +
-                YAML::Dump(root) + "\n");
+  text += "state_covariance:\n  dim: " + std::to_string(p.rows()) + "\n  data: [";
+  text.reserve(text.size() + static_cast<std::size_t>(p.size()) * 12);
+  std::array<char, 32> buf{};
+  for (int r = 0; r < p.rows(); ++r) {
+    if (r > 0) text += ",\n    ";
+    for (int c = 0; c < p.cols(); ++c) {
+      if (c > 0) text += ", ";
+      const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), p(r, c));
+      text.append(buf.data(), res.ptr);
+    }
+  }
+  text += "]\n";
+  io::writeTextFileAtomically(path, text);
 }
 
 }  // namespace adaptive_perception::slam

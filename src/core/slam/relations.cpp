@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "adaptive_perception/io/atomic_file.h"
+
 namespace adaptive_perception::slam {
 
 std::vector<Relation> readRelations(const std::string& path) {
@@ -45,17 +47,12 @@ std::vector<Relation> readRelations(const std::string& path) {
 }
 
 void writeRelations(const std::string& path, const std::vector<Relation>& relations) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error(tmp + ": cannot write");
-    out << std::setprecision(12);
-    for (const auto& r : relations)
-      out << r.t1_s << " " << r.t2_s << " " << r.delta.x_m << " " << r.delta.y_m << " 0 0 0 "
-          << r.delta.yaw_rad << "\n";
-    if (!out) throw std::runtime_error(tmp + ": write failed");
-  }
-  std::filesystem::rename(tmp, path);
+  std::ostringstream out;
+  out << std::setprecision(12);
+  for (const auto& r : relations)
+    out << r.t1_s << " " << r.t2_s << " " << r.delta.x_m << " " << r.delta.y_m << " 0 0 0 "
+        << r.delta.yaw_rad << "\n";
+  io::writeTextFileAtomically(path, out.str());
 }
 
 namespace {

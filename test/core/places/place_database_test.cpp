@@ -253,6 +253,98 @@ TEST_F(PlaceDatabaseTest, KilledWriterLeavesWholeTransactions) {
   EXPECT_EQ(db.imageCount(), n + 1);
 }
 
+// A writer that dies inside a batch leaves a hot journal; a READ-ONLY open rolls it back, says so,
+// and sees the database as it was before the batch (none of the batch's places or edges).
+TEST_F(PlaceDatabaseTest, AReaderRecoversTheHotJournalOfAWriterKilledInABatch) {
+  const std::string path = file("p.sqlite");
+  {
+    PlaceDatabase db = PlaceDatabase::create(path, settings_);
+    db.addImages("kept", images(0, 4));
+  }
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    try {
+      PlaceDatabase db = PlaceDatabase::open(path);
+      db.beginBatch();
+      // Enough to spill SQLite's 2 MB page cache: the file itself then holds uncommitted pages
+      // and the journal their originals (a journal with nothing to undo would not be hot).
+      for (int i = 0; i < 200; ++i) db.addImages("lost_" + std::to_string(i), images(i, 100));
+      db.setAdjacent("lost_0", "lost_1");
+      ::_exit(0);  // dies without committing, as a kill would
+    } catch (...) {
+    }
+    ::_exit(1);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  ASSERT_TRUE(fs::exists(path + "-journal")) << "no hot journal: the case did not happen";
+
+  const PlaceDatabase reader = PlaceDatabase::open(path, true);
+  EXPECT_TRUE(reader.recoveredJournal());
+  EXPECT_EQ(reader.imageCount(), 4);
+  ASSERT_EQ(reader.places().size(), 1u);
+  EXPECT_EQ(reader.places()[0].name, "kept");
+  EXPECT_TRUE(reader.edges().empty());
+  EXPECT_FALSE(PlaceDatabase::open(path, true).recoveredJournal());  // nothing left to recover
+}
+
+TEST_F(PlaceDatabaseTest, ABatchCommitsAsAWholeAndASecondWriterIsRefusedAtOnce) {
+  const std::string path = file("p.sqlite");
+  PlaceDatabase first = PlaceDatabase::create(path, settings_);
+  first.beginBatch();
+  first.addImages("a", images(0, 3));
+  first.addImages("b", images(3, 3));
+  first.setAdjacent("a", "b");
+  PlaceDatabase second = PlaceDatabase::open(path);
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    second.beginBatch();
+    FAIL() << "a second writer was let in";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("another process is writing"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0)
+      << "the refusal waited";
+  EXPECT_EQ(PlaceDatabase::open(path, true).imageCount(), 0) << "readers see the batch early";
+  first.commitBatch();
+  EXPECT_EQ(PlaceDatabase::open(path, true).imageCount(), 6);
+  EXPECT_EQ(PlaceDatabase::open(path, true).edges().size(), 1u);
+  second.beginBatch();  // free now
+  second.addImages("c", images(6, 1));
+  second.commitBatch();
+  EXPECT_EQ(PlaceDatabase::open(path, true).imageCount(), 7);
+}
+
+TEST_F(PlaceDatabaseTest, ABatchNotCommittedLeavesNothing) {
+  const std::string path = file("p.sqlite");
+  {
+    PlaceDatabase db = PlaceDatabase::create(path, settings_);
+    db.beginBatch();
+    db.addImages("a", images(0, 3));
+  }  // destroyed without commitBatch (an exception in a training run)
+  EXPECT_EQ(PlaceDatabase::open(path, true).imageCount(), 0);
+}
+
+TEST_F(PlaceDatabaseTest, ReplaceImagesReplacesAPlacesImagesAndKeepsItsEdges) {
+  const std::string path = file("p.sqlite");
+  PlaceDatabase db = PlaceDatabase::create(path, settings_);
+  db.addImages("a", images(0, 5));
+  db.addImages("b", images(5, 2));
+  db.setAdjacent("a", "b");
+  int replaced = -1;
+  EXPECT_EQ(db.replaceImages("a", images(10, 3), &replaced), 3);
+  EXPECT_EQ(replaced, 5);
+  EXPECT_EQ(db.imageCount(), 5);  // 3 of a + 2 of b, not 10
+  EXPECT_EQ(db.edges().size(), 1u);
+  const PlaceIndex index = db.loadIndex();
+  for (int s : settings_.spaces) EXPECT_EQ(index.totalImages(s), 5);
+  EXPECT_EQ(db.replaceImages("new", images(0, 1), &replaced), 1);
+  EXPECT_EQ(replaced, 0);
+}
+
 TEST_F(PlaceDatabaseTest, SiftFeaturesAndPosesRoundTrip) {
   std::vector<TrainingImage> imgs = images(0, 3);
   cv::Mat f(5, 128, CV_32F);
