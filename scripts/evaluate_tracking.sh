@@ -2,7 +2,8 @@
 # The tracking experiments of papers/001 section 3.4 in the tracking simulator, against OpenCV's
 # CamShift: for each scenario (circles, lambertian_rectangle, distractor) the dynamics are learnt
 # from a training sequence (seed 100, learn_tracking_dynamics), then SEEDS test sequences are run
-# with the CONDENSATION tracker (default and learnt dynamics) and the elliptical head tracker.
+# with the paper's CONDENSATION tracker (default and learnt dynamics), the elliptical head tracker
+# and the box tracker (evaluate_tracking's default). Real sequences: evaluate_tracking_benchmark.sh.
 # With Debian's opencv-doc installed, the head tracker and CONDENSATION also run on its face video
 # (Megamind.avi, from frame 110; no ground truth there: lost frames and speed only).
 # Writes results/tracking/<scenario>_<seed>_<tracker>/ (frames.csv, iou.png, strip.png) and
@@ -45,15 +46,16 @@ for S in circles lambertian_rectangle distractor; do
   [ "$S" = circles ] && SPACE=rgb
   for N in $SEEDS; do
     "$BIN/simulate_tracking" --scenario "$S" --seed "$N" --output "$TMP/test.bag" --overwrite > /dev/null
-    run "$S" "$N" condensation --bag "$TMP/test.bag" --color_space "$SPACE"
-    run "$S" "$N" condensation_learnt --bag "$TMP/test.bag" --color_space "$SPACE" --dynamics "$OUT/dynamics_$S.yaml"
-    run "$S" "$N" ellipse --bag "$TMP/test.bag" --mode ellipse --color_space "$SPACE"
+    run "$S" "$N" condensation --bag "$TMP/test.bag" --mode condensation --peers camshift --color_space "$SPACE"
+    run "$S" "$N" condensation_learnt --bag "$TMP/test.bag" --mode condensation --peers camshift --color_space "$SPACE" --dynamics "$OUT/dynamics_$S.yaml"
+    run "$S" "$N" ellipse --bag "$TMP/test.bag" --mode ellipse --peers camshift --color_space "$SPACE"
+    run "$S" "$N" box --bag "$TMP/test.bag" --mode box --peers camshift
     rm -f "$TMP/test.bag"
   done
 done
 FACE=/usr/share/doc/opencv-doc/examples/data/Megamind.avi
 if [ -f "$FACE" ]; then
-  run megamind 0 ellipse --video "$FACE" --start_frame 110 --init 405,110,150,215 --mode ellipse
-  run megamind 0 condensation --video "$FACE" --start_frame 110 --init 405,110,150,215
+  run megamind 0 ellipse --video "$FACE" --start_frame 110 --init 405,110,150,215 --mode ellipse --peers camshift
+  run megamind 0 condensation --video "$FACE" --start_frame 110 --init 405,110,150,215 --mode condensation --peers camshift
 fi
 echo "evaluate_tracking.sh: table in $csv"

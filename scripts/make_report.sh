@@ -110,7 +110,7 @@ rm -f "$TMP"/rooms_*.bag
 # Tracking (papers/001 section 3): the three synthetic experiments, seed 1, against CamShift.
 for s in circles lambertian_rectangle distractor; do
   "$BIN/simulate_tracking" --scenario "$s" --seed 1 --output "$TMP/$s.bag" --overwrite > /dev/null
-  part "tracking_$s" "$BIN/evaluate_tracking" --bag "$TMP/$s.bag" --output "$OUT/tracking_$s"
+  part "tracking_$s" "$BIN/evaluate_tracking" --bag "$TMP/$s.bag" --mode condensation --peers camshift --output "$OUT/tracking_$s"
   rm -f "$TMP/$s.bag"
 done
 

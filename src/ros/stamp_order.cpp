@@ -1,5 +1,7 @@
 #include "adaptive_perception/ros/stamp_order.h"
 
+#include <algorithm>
+
 namespace adaptive_perception::ros_conv {
 
 StampOrder::Verdict StampOrder::check(const ros::Time& stamp, const std::string& publisher) {
@@ -19,6 +21,9 @@ StampOrder::Verdict StampOrder::check(const ros::Time& stamp, const std::string&
         clock_went_back ? "the clock jumped back: bag looped?" : "more than time_back_restart_s");
     last_stamp_ = stamp;
     last_publisher_ = publisher;
+    // The restart answers the clock's jump too: when /clock arrives after this message (another
+    // connection), the jump it shows must not restart the next one again.
+    last_clock_ = std::min(clock, stamp);
     ++restarts_;
     return Verdict::kRestart;
   }

@@ -7,11 +7,15 @@
 // The map: n distinct lines around the robot (no two compatible), built once per size; each
 // iteration predicts a small motion and updates with 8 of them (noise-free observations of the
 // current estimate, so association always succeeds and the state stays the same size).
+// BM_MapSnapshot and BM_MapSave: what ~save_map costs (the copy under the node's lock, the write).
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "adaptive_perception/slam/line_ekf_slam.h"
+#include "adaptive_perception/slam/map_io.h"
 
 using namespace adaptive_perception;
 
@@ -67,6 +71,30 @@ BENCHMARK(BM_ScanUpdate)
     ->Arg(400)
     ->Unit(benchmark::kMicrosecond)
     ->Complexity(benchmark::oNSquared);
+
+// ekf_slam_mapper's ~save_map: the copy taken under the node's lock (all the node waits for), and
+// the file written from it on the service thread (bytes: the file's size).
+void BM_MapSnapshot(benchmark::State& state) {
+  const slam::LineEkfSlam ekf = makeMap(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const slam::LineEkfSlam copy(ekf);
+    benchmark::DoNotOptimize(copy.covariance().data());
+  }
+  state.counters["landmarks"] = ekf.numLandmarks();
+}
+BENCHMARK(BM_MapSnapshot)->Arg(120)->Arg(480)->Unit(benchmark::kMillisecond);
+
+void BM_MapSave(benchmark::State& state) {
+  const slam::LineEkfSlam ekf = makeMap(static_cast<int>(state.range(0)));
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("bench_ekf_slam_map_" + std::to_string(::getpid()) + ".yaml"))
+                               .string();
+  for (auto _ : state) slam::writeLineMapYaml(path, ekf);
+  state.counters["landmarks"] = ekf.numLandmarks();
+  state.counters["bytes"] = static_cast<double>(std::filesystem::file_size(path));
+  std::filesystem::remove(path);
+}
+BENCHMARK(BM_MapSave)->Arg(120)->Arg(480)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -1,35 +1,56 @@
-// evaluate_tracking: runs the tracker of papers/001 section 3 over a sequence and, side by side on
-// the same frames, OpenCV's CamShift (the baseline most users would pick), and scores both
-// against the ground truth.
+// evaluate_tracking: runs the project's tracker over a sequence and, side by side on the same
+// frames from the same first box, the trackers a user would pick instead: OpenCV's CSRT and KCF
+// (opencv-contrib) and CamShift; scores all of them by the benchmarks' one-pass evaluation.
 //
-//   evaluate_tracking (--bag FILE | --video FILE [--ground_truth CSV]) [--init x,y,w,h]
-//       [--mode condensation|ellipse] [--samples 100] [--color_space rgb|opponent] [--bins 16]
-//       [--dynamics FILE.yaml] [--seed 1] [--start_frame 0] [--max_frames N] [--output DIR]
-//       [--video_out]
+//   evaluate_tracking (--sequence DIR | --bag FILE | --video FILE [--ground_truth CSV])
+//       [--init x,y,w,h] [--mode box|condensation|ellipse] [--peers csrt,kcf,camshift|none]
+//       [--samples N] [--color_space rgb|opponent] [--bins 16] [--dynamics FILE.yaml] [--seed 1]
+//       [--start_frame 0] [--max_frames N] [--output DIR] [--video_out]
 //
-// A video's ground truth defaults to the CSV beside it (same name, .csv) when there is one.
-// The target starts at --start_frame from --init, else from that frame's ground truth. Without any
-// ground truth (a plain video) the IoU keys print nan; speed and lost frames are still measured.
-// Per frame: IoU of the tracker's box (condensation: the contour's box; ellipse: the ellipse's box)
-// and of CamShift's (hue histogram of the initial box, pixels with saturation > 60 and value
-// in 32..255, as in OpenCV's sample) with the truth; a frame succeeds when IoU >= 0.5. The first
-// frame (the initialisation) is not scored. CamShift's time is not in the tracker's. Writes
-// DIR/frames.csv (frame, iou, camshift_iou, lost, confidence), DIR/iou.png (IoU over time, both
-// trackers), DIR/strip.png (six frames: truth white, tracker green, CamShift magenta) and, with
-// --video_out, DIR/overlay.avi. Last line: `evaluate_tracking: mode=.. mean_iou=.. success_rate=..
-// lost_frames=.. fps=.. camshift_mean_iou=.. camshift_success_rate=.. camshift_fps=.. frames=..`.
+// --sequence reads an OTB or VOT folder as the benchmarks ship it (io/benchmark_sequence.h); what
+// it skipped or cut is printed as `evaluate_tracking: note: ...`, and an image that cannot be read
+// is skipped with a note. A video's ground truth defaults to the CSV beside it (same name, .csv).
+// The trackers start at --start_frame from --init, else from that frame's true box, and are never
+// re-initialised. Modes: box (the default: CONDENSATION over the target's region weighted by its
+// colours against the background's and a grey template, tracking/box_condensation_tracker.h),
+// condensation (the paper's: over the colour distribution, with the affine snake), ellipse (the
+// head tracker). --samples, --color_space, --bins and --dynamics apply to condensation and ellipse.
+//
+// Scores (tracking/benchmark_metrics.h, OTB one-pass evaluation): every frame with a true box,
+// the first included (its box is the start), IoU with the tracker's box: success rate (IoU >= 0.5),
+// success AUC (21 thresholds), precision at 20 px centre error; a box is scored whatever the
+// tracker says of it (lost frames are counted apart). Each tracker's time is its own; fps counts
+// the frames it tracked (the first included) over its time, reading and drawing excluded.
+// CSRT runs with OpenCV's defaults; KCF too, but for detect_thresh = 0 (as its authors' KCF, which
+// never stops on a weak response). CamShift is set up as OpenCV's camshiftdemo: a hue-saturation
+// histogram (30 x 32) of the first box over pixels with saturation >= 30 and value 10..255,
+// back-projected and masked the same.
+//
+// Writes DIR/frames.csv (frame, each tracker's IoU, our lost flag and confidence), DIR/curves.csv
+// (tracker, curve (success | precision), threshold, value; scripts/plot_tracking.py draws them),
+// DIR/results.yaml (the summary), DIR/strip.png (six frames: truth white, ours green, CSRT blue,
+// KCF cyan, CamShift magenta) and with --video_out DIR/overlay.avi. Last line:
+// `evaluate_tracking: sequence=.. mode=.. success_rate=.. auc=.. precision_20px=.. mean_iou=..
+// lost_frames=.. fps=.. csrt_success_rate=.. csrt_auc=.. csrt_precision_20px=.. csrt_fps=..
+// kcf_... camshift_... camshift_mean_iou=.. frames=..` (a peer not run prints nan).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/tracking.hpp>
 #include <opencv2/video/tracking.hpp>
 #include <opencv2/videoio.hpp>
+#include <sstream>
 
+#include "adaptive_perception/io/benchmark_sequence.h"
+#include "adaptive_perception/tracking/benchmark_metrics.h"
+#include "adaptive_perception/tracking/box_condensation_tracker.h"
 #include "adaptive_perception/tracking/condensation_tracker.h"
 #include "adaptive_perception/tracking/ellipse_tracker.h"
 #include "tool_args.h"
@@ -41,97 +62,191 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-double iou(const cv::Rect2d& a, const cv::Rect2d& b) {
-  const double inter = (a & b).area();
-  const double uni = a.area() + b.area() - inter;
-  return uni > 0 ? inter / uni : 0.0;
-}
-
-// OpenCV's CamShift on a hue histogram, as its camshiftdemo does.
-class CamShiftBaseline {
+/// One tracker under evaluation.
+class Contender {
  public:
-  void init(const cv::Mat& bgr, const cv::Rect& box) {
-    window_ = box & cv::Rect(0, 0, bgr.cols, bgr.rows);
-    cv::Mat hue, mask;
-    hueAndMask(bgr, &hue, &mask);
-    const int channels[] = {0};
-    const int size[] = {16};
-    const float range[] = {0, 180};
-    const float* ranges[] = {range};
-    cv::Mat roi = hue(window_), m = mask(window_);
-    cv::calcHist(&roi, 1, channels, m, hist_, 1, size, ranges);
+  virtual ~Contender() = default;
+  virtual void init(const cv::Mat& bgr, const cv::Rect2d& box) = 0;
+  /// This frame's box; *lost when the tracker says it lost the target.
+  virtual cv::Rect2d track(const cv::Mat& bgr, bool* lost, double* confidence,
+                           tracking::Contour* contour) = 0;
+};
+
+class BoxContender : public Contender {
+ public:
+  explicit BoxContender(std::uint64_t seed) : tracker_(tracking::BoxTrackerConfig{}, seed) {}
+  void init(const cv::Mat& bgr, const cv::Rect2d& box) override { tracker_.init(bgr, box); }
+  cv::Rect2d track(const cv::Mat& bgr, bool* lost, double* confidence,
+                   tracking::Contour* contour) override {
+    const tracking::BoxTrackResult r = tracker_.track(bgr);
+    *lost = r.lost;
+    *confidence = r.confidence;
+    const cv::Rect2d& b = r.box;
+    *contour = {
+        {b.x, b.y}, {b.x + b.width, b.y}, {b.x + b.width, b.y + b.height}, {b.x, b.y + b.height}};
+    return r.box;
+  }
+
+ private:
+  tracking::BoxCondensationTracker tracker_;
+};
+
+class CondensationContender : public Contender {
+ public:
+  CondensationContender(const tracking::CondensationConfig& c, std::uint64_t seed)
+      : tracker_(c, seed) {}
+  void init(const cv::Mat& bgr, const cv::Rect2d& box) override {
+    tracker_.init(bgr, cv::Rect(box));
+  }
+  cv::Rect2d track(const cv::Mat& bgr, bool* lost, double* confidence,
+                   tracking::Contour* contour) override {
+    const tracking::TrackingResult r = tracker_.track(bgr);
+    *lost = r.lost;
+    *confidence = r.best.weight;
+    *contour = r.contour;
+    return r.box;
+  }
+
+ private:
+  tracking::CondensationTracker tracker_;
+};
+
+class EllipseContender : public Contender {
+ public:
+  explicit EllipseContender(const tracking::EllipseTrackerConfig& c) : tracker_(c) {}
+  void init(const cv::Mat& bgr, const cv::Rect2d& box) override {
+    tracker_.init(bgr, tracking::Ellipse::inscribed(box));
+  }
+  cv::Rect2d track(const cv::Mat& bgr, bool* lost, double* confidence,
+                   tracking::Contour* contour) override {
+    const tracking::EllipseResult r = tracker_.track(bgr);
+    *lost = r.lost;
+    *confidence = r.intersection;
+    *contour = tracking::ellipseContour(r.ellipse.cx, r.ellipse.cy, r.ellipse.ax, r.ellipse.ay, 48);
+    return r.ellipse.box();
+  }
+
+ private:
+  tracking::EllipseTracker tracker_;
+};
+
+/// OpenCV's CSRT (default parameters) or KCF (default parameters but detect_thresh, see init).
+class OpenCvContender : public Contender {
+ public:
+  explicit OpenCvContender(bool csrt) : csrt_(csrt) {}
+  void init(const cv::Mat& bgr, const cv::Rect2d& box) override {
+    if (csrt_) {
+      tracker_ = cv::TrackerCSRT::create();
+    } else {
+      // KCF as Henriques et al. run it: the peak of the response is taken every frame. OpenCV's
+      // own addition, a peak below detect_thresh (0.5) declaring a failure and freezing the box,
+      // froze it on 110 of Crossing's 120 frames.
+      cv::TrackerKCF::Params p;
+      p.detect_thresh = 0.0f;
+      tracker_ = cv::TrackerKCF::create(p);
+    }
+    box_ = box;
+    tracker_->init(bgr, cv::Rect(box));
+  }
+  cv::Rect2d track(const cv::Mat& bgr, bool* lost, double* confidence,
+                   tracking::Contour*) override {
+    cv::Rect r;
+    *lost = !tracker_->update(bgr, r);
+    *confidence = *lost ? 0.0 : 1.0;
+    if (!*lost) box_ = cv::Rect2d(r);  // on a failure the last box stands
+    return box_;
+  }
+
+ private:
+  bool csrt_;
+  cv::Ptr<cv::Tracker> tracker_;
+  cv::Rect2d box_;
+};
+
+/// CamShift as OpenCV's camshiftdemo sets it up, with a hue-saturation histogram.
+class CamShiftContender : public Contender {
+ public:
+  void init(const cv::Mat& bgr, const cv::Rect2d& box) override {
+    window_ = cv::Rect(box) & cv::Rect(0, 0, bgr.cols, bgr.rows);
+    cv::Mat hsv, mask;
+    hsvAndMask(bgr, &hsv, &mask);
+    const int channels[] = {0, 1};
+    const int size[] = {30, 32};
+    const float h_range[] = {0, 180}, s_range[] = {0, 256};
+    const float* ranges[] = {h_range, s_range};
+    cv::Mat roi = hsv(window_), m = mask(window_);
+    cv::calcHist(&roi, 1, channels, m, hist_, 2, size, ranges);
     cv::normalize(hist_, hist_, 0, 255, cv::NORM_MINMAX);
   }
-  cv::Rect2d track(const cv::Mat& bgr) {
-    cv::Mat hue, mask, back;
-    hueAndMask(bgr, &hue, &mask);
-    const int channels[] = {0};
-    const float range[] = {0, 180};
-    const float* ranges[] = {range};
-    cv::calcBackProject(&hue, 1, channels, hist_, back, ranges);
+  cv::Rect2d track(const cv::Mat& bgr, bool* lost, double* confidence,
+                   tracking::Contour*) override {
+    cv::Mat hsv, mask, back;
+    hsvAndMask(bgr, &hsv, &mask);
+    const int channels[] = {0, 1};
+    const float h_range[] = {0, 180}, s_range[] = {0, 256};
+    const float* ranges[] = {h_range, s_range};
+    cv::calcBackProject(&hsv, 1, channels, hist_, back, ranges);
     back &= mask;
-    if (window_.area() <= 0) window_ = cv::Rect(0, 0, bgr.cols, bgr.rows);  // as the demo
+    // The demo's recovery: a collapsed window restarts around where it was.
+    if (window_.area() <= 1) {
+      const int c = std::max(5, (std::min(bgr.cols, bgr.rows) + 5) / 6);
+      window_ =
+          cv::Rect(window_.x - c, window_.y - c, window_.width + 2 * c, window_.height + 2 * c) &
+          cv::Rect(0, 0, bgr.cols, bgr.rows);
+    }
     const cv::RotatedRect r = cv::CamShift(
         back, window_, cv::TermCriteria(cv::TermCriteria::EPS | cv::TermCriteria::COUNT, 10, 1));
+    *lost = window_.area() <= 1;
+    *confidence = *lost ? 0.0 : 1.0;
     return cv::Rect2d(r.boundingRect2f()) & cv::Rect2d(0, 0, bgr.cols, bgr.rows);
   }
 
  private:
-  static void hueAndMask(const cv::Mat& bgr, cv::Mat* hue, cv::Mat* mask) {
-    cv::Mat hsv;
-    cv::cvtColor(bgr, hsv, cv::COLOR_BGR2HSV);
-    cv::inRange(hsv, cv::Scalar(0, 60, 32), cv::Scalar(180, 255, 255), *mask);
-    cv::extractChannel(hsv, *hue, 0);
+  static void hsvAndMask(const cv::Mat& bgr, cv::Mat* hsv, cv::Mat* mask) {
+    cv::cvtColor(bgr, *hsv, cv::COLOR_BGR2HSV);
+    cv::inRange(*hsv, cv::Scalar(0, 30, 10), cv::Scalar(180, 256, 256), *mask);
   }
   cv::Mat hist_;
   cv::Rect window_;
 };
 
-cv::Mat plotIou(const std::vector<int>& frames, const std::vector<double>& a,
-                const std::vector<double>& b, const std::string& title) {
-  const int w = 800, h = 300, l = 50, r = 20, t = 30, bt = 40;
-  cv::Mat img(h, w, CV_8UC3, cv::Scalar(255, 255, 255));
-  const double fmax = frames.empty() ? 1 : std::max(1, frames.back());
-  auto px = [&](double f, double v) {
-    return cv::Point(static_cast<int>(l + (w - l - r) * f / fmax),
-                     static_cast<int>(h - bt - (h - t - bt) * v));
-  };
-  cv::rectangle(img, px(0, 0), px(fmax, 1), cv::Scalar(0, 0, 0));
-  for (double v : {0.0, 0.5, 1.0}) {
-    cv::line(img, px(0, v), px(fmax, v), cv::Scalar(210, 210, 210));
-    cv::putText(img, cv::format("%.1f", v), px(0, v) + cv::Point(-35, 5), cv::FONT_HERSHEY_SIMPLEX,
-                0.4, cv::Scalar(0, 0, 0));
-  }
-  for (int k = 0; k <= 4; ++k)
-    cv::putText(img, std::to_string(static_cast<int>(fmax * k / 4)),
-                px(fmax * k / 4, 0) + cv::Point(-10, 18), cv::FONT_HERSHEY_SIMPLEX, 0.4,
-                cv::Scalar(0, 0, 0));
-  const cv::Scalar ca(0, 150, 0), cb(200, 0, 200);
-  for (size_t i = 1; i < frames.size(); ++i) {
-    cv::line(img, px(frames[i - 1], b[i - 1]), px(frames[i], b[i]), cb, 1, cv::LINE_AA);
-    cv::line(img, px(frames[i - 1], a[i - 1]), px(frames[i], a[i]), ca, 2, cv::LINE_AA);
-  }
-  cv::putText(img, title, {l, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
-  cv::putText(img, "tracker", {w - 190, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45, ca);
-  cv::putText(img, "CamShift", {w - 110, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45, cb);
-  cv::putText(img, "frame", {w / 2, h - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0));
-  cv::putText(img, "IoU", {5, t + 10}, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0));
-  return img;
+struct Run {
+  Run(std::string n, std::unique_ptr<Contender> t, cv::Scalar c)
+      : name(std::move(n)), tracker(std::move(t)), colour(c) {}
+  std::string name;  // "ours", "csrt", "kcf", "camshift"
+  std::unique_ptr<Contender> tracker;
+  cv::Scalar colour;
+  double busy_s = 0.0;
+  long frames = 0, lost = 0;
+  std::vector<std::optional<cv::Rect2d>> boxes;
+};
+
+std::optional<cv::Rect2d> parseBox(const std::string& s) {
+  double x, y, w, h;
+  char c1, c2, c3;
+  std::istringstream in(s);
+  if (!(in >> x >> c1 >> y >> c2 >> w >> c3 >> h) || c1 != ',' || c2 != ',' || c3 != ',' ||
+      !(w >= 4 && h >= 4))
+    return std::nullopt;
+  return cv::Rect2d(x, y, w, h);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
-                   "evaluate_tracking (--bag FILE | --video FILE [--ground_truth CSV]) "
-                   "[--init x,y,w,h] [--mode condensation|ellipse] [--samples N] "
-                   "[--color_space rgb|opponent] [--bins N] [--dynamics FILE.yaml] [--seed N] "
-                   "[--start_frame N] [--max_frames N] [--output DIR] [--video_out]");
+                   "evaluate_tracking (--sequence DIR | --bag FILE | --video FILE "
+                   "[--ground_truth CSV]) [--init x,y,w,h] [--mode box|condensation|ellipse] "
+                   "[--peers csrt,kcf,camshift|none] [--samples N] [--color_space rgb|opponent] "
+                   "[--bins N] [--dynamics FILE.yaml] [--seed N] [--start_frame N] "
+                   "[--max_frames N] [--output DIR] [--video_out]");
+  const std::string sequence = args.get("sequence", "");
   const std::string bag = args.get("bag", "");
   const std::string video = args.get("video", "");
   std::string truth_csv = args.get("ground_truth", "");
   const std::string init_arg = args.get("init", "");
-  const std::string mode = args.get("mode", "condensation");
+  const std::string mode = args.get("mode", "box");
+  const std::string peers_arg = args.get("peers", "csrt,kcf,camshift");
   const long samples = args.getInt("samples", 100);
   const std::string space = args.get("color_space", "opponent");
   const long bins = args.getInt("bins", 16);
@@ -142,24 +257,27 @@ int main(int argc, char** argv) {
   const std::string output = args.get("output", "results/evaluate_tracking");
   const bool video_out = args.has("video_out");
   args.finish();
-  if (bag.empty() == video.empty()) args.fail("give exactly one of --bag FILE and --video FILE");
+  if (sequence.empty() + bag.empty() + video.empty() != 2)
+    args.fail("give exactly one of --sequence DIR, --bag FILE and --video FILE");
   if (start_frame < 0) args.fail("--start_frame must be >= 0");
   if (!video.empty() && truth_csv.empty()) {  // simulate_tracking's CSV beside the video
     const fs::path beside = fs::path(video).replace_extension(".csv");
     if (fs::exists(beside)) truth_csv = beside.string();
   }
-  if (mode != "condensation" && mode != "ellipse")
-    args.fail("--mode must be condensation or ellipse, got " + mode);
-  std::optional<cv::Rect2d> init;
-  if (!init_arg.empty()) {
-    double x, y, w, h;
-    char c1, c2, c3;
-    std::istringstream s(init_arg);
-    if (!(s >> x >> c1 >> y >> c2 >> w >> c3 >> h) || c1 != ',' || c2 != ',' || c3 != ',' ||
-        !(w >= 4 && h >= 4))
-      args.fail("--init must be x,y,w,h with w, h >= 4 pixels, got '" + init_arg + "'");
-    init = cv::Rect2d(x, y, w, h);
+  if (mode != "box" && mode != "condensation" && mode != "ellipse")
+    args.fail("--mode must be box, condensation or ellipse, got " + mode);
+  std::vector<std::string> peers;
+  if (peers_arg != "none") {
+    std::stringstream ss(peers_arg);
+    for (std::string p; std::getline(ss, p, ',');) {
+      if (p != "csrt" && p != "kcf" && p != "camshift")
+        args.fail("--peers: unknown tracker '" + p + "' (csrt, kcf, camshift or none)");
+      peers.push_back(p);
+    }
   }
+  std::optional<cv::Rect2d> init;
+  if (!init_arg.empty() && !(init = parseBox(init_arg)))
+    args.fail("--init must be x,y,w,h with w, h >= 4 pixels, got '" + init_arg + "'");
   try {
     tracking::CondensationConfig cc;
     cc.samples = static_cast<int>(samples);
@@ -169,124 +287,184 @@ int main(int argc, char** argv) {
     cc.validate();
     tracking::EllipseTrackerConfig ec;
     ec.quantizer.space = cc.quantizer.space;
-    std::unique_ptr<tracking::CondensationTracker> cond;
-    std::unique_ptr<tracking::EllipseTracker> ell;
-    if (mode == "condensation")
-      cond = std::make_unique<tracking::CondensationTracker>(cc, seed);
+
+    std::vector<Run> runs;
+    runs.emplace_back("ours", nullptr, cv::Scalar(0, 220, 0));
+    if (mode == "box")
+      runs.back().tracker = std::make_unique<BoxContender>(seed);
+    else if (mode == "condensation")
+      runs.back().tracker = std::make_unique<CondensationContender>(cc, seed);
     else
-      ell = std::make_unique<tracking::EllipseTracker>(ec);
-    CamShiftBaseline camshift;
+      runs.back().tracker = std::make_unique<EllipseContender>(ec);
+    for (const std::string& p : peers) {
+      if (p == "csrt")
+        runs.emplace_back(p, std::make_unique<OpenCvContender>(true), cv::Scalar(255, 80, 0));
+      if (p == "kcf")
+        runs.emplace_back(p, std::make_unique<OpenCvContender>(false), cv::Scalar(255, 255, 0));
+      if (p == "camshift")
+        runs.emplace_back(p, std::make_unique<CamShiftContender>(), cv::Scalar(200, 0, 200));
+    }
+
+    // The frames: a benchmark folder, or a bag / video.
+    std::string name;
+    std::vector<std::string> notes;
+    io::BenchmarkSequence seq;
+    if (!sequence.empty()) {
+      seq = io::readBenchmarkSequence(sequence);
+      name = seq.name;
+      notes = seq.notes;
+    } else {
+      name = (bag.empty() ? fs::path(video) : fs::path(bag)).stem().string();
+    }
+    for (const std::string& n : notes) std::printf("evaluate_tracking: note: %s\n", n.c_str());
+
     fs::create_directories(output);
     std::ofstream csv(fs::path(output) / "frames.csv");
-    csv << "frame,iou,camshift_iou,lost,confidence\n";
+    csv << "frame";
+    for (const Run& r : runs) csv << "," << r.name << "_iou";
+    csv << ",lost,confidence\n";
     std::unique_ptr<cv::VideoWriter> overlay_video;
-    double busy = 0.0, cam_busy = 0.0, iou_sum = 0.0, cam_sum = 0.0;
-    long scored = 0, success = 0, cam_success = 0, lost = 0, frames = 0;
-    std::vector<int> plot_f;
-    std::vector<double> plot_a, plot_b;
+    std::vector<std::optional<cv::Rect2d>> truth;
     std::vector<cv::Mat> overlays;
-    const int total = tools::forEachTrackingFrame(
-        bag, video, truth_csv, max_frames > 0 ? static_cast<int>(start_frame + max_frames) : 0,
-        [&](const tools::TrackingFrameIn& f) {
-          if (f.index < start_frame) return;
-          ++frames;
-          if (f.index == start_frame) {
-            const std::optional<cv::Rect2d> start = init ? init : f.truth;
-            if (!start)
-              throw std::runtime_error("no --init and no ground truth on the first frame");
-            const auto t0 = Clock::now();
-            if (cond) cond->init(f.bgr, cv::Rect(*start));
-            if (ell) ell->init(f.bgr, tracking::Ellipse::inscribed(*start));
-            busy += std::chrono::duration<double>(Clock::now() - t0).count();
-            camshift.init(f.bgr, cv::Rect(*start));
-            return;
-          }
-          auto t0 = Clock::now();
-          cv::Rect2d box;
-          bool is_lost = false;
-          double confidence = 0.0;
-          tracking::Contour contour;
-          if (cond) {
-            const tracking::TrackingResult r = cond->track(f.bgr);
-            box = r.box;
-            is_lost = r.lost;
-            confidence = r.best.weight;
-            contour = r.contour;
-          } else {
-            const tracking::EllipseResult r = ell->track(f.bgr);
-            box = r.ellipse.box();
-            is_lost = r.lost;
-            confidence = r.intersection;
-            contour = tracking::ellipseContour(r.ellipse.cx, r.ellipse.cy, r.ellipse.ax,
-                                               r.ellipse.ay, 48);
-          }
-          busy += std::chrono::duration<double>(Clock::now() - t0).count();
-          t0 = Clock::now();
-          const cv::Rect2d cam = camshift.track(f.bgr);
-          cam_busy += std::chrono::duration<double>(Clock::now() - t0).count();
-          lost += is_lost;
-          double a = -1, b = -1;
-          if (f.truth) {
-            a = is_lost ? 0.0 : iou(box, *f.truth);
-            b = iou(cam, *f.truth);
-            iou_sum += a;
-            cam_sum += b;
-            success += a >= 0.5;
-            cam_success += b >= 0.5;
-            ++scored;
-            plot_f.push_back(f.index);
-            plot_a.push_back(a);
-            plot_b.push_back(b);
-          }
-          csv << f.index << "," << a << "," << b << "," << is_lost << "," << confidence << "\n";
-          cv::Mat over = f.bgr.clone();
-          if (f.truth) cv::rectangle(over, cv::Rect(*f.truth), cv::Scalar(255, 255, 255), 1);
-          cv::rectangle(over, cv::Rect(cam), cv::Scalar(200, 0, 200), 1);
+    long frames = 0;
+    const long last_frame = max_frames > 0 ? start_frame + max_frames : 0;
+    auto onFrame = [&](const tools::TrackingFrameIn& f) {
+      if (f.index < start_frame) return;
+      ++frames;
+      truth.push_back(f.truth);
+      cv::Mat over = f.bgr.clone();
+      if (f.truth) cv::rectangle(over, cv::Rect(*f.truth), cv::Scalar(255, 255, 255), 1);
+      csv << f.index;
+      bool our_lost = false;
+      double our_confidence = 0.0;
+      for (Run& r : runs) {
+        const auto t0 = Clock::now();
+        cv::Rect2d box;
+        bool lost = false;
+        double confidence = 1.0;
+        tracking::Contour contour;
+        if (f.index == start_frame) {
+          const std::optional<cv::Rect2d> start = init ? init : f.truth;
+          if (!start) throw std::runtime_error("no --init and no true box on the first frame");
+          r.tracker->init(f.bgr, *start);
+          box = *start;
+        } else {
+          box = r.tracker->track(f.bgr, &lost, &confidence, &contour);
+        }
+        r.busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+        ++r.frames;
+        r.lost += lost;
+        r.boxes.push_back(box);
+        const double iou = f.truth ? tracking::boxIou(box, *f.truth) : -1.0;
+        csv << "," << iou;
+        if (&r == &runs.front()) {
+          our_lost = lost;
+          our_confidence = confidence;
           std::vector<cv::Point> poly;
           for (const auto& p : contour)
             poly.emplace_back(static_cast<int>(std::lround(p.x())),
                               static_cast<int>(std::lround(p.y())));
-          if (!poly.empty())
-            cv::polylines(over, poly, true, is_lost ? cv::Scalar(0, 0, 255) : cv::Scalar(0, 220, 0),
-                          2);
-          cv::putText(over, std::to_string(f.index), {5, 15}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                      cv::Scalar(255, 255, 255));
-          if (video_out) {
-            if (!overlay_video)
-              overlay_video = std::make_unique<cv::VideoWriter>(
-                  (fs::path(output) / "overlay.avi").string(), cv::CAP_OPENCV_MJPEG,
-                  cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30.0, over.size());
-            overlay_video->write(over);
-          }
-          overlays.push_back(over);
-          if (overlays.size() > 2000) overlays.erase(overlays.begin() + 1);  // bound memory
-        });
-    (void)total;
+          if (poly.size() > 2)
+            cv::polylines(over, poly, true, lost ? cv::Scalar(0, 0, 255) : r.colour, 2);
+          else
+            cv::rectangle(over, cv::Rect(box), r.colour, 2);
+        } else {
+          cv::rectangle(over, cv::Rect(box), r.colour, 1);
+        }
+      }
+      csv << "," << our_lost << "," << our_confidence << "\n";
+      cv::putText(over, std::to_string(f.index), {5, 15}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                  cv::Scalar(255, 255, 255));
+      if (video_out) {
+        if (!overlay_video)
+          overlay_video = std::make_unique<cv::VideoWriter>(
+              (fs::path(output) / "overlay.avi").string(), cv::CAP_OPENCV_MJPEG,
+              cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30.0, over.size());
+        overlay_video->write(over);
+      }
+      overlays.push_back(over);
+      if (overlays.size() > 600) overlays.erase(overlays.begin() + 1);  // bound memory
+    };
+    if (!sequence.empty()) {
+      int index = 0;
+      for (std::size_t i = 0; i < seq.frames.size(); ++i) {
+        if (last_frame > 0 && static_cast<long>(i) >= last_frame) break;
+        tools::TrackingFrameIn f;
+        f.bgr = cv::imread(seq.frames[i], cv::IMREAD_COLOR);  // grey images come as 3 channels
+        if (f.bgr.empty()) {
+          std::printf("evaluate_tracking: note: %s cannot be read as an image: skipped\n",
+                      seq.frames[i].c_str());
+          continue;
+        }
+        f.index = index++;
+        f.truth = seq.truth[i];
+        onFrame(f);
+      }
+    } else {
+      tools::forEachTrackingFrame(bag, video, truth_csv, static_cast<int>(last_frame), onFrame);
+    }
     if (frames < 2) throw std::runtime_error("fewer than two frames from --start_frame on");
+
+    // Scores, curves, summary.
+    std::ofstream curves(fs::path(output) / "curves.csv");
+    curves << "tracker,curve,threshold,value\n";
+    std::ostringstream summary, yaml;
+    summary << "evaluate_tracking: sequence=" << name << " mode=" << mode;
+    yaml << "sequence: " << name << "\nmode: " << mode << "\nframes: " << frames << "\n";
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const double scored_d = scored > 0 ? static_cast<double>(scored) : nan;
+    std::map<std::string, tracking::TrackScores> scores;
+    std::map<std::string, double> fps;
+    for (const Run& r : runs) {
+      const tracking::TrackScores s = tracking::scoreTrack(r.boxes, truth);
+      scores[r.name] = s;
+      fps[r.name] = r.frames / std::max(r.busy_s, 1e-9);
+      for (std::size_t k = 0; k < s.success_curve.size(); ++k)
+        curves << r.name << ",success," << 0.05 * k << "," << s.success_curve[k] << "\n";
+      for (std::size_t k = 0; k < s.precision_curve.size(); ++k)
+        curves << r.name << ",precision," << k << "," << s.precision_curve[k] << "\n";
+      yaml << r.name << ":\n  success_rate: " << s.success_rate << "\n  auc: " << s.auc
+           << "\n  precision_20px: " << s.precision_20px << "\n  mean_iou: " << s.mean_iou
+           << "\n  fps: " << fps[r.name] << "\n  lost_frames: " << r.lost
+           << "\n  frames_scored: " << s.frames_scored << "\n";
+    }
+    auto value = [&](const std::string& tracker, double tracking::TrackScores::*field) {
+      const auto it = scores.find(tracker);
+      return it == scores.end() || it->second.frames_scored == 0 ? nan : it->second.*field;
+    };
+    char buf[160];
+    std::snprintf(buf, sizeof(buf),
+                  " success_rate=%.3f auc=%.3f precision_20px=%.3f mean_iou=%.3f lost_frames=%ld "
+                  "fps=%.1f",
+                  value("ours", &tracking::TrackScores::success_rate),
+                  value("ours", &tracking::TrackScores::auc),
+                  value("ours", &tracking::TrackScores::precision_20px),
+                  value("ours", &tracking::TrackScores::mean_iou), runs.front().lost, fps["ours"]);
+    summary << buf;
+    for (const std::string p : {"csrt", "kcf", "camshift"}) {
+      std::snprintf(
+          buf, sizeof(buf), " %s_success_rate=%.3f %s_auc=%.3f %s_precision_20px=%.3f %s_fps=%.1f",
+          p.c_str(), value(p, &tracking::TrackScores::success_rate), p.c_str(),
+          value(p, &tracking::TrackScores::auc), p.c_str(),
+          value(p, &tracking::TrackScores::precision_20px), p.c_str(), fps.count(p) ? fps[p] : nan);
+      summary << buf;
+    }
+    std::snprintf(buf, sizeof(buf), " camshift_mean_iou=%.3f frames=%ld",
+                  value("camshift", &tracking::TrackScores::mean_iou), frames);
+    summary << buf;
+    std::ofstream(fs::path(output) / "results.yaml") << yaml.str();
+
     // Six frames evenly over the run.
     std::vector<cv::Mat> picks;
     for (int k = 0; k < 6 && !overlays.empty(); ++k)
       picks.push_back(overlays[std::min(overlays.size() - 1, k * (overlays.size() - 1) / 5)]);
-    cv::Mat strip, top, bottom;
     if (picks.size() == 6) {
+      cv::Mat strip, top, bottom;
       cv::hconcat(std::vector<cv::Mat>(picks.begin(), picks.begin() + 3), top);
       cv::hconcat(std::vector<cv::Mat>(picks.begin() + 3, picks.end()), bottom);
       cv::vconcat(top, bottom, strip);
       cv::imwrite((fs::path(output) / "strip.png").string(), strip);
     }
-    cv::imwrite((fs::path(output) / "iou.png").string(),
-                plotIou(plot_f, plot_a, plot_b,
-                        (bag.empty() ? fs::path(video) : fs::path(bag)).filename().string() + " (" +
-                            mode + ")"));
-    const double fps = (frames) / std::max(busy, 1e-9);
-    const double cam_fps = (frames - 1) / std::max(cam_busy, 1e-9);
-    std::printf(
-        "evaluate_tracking: mode=%s mean_iou=%.3f success_rate=%.3f lost_frames=%ld fps=%.1f "
-        "camshift_mean_iou=%.3f camshift_success_rate=%.3f camshift_fps=%.1f frames=%ld\n",
-        mode.c_str(), iou_sum / scored_d, success / scored_d, lost, fps, cam_sum / scored_d,
-        cam_success / scored_d, cam_fps, frames);
+    std::printf("%s\n", summary.str().c_str());
   } catch (const std::exception& e) {
     std::cerr << "evaluate_tracking: error: " << e.what() << "\n";
     return 1;

@@ -35,10 +35,13 @@ struct NodeRun {
   std::string output;
 };
 
-/// Runs `rosrun adaptive_perception NODE ARGS` (stdout and stderr together) for at most 30 s.
-NodeRun runNode(const std::string& node, const std::string& args) {
+/// Runs `rosrun adaptive_perception NODE ARGS` (stdout and stderr together) for at most 30 s, as
+/// the node PREFIX + NODE (private parameters set on the command line stay on the parameter
+/// server: each group of tests names its nodes apart).
+NodeRun runNode(const std::string& node, const std::string& args,
+                const std::string& prefix = "bad_files_") {
   const std::string cmd = "timeout -s KILL 30 rosrun adaptive_perception " + node +
-                          " __name:=bad_files_" + node + " " + args + " 2>&1";
+                          " __name:=" + prefix + node + " " + args + " 2>&1";
   NodeRun r;
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -150,7 +153,7 @@ TEST(BadSettings, FrameIdsThatTf2WouldRefuseStopTheNodeAtStartUp) {
            {"ekf_slam_mapper", "\"_odom_frame:=my odom\"", "odom_frame"},
            {"color_estimator", "_map_frame:=map//x", "map_frame"}}) {
     SCOPED_TRACE(s.node + " " + s.args);
-    const NodeRun r = runNode(s.node, s.args);
+    const NodeRun r = runNode(s.node, s.args, "bad_settings_");
     EXPECT_EQ(r.status, 1) << "the node did not stop; output:\n" << r.output;
     EXPECT_NE(r.output.find(s.param), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("not a tf frame id"), std::string::npos) << r.output;
@@ -158,7 +161,7 @@ TEST(BadSettings, FrameIdsThatTf2WouldRefuseStopTheNodeAtStartUp) {
 }
 
 TEST(BadSettings, AParticleCountThatWouldNotFitInMemoryStopsTheNodeWithTheEstimate) {
-  const NodeRun r = runNode("rbpf_localizer", "_particles:=1000000");
+  const NodeRun r = runNode("rbpf_localizer", "_particles:=1000000", "bad_particles_");
   EXPECT_EQ(r.status, 1) << "the node did not stop; output:\n" << r.output;
   EXPECT_NE(r.output.find("particles = 1000000 would take about"), std::string::npos)
       << r.output;

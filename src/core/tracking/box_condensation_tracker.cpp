@@ -1,0 +1,401 @@
+#include "adaptive_perception/tracking/box_condensation_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "adaptive_perception/math/particle_set.h"
+
+namespace adaptive_perception::tracking {
+
+void BoxTrackerConfig::validate() const {
+  auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
+  if (samples < 10 || samples > 100000)
+    fail("samples = " + std::to_string(samples) + " (allowed: 10..100000)");
+  if (bins_per_channel < 2 || bins_per_channel > 64 ||
+      (bins_per_channel & (bins_per_channel - 1)) != 0)
+    fail("bins_per_channel = " + std::to_string(bins_per_channel) +
+         " (allowed: a power of two, 2..64)");
+  if (!(position_noise > 0.0 && std::isfinite(position_noise)))
+    fail("position_noise = " + std::to_string(position_noise) + " (allowed: > 0)");
+  if (!(scale_noise >= 0.0 && scale_noise < 1.0))
+    fail("scale_noise = " + std::to_string(scale_noise) + " (allowed: 0..1)");
+  if (!(wide_fraction >= 0.0 && wide_fraction < 1.0))
+    fail("wide_fraction = " + std::to_string(wide_fraction) + " (allowed: 0 <= x < 1)");
+  if (!(wide_noise > 0.0 && std::isfinite(wide_noise)))
+    fail("wide_noise = " + std::to_string(wide_noise) + " (allowed: > 0)");
+  if (!(aspect_noise >= 0.0 && aspect_noise < 1.0))
+    fail("aspect_noise = " + std::to_string(aspect_noise) + " (allowed: 0..1)");
+  if (!(velocity_gain >= 0.0 && velocity_gain <= 1.0))
+    fail("velocity_gain = " + std::to_string(velocity_gain) + " (allowed: 0..1)");
+  if (!(ring_scale > 1.0 && ring_scale < 10.0))
+    fail("ring_scale = " + std::to_string(ring_scale) + " (allowed: 1 < x < 10)");
+  if (!(surround_scale > 1.0 && surround_scale < 10.0))
+    fail("surround_scale = " + std::to_string(surround_scale) + " (allowed: 1 < x < 10)");
+  if (!(score_gain > 0.0 && std::isfinite(score_gain)))
+    fail("score_gain = " + std::to_string(score_gain) + " (allowed: > 0)");
+  if (!(learning_rate >= 0.0 && learning_rate <= 1.0))
+    fail("learning_rate = " + std::to_string(learning_rate) + " (allowed: 0..1)");
+  if (!(update_min_score >= -1.0 && update_min_score <= 1.0))
+    fail("update_min_score = " + std::to_string(update_min_score) + " (allowed: -1..1)");
+  if (!(lost_score >= -1.0 && lost_score <= 1.0))
+    fail("lost_score = " + std::to_string(lost_score) + " (allowed: -1..1)");
+  if (!(lost_growth >= 1.0 && lost_growth < 10.0))
+    fail("lost_growth = " + std::to_string(lost_growth) + " (allowed: 1..10)");
+  if (!(min_side_px > 0.0 && std::isfinite(min_side_px)))
+    fail("min_side_px = " + std::to_string(min_side_px) + " (allowed: > 0)");
+  if (template_cells != 0 && (template_cells < 4 || template_cells > 64))
+    fail("template_cells = " + std::to_string(template_cells) + " (allowed: 0 or 4..64)");
+  if (!(template_gain >= 0.0 && std::isfinite(template_gain)))
+    fail("template_gain = " + std::to_string(template_gain) + " (allowed: >= 0)");
+  if (scale_search_steps < 0 || scale_search_steps > 20)
+    fail("scale_search_steps = " + std::to_string(scale_search_steps) + " (allowed: 0..20)");
+  if (!(scale_step > 0.0 && scale_step < 1.0))
+    fail("scale_step = " + std::to_string(scale_step) + " (allowed: 0 < x < 1)");
+  if (!(template_rate >= 0.0 && template_rate <= 1.0))
+    fail("template_rate = " + std::to_string(template_rate) + " (allowed: 0..1)");
+}
+
+namespace {
+
+/// Sum of a CV_64F summed-area table over [x0, x1) x [y0, y1) (table coordinates).
+double areaSum(const cv::Mat& sat, int x0, int y0, int x1, int y1) {
+  return sat.at<double>(y1, x1) - sat.at<double>(y0, x1) - sat.at<double>(y1, x0) +
+         sat.at<double>(y0, x0);
+}
+
+/// `box` grown about its centre by `factor` (side).
+cv::Rect2d grown(const cv::Rect2d& box, double factor) {
+  const double w = box.width * factor, h = box.height * factor;
+  return {box.x + box.width / 2 - w / 2, box.y + box.height / 2 - h / 2, w, h};
+}
+
+/// Integer rectangle covering `r`, clipped to `bounds`.
+cv::Rect covering(const cv::Rect2d& r, const cv::Rect& bounds) {
+  const int x0 = static_cast<int>(std::floor(r.x)), y0 = static_cast<int>(std::floor(r.y));
+  const int x1 = static_cast<int>(std::ceil(r.x + r.width));
+  const int y1 = static_cast<int>(std::ceil(r.y + r.height));
+  return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & bounds;
+}
+
+void normalize(std::vector<float>* h) {
+  double sum = 0.0;
+  for (float v : *h) sum += v;
+  if (sum > 0)
+    for (float& v : *h) v = static_cast<float>(v / sum);
+}
+
+}  // namespace
+
+BoxCondensationTracker::BoxCondensationTracker(BoxTrackerConfig config, std::uint64_t seed)
+    : config_(config), rng_(seed) {
+  config_.validate();
+}
+
+cv::Rect2d BoxCondensationTracker::boxOf(const Sample& s) const {
+  const double w = w0_ * std::exp(s.log_scale + 0.5 * s.log_aspect);
+  const double h = h0_ * std::exp(s.log_scale - 0.5 * s.log_aspect);
+  return {s.x - w / 2, s.y - h / 2, w, h};
+}
+
+void BoxCondensationTracker::binImage(const cv::Mat& image, const cv::Rect& region,
+                                      cv::Mat* bins) const {
+  int shift = 0;
+  while ((256 >> shift) > config_.bins_per_channel) ++shift;
+  const int b = config_.bins_per_channel;
+  bins->create(region.height, region.width, CV_16U);
+  for (int y = 0; y < region.height; ++y) {
+    std::uint16_t* out = bins->ptr<std::uint16_t>(y);
+    if (image.channels() == 1) {
+      const std::uint8_t* in = image.ptr<std::uint8_t>(region.y + y) + region.x;
+      for (int x = 0; x < region.width; ++x) {
+        if (config_.chroma) {  // as a colour pixel (v, v, v)
+          const int s = 3 * in[x], c = in[x] * b / (s + 1);
+          out[x] = static_cast<std::uint16_t>((c * b + c) * 4 + s * 4 / 766);
+        } else {
+          const int v = in[x] >> shift;
+          out[x] = static_cast<std::uint16_t>((v * b + v) * b + v);
+        }
+      }
+    } else if (config_.chroma) {
+      // Normalised chromaticity (r, g) on b x b bins and 4 brightness levels.
+      const cv::Vec3b* in = image.ptr<cv::Vec3b>(region.y + y) + region.x;
+      for (int x = 0; x < region.width; ++x) {
+        const int s = in[x][0] + in[x][1] + in[x][2];
+        const int r = in[x][2] * b / (s + 1), g = in[x][1] * b / (s + 1);
+        out[x] = static_cast<std::uint16_t>((r * b + g) * 4 + s * 4 / 766);
+      }
+    } else {
+      const cv::Vec3b* in = image.ptr<cv::Vec3b>(region.y + y) + region.x;
+      for (int x = 0; x < region.width; ++x)
+        out[x] = static_cast<std::uint16_t>(((in[x][0] >> shift) * b + (in[x][1] >> shift)) * b +
+                                            (in[x][2] >> shift));
+    }
+  }
+}
+
+void BoxCondensationTracker::histograms(const cv::Mat& image, const cv::Rect2d& box,
+                                        std::vector<float>* object,
+                                        std::vector<float>* surround) const {
+  const cv::Rect bounds(0, 0, image.cols, image.rows);
+  const cv::Rect outer = covering(grown(box, config_.surround_scale), bounds);
+  const cv::Rect inner = covering(box, bounds);
+  const int n = config_.bins_per_channel * config_.bins_per_channel *
+                (config_.chroma ? 4 : config_.bins_per_channel);
+  object->assign(n, 0.0f);
+  surround->assign(n, 0.0f);
+  if (outer.empty()) return;
+  cv::Mat bins;
+  binImage(image, outer, &bins);
+  for (int y = 0; y < outer.height; ++y) {
+    const std::uint16_t* row = bins.ptr<std::uint16_t>(y);
+    for (int x = 0; x < outer.width; ++x) {
+      const bool in = inner.contains(cv::Point(outer.x + x, outer.y + y));
+      ((in ? *object : *surround)[row[x]]) += 1.0f;
+    }
+  }
+  normalize(object);
+  normalize(surround);
+}
+
+void BoxCondensationTracker::smoothedGrey(const cv::Mat& image, const cv::Rect& region,
+                                          double box_side, cv::Mat* grey) const {
+  cv::Mat g;
+  if (image.channels() == 1)
+    image(region).convertTo(g, CV_32F);
+  else {
+    cv::Mat g8;
+    cv::cvtColor(image(region), g8, cv::COLOR_BGR2GRAY);
+    g8.convertTo(g, CV_32F);
+  }
+  // Anti-aliasing for a grid of template_cells a side: sigma of half a cell.
+  const double sigma = 0.5 * box_side / std::max(1, config_.template_cells);
+  if (sigma > 0.7)
+    cv::GaussianBlur(g, *grey, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
+  else
+    *grey = g;
+}
+
+std::vector<float> BoxCondensationTracker::patch(const cv::Mat& grey, const cv::Point& origin,
+                                                 const cv::Rect2d& box) const {
+  const int c = config_.template_cells;
+  std::vector<float> p(static_cast<std::size_t>(c) * c);
+  double mean = 0.0;
+  for (int j = 0; j < c; ++j) {
+    const int y = std::clamp(static_cast<int>(box.y + (j + 0.5) * box.height / c) - origin.y, 0,
+                             grey.rows - 1);
+    const float* row = grey.ptr<float>(y);
+    for (int i = 0; i < c; ++i) {
+      const int x = std::clamp(static_cast<int>(box.x + (i + 0.5) * box.width / c) - origin.x, 0,
+                               grey.cols - 1);
+      p[j * c + i] = row[x];
+      mean += row[x];
+    }
+  }
+  mean /= p.size();
+  double norm = 0.0;
+  for (float& v : p) {
+    v = static_cast<float>(v - mean);
+    norm += static_cast<double>(v) * v;
+  }
+  if (norm < 1e-6) return {};
+  const float k = static_cast<float>(1.0 / std::sqrt(norm));
+  for (float& v : p) v *= k;
+  return p;
+}
+
+void BoxCondensationTracker::init(const cv::Mat& image, const cv::Rect2d& box) {
+  if (image.empty() || (image.type() != CV_8UC3 && image.type() != CV_8UC1))
+    throw std::invalid_argument("BoxCondensationTracker::init: expected a bgr8 or mono8 image");
+  if (!(box.width >= config_.min_side_px && box.height >= config_.min_side_px))
+    throw std::invalid_argument("BoxCondensationTracker::init: the box must be at least " +
+                                std::to_string(config_.min_side_px) + " px a side");
+  if ((box & cv::Rect2d(0, 0, image.cols, image.rows)).area() <= 0)
+    throw std::invalid_argument("BoxCondensationTracker::init: the box lies outside the image");
+  w0_ = box.width;
+  h0_ = box.height;
+  estimate_ = {box.x + box.width / 2, box.y + box.height / 2, 0.0, 0.0};
+  vx_ = vy_ = 0.0;
+  histograms(image, box, &h_object_, &h_surround_);
+  template_.clear();
+  if (config_.template_cells > 0) {
+    const cv::Rect region = covering(grown(box, 1.2), cv::Rect(0, 0, image.cols, image.rows));
+    cv::Mat grey;
+    smoothedGrey(image, region, std::sqrt(box.area()), &grey);
+    template_ = patch(grey, region.tl(), box);
+  }
+  samples_.assign(config_.samples, estimate_);
+  weights_.assign(config_.samples, 1.0 / config_.samples);
+  lost_frames_ = 0;
+  initialized_ = true;
+}
+
+BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
+  if (!initialized_) throw std::logic_error("BoxCondensationTracker::track before init");
+  if (image.empty() || (image.type() != CV_8UC3 && image.type() != CV_8UC1))
+    throw std::invalid_argument("BoxCondensationTracker::track: expected a bgr8 or mono8 image");
+  const cv::Rect bounds(0, 0, image.cols, image.rows);
+  const int n = config_.samples;
+
+  // 1. Resample, then move and spread (wider while lost: re-detection).
+  const std::vector<std::size_t> parents =
+      math::resampleIndices(weights_, n, math::ResamplingScheme::kSystematic, rng_);
+  const double growth = std::pow(config_.lost_growth, std::min(lost_frames_, 12));
+  const cv::Rect2d last = boxOf(estimate_);
+  const double side = std::sqrt(last.width * last.height);
+  const double sd_pos = config_.position_noise * side * growth;
+  const double sd_scale = config_.scale_noise * std::sqrt(growth);
+  const double sd_aspect = config_.aspect_noise * std::sqrt(growth);
+  const double min_log = std::log(config_.min_side_px / std::min(w0_, h0_));
+  const double max_log = std::log(std::max(image.cols, image.rows) / std::max(w0_, h0_));
+  std::vector<Sample> next(n);
+  for (int i = 0; i < n; ++i) {
+    const Sample& p = samples_[parents[i]];
+    Sample s;
+    const double sd = i < config_.wide_fraction * n
+                          ? std::max(sd_pos, config_.wide_noise * side * growth)
+                          : sd_pos;
+    s.x = std::clamp(p.x + config_.velocity_gain * vx_ + rng_.gaussian(0.0, sd), 0.0,
+                     static_cast<double>(image.cols));
+    s.y = std::clamp(p.y + config_.velocity_gain * vy_ + rng_.gaussian(0.0, sd), 0.0,
+                     static_cast<double>(image.rows));
+    s.log_scale =
+        std::clamp(p.log_scale + rng_.gaussian(0.0, sd_scale), min_log, std::max(min_log, max_log));
+    s.log_aspect = std::clamp(p.log_aspect + rng_.gaussian(0.0, sd_aspect), -1.5, 1.5);
+    next[i] = s;
+  }
+  samples_.swap(next);
+
+  // 2. The object likelihood over the region the samples' rings span, and its summed-area table.
+  cv::Rect2d span = grown(boxOf(samples_[0]), config_.ring_scale);
+  for (const Sample& s : samples_) span |= grown(boxOf(s), config_.ring_scale);
+  BoxTrackResult out;
+  out.search = covering(span, bounds);
+  if (out.search.empty()) out.search = bounds;
+  const int nb = static_cast<int>(h_object_.size());
+  std::vector<float> lut(nb);
+  for (int b = 0; b < nb; ++b) {
+    const float o = h_object_[b], s = h_surround_[b];
+    lut[b] = o + s > 0.0f ? o / (o + s) : 0.5f;  // a colour seen in neither: no evidence
+  }
+  cv::Mat bins;
+  binImage(image, out.search, &bins);
+  cv::Mat likelihood(out.search.size(), CV_32F);
+  for (int y = 0; y < bins.rows; ++y) {
+    const std::uint16_t* in = bins.ptr<std::uint16_t>(y);
+    float* o = likelihood.ptr<float>(y);
+    for (int x = 0; x < bins.cols; ++x) o[x] = lut[in[x]];
+  }
+  cv::Mat sat;
+  cv::integral(likelihood, sat, CV_64F);
+  const cv::Rect local(0, 0, out.search.width, out.search.height);
+  auto score = [&](const cv::Rect2d& box) {
+    const cv::Rect2d shifted(box.x - out.search.x, box.y - out.search.y, box.width, box.height);
+    const cv::Rect in = covering(shifted, local);
+    const cv::Rect ring = covering(grown(shifted, config_.ring_scale), local);
+    if (in.area() <= 0) return -1.0;
+    const double s_in = areaSum(sat, in.x, in.y, in.x + in.width, in.y + in.height);
+    const double s_ring =
+        areaSum(sat, ring.x, ring.y, ring.x + ring.width, ring.y + ring.height) - s_in;
+    const double a_ring = static_cast<double>(ring.area() - in.area());
+    return s_in / in.area() - (a_ring >= 1.0 ? s_ring / a_ring : 0.0);
+  };
+
+  // The appearance cue: normalised cross-correlation of the grey template.
+  cv::Mat grey;
+  const bool use_template = !template_.empty() && config_.template_gain > 0.0;
+  if (use_template) smoothedGrey(image, out.search, side, &grey);
+  auto ncc = [&](const cv::Rect2d& box) {
+    const std::vector<float> p = patch(grey, out.search.tl(), box);
+    if (p.empty()) return 0.0;
+    double s = 0.0;
+    for (std::size_t k = 0; k < p.size(); ++k) s += static_cast<double>(p[k]) * template_[k];
+    return s;
+  };
+
+  // 3. Weights, and the estimate from the samples near the best one.
+  std::vector<double> log_w(n);
+  for (int i = 0; i < n; ++i) {
+    const cv::Rect2d box = boxOf(samples_[i]);
+    log_w[i] =
+        config_.score_gain * score(box) + (use_template ? config_.template_gain * ncc(box) : 0.0);
+  }
+  math::normalizeLogWeights(log_w, &weights_);
+  const int best =
+      static_cast<int>(std::max_element(weights_.begin(), weights_.end()) - weights_.begin());
+  const Sample& b = samples_[best];
+  const cv::Rect2d best_box = boxOf(b);
+  const double near = 0.5 * std::sqrt(best_box.width * best_box.height);
+  double sw = 0.0;
+  Sample mean{0, 0, 0, 0};
+  for (int i = 0; i < n; ++i) {
+    const Sample& s = samples_[i];
+    if (std::hypot(s.x - b.x, s.y - b.y) > near) continue;
+    sw += weights_[i];
+    mean.x += weights_[i] * s.x;
+    mean.y += weights_[i] * s.y;
+    mean.log_scale += weights_[i] * s.log_scale;
+    mean.log_aspect += weights_[i] * s.log_aspect;
+  }
+  mean = sw > 0 ? Sample{mean.x / sw, mean.y / sw, mean.log_scale / sw, mean.log_aspect / sw} : b;
+  if (use_template && config_.scale_search_steps > 0) {
+    double best_ncc = -2.0, best_log = mean.log_scale;
+    for (int k = -config_.scale_search_steps; k <= config_.scale_search_steps; ++k) {
+      const Sample s{mean.x, mean.y, mean.log_scale + k * config_.scale_step, mean.log_aspect};
+      const double c = ncc(boxOf(s));
+      if (c > best_ncc) {
+        best_ncc = c;
+        best_log = s.log_scale;
+      }
+    }
+    mean.log_scale = best_log;
+  }
+  const double confidence = score(boxOf(mean));
+  out.lost = confidence < config_.lost_score;
+  if (out.lost) {
+    // Doubtful: the estimate stays where the target was last seen with confidence; the samples
+    // spread further each frame until one scores again.
+    ++lost_frames_;
+    vx_ = vy_ = 0.0;
+  } else {
+    vx_ = mean.x - estimate_.x;
+    vy_ = mean.y - estimate_.y;
+    estimate_ = mean;
+    lost_frames_ = 0;
+  }
+  out.box = boxOf(estimate_);
+  out.confidence = confidence;
+
+  // 4. Model update (eq. 29), gated by the confidence.
+  if (!out.lost && confidence >= config_.update_min_score && config_.learning_rate > 0.0) {
+    std::vector<float> o, s;
+    histograms(image, out.box, &o, &s);
+    const float a = static_cast<float>(config_.learning_rate);
+    for (int k = 0; k < nb; ++k) {
+      h_object_[k] = (1.0f - a) * h_object_[k] + a * o[k];
+      h_surround_[k] = (1.0f - a) * h_surround_[k] + a * s[k];
+    }
+    if (use_template && config_.template_rate > 0.0) {
+      const std::vector<float> p = patch(grey, out.search.tl(), out.box);
+      if (!p.empty()) {
+        const float r = static_cast<float>(config_.template_rate);
+        double norm = 0.0;
+        for (std::size_t k = 0; k < p.size(); ++k) {
+          template_[k] = (1.0f - r) * template_[k] + r * p[k];
+          norm += static_cast<double>(template_[k]) * template_[k];
+        }
+        const float inv = static_cast<float>(1.0 / std::sqrt(std::max(norm, 1e-12)));
+        for (float& v : template_) v *= inv;
+      }
+    }
+  }
+  out.samples.reserve(n);
+  for (const Sample& s : samples_) out.samples.push_back(boxOf(s));
+  out.weights = weights_;
+  return out;
+}
+
+}  // namespace adaptive_perception::tracking

@@ -1,0 +1,103 @@
+// tracking::BoxCondensationTracker: configuration checks, bad input, and tracking the project's
+// simulated sequences (a moving target among clutter; a distractor of the target's colour
+// crossing it) against their ground truth, with the default configuration.
+#include "adaptive_perception/tracking/box_condensation_tracker.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "adaptive_perception/sim/tracking_scene.h"
+#include "adaptive_perception/tracking/benchmark_metrics.h"
+
+namespace tr = adaptive_perception::tracking;
+namespace sim = adaptive_perception::sim;
+
+namespace {
+
+/// Success rate (IoU >= 0.5, every frame after the first) on a simulated sequence.
+double successOn(sim::TrackingScenario scenario, std::uint64_t seed, bool grey = false) {
+  sim::TrackingSceneConfig sc;
+  sc.scenario = scenario;
+  sc.frames = 150;
+  sim::TrackingScene scene(sc, seed);
+  tr::BoxCondensationTracker tracker(tr::BoxTrackerConfig{}, seed);
+  int frames = 0, success = 0;
+  while (!scene.done()) {
+    const sim::SceneFrame f = scene.next();
+    cv::Mat image = f.bgr;
+    if (grey) cv::cvtColor(f.bgr, image, cv::COLOR_BGR2GRAY);
+    if (!tracker.initialized()) {
+      tracker.init(image, f.truth);
+      continue;
+    }
+    const tr::BoxTrackResult r = tracker.track(image);
+    ++frames;
+    success += tr::boxIou(r.box, f.truth) >= 0.5;
+  }
+  return static_cast<double>(success) / frames;
+}
+
+}  // namespace
+
+TEST(BoxTrackerConfig, RejectsBadFieldsByName) {
+  auto message = [](tr::BoxTrackerConfig c) {
+    try {
+      c.validate();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  tr::BoxTrackerConfig c;
+  EXPECT_EQ(message(c), "accepted");
+  c.bins_per_channel = 12;  // not a power of two
+  EXPECT_NE(message(c).find("bins_per_channel"), std::string::npos);
+  c = {};
+  c.ring_scale = 1.0;
+  EXPECT_NE(message(c).find("ring_scale"), std::string::npos);
+  c = {};
+  c.position_noise = std::nan("");
+  EXPECT_NE(message(c).find("position_noise"), std::string::npos);
+  c = {};
+  c.template_cells = 2;
+  EXPECT_NE(message(c).find("template_cells"), std::string::npos);
+}
+
+TEST(BoxCondensationTracker, RefusesBadImagesAndBoxes) {
+  tr::BoxCondensationTracker t;
+  const cv::Mat image(120, 160, CV_8UC3, cv::Scalar(40, 80, 120));
+  EXPECT_THROW(t.track(image), std::logic_error);
+  EXPECT_THROW(t.init(image, {10, 10, 2, 20}), std::invalid_argument);     // too small
+  EXPECT_THROW(t.init(image, {500, 500, 20, 20}), std::invalid_argument);  // outside
+  EXPECT_THROW(t.init(cv::Mat(120, 160, CV_32FC1), {10, 10, 20, 20}), std::invalid_argument);
+  t.init(image, {10, 10, 20, 20});
+  EXPECT_THROW(t.track(cv::Mat(120, 160, CV_16UC3)), std::invalid_argument);
+  const tr::BoxTrackResult r = t.track(image);  // a flat image: no crash, a box of the right size
+  EXPECT_GT(r.box.width, 0.0);
+}
+
+// (The Lambertian rectangle, which turns and changes its shading as it revolves around the light,
+// is not here: this tracker loses it; see the tracking issue's note.)
+TEST(BoxCondensationTracker, FollowsSimulatedTargetsInColourAndInGrey) {
+  EXPECT_GE(successOn(sim::TrackingScenario::kCircles, 1), 0.9);
+  EXPECT_GE(successOn(sim::TrackingScenario::kCircles, 2, true), 0.8);
+}
+
+TEST(BoxCondensationTracker, IsNotTakenAwayByADistractorOfTheSameColour) {
+  EXPECT_GE(successOn(sim::TrackingScenario::kDistractor, 1), 0.8);
+}
+
+TEST(BoxCondensationTracker, TheSameSeedGivesTheSameTrack) {
+  sim::TrackingSceneConfig sc;
+  sc.frames = 20;
+  std::vector<cv::Rect2d> runs[2];
+  for (auto& run : runs) {
+    sim::TrackingScene scene(sc, 3);
+    tr::BoxCondensationTracker t(tr::BoxTrackerConfig{}, 7);
+    const sim::SceneFrame first = scene.next();
+    t.init(first.bgr, first.truth);
+    while (!scene.done()) run.push_back(t.track(scene.next().bgr).box);
+  }
+  EXPECT_EQ(runs[0], runs[1]);
+}

@@ -1,0 +1,32 @@
+// libFuzzer target: a tracking benchmark's ground-truth file (io/benchmark_sequence.h), read as an
+// OTB sequence of two frames.
+#include <unistd.h>
+
+#include <cstdint>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+
+#include "adaptive_perception/io/benchmark_sequence.h"
+
+using namespace adaptive_perception;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const std::string dir = [] {
+    const std::string d = "/tmp/ap_fuzz_" + std::to_string(::getpid()) + "_sequence";
+    std::filesystem::create_directories(d + "/img");
+    for (const char* name : {"/img/0001.png", "/img/0002.png"})
+      cv::imwrite(d + name, cv::Mat(4, 4, CV_8UC3, cv::Scalar(1, 2, 3)));
+    return d;
+  }();
+  std::ofstream(dir + "/groundtruth_rect.txt", std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  try {
+    io::readBenchmarkSequence(dir);
+  } catch (const std::exception&) {
+    // A clear error is the expected answer to a bad file; crashes and sanitizer reports are not.
+  }
+  return 0;
+}
