@@ -353,7 +353,12 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
     }
     mean.log_scale = best_log;
   }
-  const double confidence = score(boxOf(mean));
+  // The estimate's log-weight over score_gain: the colour score plus the template's share, so that
+  // a target the template still finds (a grey one, whose colours say little) is not lost.
+  const cv::Rect2d mean_box = boxOf(mean);
+  const double confidence =
+      score(mean_box) +
+      (use_template ? config_.template_gain / config_.score_gain * ncc(mean_box) : 0.0);
   out.lost = confidence < config_.lost_score;
   if (out.lost) {
     // Doubtful: the estimate stays where the target was last seen with confidence; the samples
