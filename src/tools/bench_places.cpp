@@ -7,8 +7,12 @@
 // 2. Queries: eq. (5) node distances of one test image against --images stored images (11
 //    places; histograms of rendered views of the building, perturbed per stored image) in one
 //    colour space, for each distance (ms per query; the target is under 10 ms for 10,000 images).
+// 3. Traversals (places/traversal_matcher.h): each whole-image descriptor of the 640 x 480 image
+//    (ms), and one query against a reference traversal of --images images (rendered views along
+//    the building's route) with each method, the sequence search included (ms per query, after
+//    sequence_frames queries so the search runs over its whole history).
 // Last line: `bench_places: extract_ms_<space>=... extract_ms_all=... query_ms_<method>=...
-// images=N space=S`.
+// describe_ms_<descriptor>=... traversal_ms_<method>=... images=N space=S`.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +20,7 @@
 
 #include "adaptive_perception/places/histogram.h"
 #include "adaptive_perception/places/place_matcher.h"
+#include "adaptive_perception/places/traversal_matcher.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/sim/indoor_renderer.h"
 #include "tool_args.h"
@@ -117,6 +122,37 @@ int main(int argc, char** argv) {
       const double ms =
           msPerCall(seconds, [&] { sink += index.nodeDistances(space, d, query)[0]; });
       std::snprintf(buf, sizeof(buf), " query_ms_%s=%.2f", places::distanceName(d).c_str(), ms);
+      line += buf;
+    }
+
+    // 3. Traversals.
+    const places::TraversalMatcherConfig tcfg;
+    for (int k = 0; k < places::kNumDescriptorKinds; ++k) {
+      const auto kind = static_cast<places::DescriptorKind>(k);
+      const double ms = msPerCall(seconds / 4, [&] {
+        sink += places::computeDescriptor(kitchen, kind, tcfg.descriptor).at<uchar>(0, 0);
+      });
+      std::snprintf(buf, sizeof(buf), " describe_ms_%s=%.2f", places::descriptorName(kind).c_str(),
+                    ms);
+      line += buf;
+    }
+    std::vector<places::ImageDescriptors> route_views;
+    for (int v = 0; v < 40; ++v) {
+      const auto& stop = world.route[v * world.route.size() / 40];
+      route_views.push_back(places::computeDescriptors(
+          small_renderer.render(math::SE2(stop.xy_m.x(), stop.xy_m.y(), 0.0), light, rng),
+          tcfg.descriptor));
+    }
+    places::ReferenceTraversal refs(tcfg.descriptor);
+    for (long i = 0; i < images; ++i) refs.add(route_views[i % route_views.size()]);
+    const places::ImageDescriptors tquery = places::computeDescriptors(kitchen, tcfg.descriptor);
+    for (const char* method : {"thumbnail", "gradient", "chromaticity", "fused", "sequence"}) {
+      places::TraversalMatcherConfig c = tcfg;
+      c.method = method;
+      places::TraversalMatcher matcher(refs, c);
+      for (int i = 0; i < c.sequence.sequence_frames; ++i) matcher.add(tquery);
+      const double ms = msPerCall(seconds, [&] { sink += matcher.add(tquery)[0]; });
+      std::snprintf(buf, sizeof(buf), " traversal_ms_%s=%.2f", method, ms);
       line += buf;
     }
     if (std::isnan(sink)) line += " (nan)";

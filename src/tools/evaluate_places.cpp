@@ -1,5 +1,6 @@
 // evaluate_places: recognises the places of labelled test images against a place database, the
-// paper's way (papers/004 sections 5-7) and with the topological Bayes filter.
+// paper's way (papers/004 sections 5-7) and with the topological Bayes filter. With --reference
+// and --query it runs the standard protocol on two traversals instead (place_traversal.h).
 //
 //   evaluate_places --database DB.sqlite (--bag FILE | --list CSV) [--images_per_place 15]
 //                   [--window 5] [--spaces all] [--methods paper|all|chi_square,...]
@@ -33,6 +34,7 @@
 #include "adaptive_perception/places/place_database.h"
 #include "adaptive_perception/places/place_recognizer.h"
 #include "labelled_images.h"
+#include "place_traversal.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -52,7 +54,12 @@ int main(int argc, char** argv) {
                    "evaluate_places --database DB.sqlite (--bag FILE | --list CSV) "
                    "[--images_per_place N] [--window M] [--spaces all|rgb,...] "
                    "[--methods paper|all|chi_square,jeffrey,ks,ks_cumulative,intersection] "
-                   "[--stay_probability P] [--likelihood_sharpness K] [--output DIR]");
+                   "[--stay_probability P] [--likelihood_sharpness K] [--output DIR]\n"
+                   "   or: evaluate_places --reference A --query B [--tolerance_frames N] "
+                   "[--ground_truth CSV] [--method thumbnail|gradient|chromaticity|fused|sequence] "
+                   "[--sequence_frames L] [--thumbnail_weight W] [--gradient_weight W] "
+                   "[--chromaticity_weight W] [--output DIR]");
+  if (args.has("reference") || args.has("query")) return tools::runTraversalEvaluation(args);
   const std::string db_path = args.get("database", "");
   const std::string bag = args.get("bag", "");
   const std::string list = args.get("list", "");

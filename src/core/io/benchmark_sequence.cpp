@@ -8,47 +8,11 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "adaptive_perception/io/image_folder.h"
+
 namespace adaptive_perception::io {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-bool isImage(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".bmp" || ext == ".ppm" ||
-         ext == ".pgm";
-}
-
-/// Natural order: runs of digits compare by value ("9.jpg" before "10.jpg").
-bool naturalLess(const std::string& a, const std::string& b) {
-  std::size_t i = 0, j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (std::isdigit(static_cast<unsigned char>(a[i])) &&
-        std::isdigit(static_cast<unsigned char>(b[j]))) {
-      std::size_t i2 = i, j2 = j;
-      while (i2 < a.size() && std::isdigit(static_cast<unsigned char>(a[i2]))) ++i2;
-      while (j2 < b.size() && std::isdigit(static_cast<unsigned char>(b[j2]))) ++j2;
-      const std::string da = a.substr(i, i2 - i), db = b.substr(j, j2 - j);
-      const std::size_t za = da.find_first_not_of('0'), zb = db.find_first_not_of('0');
-      const std::string va = za == std::string::npos ? "" : da.substr(za);
-      const std::string vb = zb == std::string::npos ? "" : db.substr(zb);
-      if (va.size() != vb.size()) return va.size() < vb.size();
-      if (va != vb) return va < vb;
-      i = i2;
-      j = j2;
-    } else {
-      if (a[i] != b[j]) return a[i] < b[j];
-      ++i;
-      ++j;
-    }
-  }
-  return a.size() - i < b.size() - j;
-}
-
-}  // namespace
 
 std::optional<cv::Rect2d> parseGroundTruthLine(const std::string& line, bool one_based,
                                                const std::string& where) {
@@ -116,19 +80,10 @@ BenchmarkSequence readBenchmarkSequence(const std::string& dir) {
                              "groundtruth.txt (VOT)");
   }
   if (!fs::is_directory(images)) throw std::runtime_error(images.string() + ": no such folder");
-  std::vector<std::string> names;
   int skipped = 0;
-  for (const auto& e : fs::directory_iterator(images, ec)) {
-    if (!e.is_regular_file(ec)) continue;
-    if (isImage(e.path()))
-      names.push_back(e.path().filename().string());
-    else if (fs::path(e.path()) != fs::path(seq.ground_truth_file))
-      ++skipped;
-  }
-  if (names.empty())
+  seq.frames = listImages(images.string(), &skipped);
+  if (seq.frames.empty())
     throw std::runtime_error(images.string() + ": no image (jpg, png, bmp, ppm, pgm)");
-  std::sort(names.begin(), names.end(), naturalLess);
-  for (const auto& n : names) seq.frames.push_back((images / n).string());
   if (skipped > 0 && images != root)
     seq.notes.push_back(std::to_string(skipped) + " file(s) in " + images.string() +
                         " that are not images skipped");

@@ -4,16 +4,9 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace adaptive_perception::io {
-namespace {
-std::string trim(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t\r");
-  if (a == std::string::npos) return "";
-  const auto b = s.find_last_not_of(" \t\r");
-  return s.substr(a, b - a + 1);
-}
-}  // namespace
+#include "adaptive_perception/io/image_folder.h"
 
+namespace adaptive_perception::io {
 std::vector<LabelledPath> readImageList(const std::string& csv_path) {
   std::ifstream in(csv_path);
   if (!in) throw std::runtime_error(csv_path + ": cannot open image list");
@@ -23,7 +16,7 @@ std::vector<LabelledPath> readImageList(const std::string& csv_path) {
   int n = 0;
   while (std::getline(in, line)) {
     ++n;
-    const std::string t = trim(line);
+    const std::string t = trimmed(line);
     if (t.empty() || t[0] == '#') continue;
     if (n == 1 && t.rfind("image_path", 0) == 0) continue;
     const auto comma = t.find(',');
@@ -31,8 +24,8 @@ std::vector<LabelledPath> readImageList(const std::string& csv_path) {
       throw std::runtime_error(csv_path + ":" + std::to_string(n) +
                                ": expected `image_path,label`, got '" + t + "'");
     LabelledPath p;
-    const std::string path = trim(t.substr(0, comma));
-    p.label = trim(t.substr(comma + 1));
+    const std::string path = trimmed(t.substr(0, comma));
+    p.label = trimmed(t.substr(comma + 1));
     if (path.empty() || p.label.empty())
       throw std::runtime_error(csv_path + ":" + std::to_string(n) + ": empty path or label");
     if (p.label.find(',') != std::string::npos)

@@ -1,0 +1,78 @@
+#pragma once
+// Place recognition along a route: a reference traversal (every stored image its own place, in
+// the order it was driven) and an online matcher that answers, for each new query image, how well
+// it matches each reference image.
+//
+// Methods (TraversalMatcherConfig::method):
+//   thumbnail, gradient, chromaticity   one whole-image cue (global_descriptor.h) alone;
+//   fused      the single-image cues combined: each cue's distances to the references turned into
+//              z-scores over the references (so that cues of different scales add), then the
+//              weighted mean with the *_weight fields;
+//   sequence   (default) SeqSLAM trajectory search (sequence_matcher.h) over the fused distances
+//              of the last sequence.sequence_frames queries.
+// The fusion weights are settings chosen once on development data (docs/places_across_light.md
+// gives the measurements), never from the images being recognised.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "adaptive_perception/places/global_descriptor.h"
+#include "adaptive_perception/places/sequence_matcher.h"
+
+namespace adaptive_perception::places {
+
+struct TraversalMatcherConfig {
+  GlobalDescriptorConfig descriptor;
+  SequenceMatcherConfig sequence;
+  std::string method = "sequence";  // thumbnail, gradient, chromaticity, fused, sequence
+  double thumbnail_weight = 1.0;    // fusion weights, >= 0, not all 0 among the cues used
+  double gradient_weight = 1.0;
+  double chromaticity_weight = 0.0;
+
+  void validate() const;  // throws std::invalid_argument naming the bad field
+  /// The method names above, for messages.
+  static const char* methodNames();
+  /// The weight of each cue the method uses (a single cue: 1 for it, 0 for the others).
+  std::array<double, kNumDescriptorKinds> cueWeights() const;
+};
+
+/// The reference traversal: descriptors of every cue, one row per image, in traversal order.
+class ReferenceTraversal {
+ public:
+  explicit ReferenceTraversal(GlobalDescriptorConfig config = {});
+  /// Appends one image's descriptors (from computeDescriptors with the same config). Throws
+  /// std::invalid_argument on rows of the wrong length.
+  void add(const ImageDescriptors& d);
+  int size() const { return rows_[0].rows; }
+  const cv::Mat& rows(DescriptorKind k) const { return rows_[static_cast<int>(k)]; }
+  const GlobalDescriptorConfig& config() const { return config_; }
+
+ private:
+  GlobalDescriptorConfig config_;
+  std::array<cv::Mat, kNumDescriptorKinds> rows_;
+};
+
+class TraversalMatcher {
+ public:
+  /// `references` must outlive the matcher and not change while it is used.
+  TraversalMatcher(const ReferenceTraversal& references, TraversalMatcherConfig config = {});
+
+  /// The next query image: its score against every reference (lower = better; the method's
+  /// units: mean absolute difference for one cue, z-score for fused and sequence). Throws
+  /// std::invalid_argument when the reference traversal is empty.
+  const std::vector<float>& add(const ImageDescriptors& query);
+  /// Forgets the query history (sequence), e.g. when time jumped back.
+  void reset();
+  const TraversalMatcherConfig& config() const { return config_; }
+
+  /// The fused single-image distances of one query (z-scores), exposed for tests.
+  std::vector<float> fusedDistances(const ImageDescriptors& query) const;
+
+ private:
+  const ReferenceTraversal& refs_;
+  TraversalMatcherConfig config_;
+  SequenceMatcher sequence_;
+  std::vector<float> scores_;
+};
+
+}  // namespace adaptive_perception::places

@@ -1,0 +1,194 @@
+#pragma once
+// evaluate_places --reference A --query B: the standard place-recognition protocol on two ordered
+// traversals of one route (places/traversal_matcher.h, places/traversal_metrics.h).
+//
+//   evaluate_places --reference A --query B [--tolerance_frames 1] [--ground_truth CSV]
+//                   [--method sequence] [--sequence_frames 10] [--output DIR]
+//
+// A and B are folders of images (name order) or CSV lists of image paths (io/image_folder.h).
+// Query i's true references are i - N .. i + N (N = --tolerance_frames) unless --ground_truth
+// (`query_index,reference_index,tolerance`, from 1) says otherwise; a query it does not list has
+// no true reference and counts as wrong. Every method runs on the same frames; the table lists each,
+// the summary line gives --method's. Writes DIR/results.yaml, DIR/queries.csv (per query and
+// method: truth, best reference, confidence, right) and DIR/pr_curves.csv (one row per point and
+// method); scripts/plot_places.py DIR draws DIR/pr_curve.png from them.
+// Last line: `evaluate_places: mode=traversal method=.. recall_at_1=.. recall_at_5=.. pr_auc=..
+// recall_at_full_precision=.. queries=.. queries_per_s=.. match_ms=.. references=..`
+// (queries_per_s: descriptors and matching of one query, one core; match_ms: the matching alone).
+#include <yaml-cpp/yaml.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <vector>
+
+#include "adaptive_perception/io/image_folder.h"
+#include "adaptive_perception/places/traversal_matcher.h"
+#include "adaptive_perception/places/traversal_metrics.h"
+#include "tool_args.h"
+
+namespace adaptive_perception::tools {
+
+namespace traversal_detail {
+inline cv::Mat readImage(const std::string& path, const std::string& which) {
+  cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
+  if (img.empty())
+    throw std::runtime_error(which + " image '" + path + "' cannot be read (missing or not an image)");
+  return img;
+}
+}  // namespace traversal_detail
+
+inline int runTraversalEvaluation(Args& args) {
+  namespace fs = std::filesystem;
+  using places::TraversalMatcherConfig;
+  const std::string ref_path = args.get("reference", "");
+  const std::string query_path = args.get("query", "");
+  const long tolerance = args.getInt("tolerance_frames", 1);
+  const std::string gt_path = args.get("ground_truth", "");
+  TraversalMatcherConfig cfg;
+  cfg.method = args.get("method", cfg.method);
+  cfg.sequence.sequence_frames =
+      static_cast<int>(args.getInt("sequence_frames", cfg.sequence.sequence_frames));
+  cfg.thumbnail_weight = args.getDouble("thumbnail_weight", cfg.thumbnail_weight);
+  cfg.gradient_weight = args.getDouble("gradient_weight", cfg.gradient_weight);
+  cfg.chromaticity_weight = args.getDouble("chromaticity_weight", cfg.chromaticity_weight);
+  const std::string output = args.get("output", "results/evaluate_places");
+  args.finish();
+  if (ref_path.empty() || query_path.empty())
+    args.fail("traversal mode needs both --reference A and --query B");
+  if (tolerance < 0) args.fail("--tolerance_frames must be >= 0");
+  try {
+    cfg.validate();
+    const std::vector<std::string> ref_files = io::readTraversal(ref_path);
+    const std::vector<std::string> query_files = io::readTraversal(query_path);
+    std::vector<io::FrameCorrespondence> truth(query_files.size(),
+                                               {0, -1, static_cast<int>(tolerance)});
+    for (size_t i = 0; i < truth.size(); ++i) {
+      truth[i].query = static_cast<int>(i);
+      truth[i].reference = i < ref_files.size() ? static_cast<int>(i) : -1;
+    }
+    if (!gt_path.empty()) {
+      for (auto& t : truth) t.reference = -1;
+      for (const io::FrameCorrespondence& c : io::readFrameCorrespondences(gt_path)) {
+        if (c.query >= static_cast<int>(query_files.size()) ||
+            c.reference >= static_cast<int>(ref_files.size()))
+          throw std::runtime_error(gt_path + ": query " + std::to_string(c.query + 1) +
+                                   " / reference " + std::to_string(c.reference + 1) +
+                                   " beyond the traversals (" + std::to_string(query_files.size()) +
+                                   " queries, " + std::to_string(ref_files.size()) + " references)");
+        truth[c.query] = c;
+      }
+    }
+    long without_truth = 0;
+    for (const auto& t : truth) without_truth += t.reference < 0;
+    if (without_truth > 0)
+      std::cerr << "evaluate_places: " << without_truth
+                << " queries have no true reference (they count as wrong)\n";
+
+    places::ReferenceTraversal refs(cfg.descriptor);
+    const auto t_ref = std::chrono::steady_clock::now();
+    for (const std::string& f : ref_files)
+      refs.add(places::computeDescriptors(traversal_detail::readImage(f, "reference"),
+                                          cfg.descriptor));
+    const double ref_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_ref).count();
+    std::printf("evaluate_places: %d reference images (%s) in %.1f s, %zu queries (%s)\n",
+                refs.size(), ref_path.c_str(), ref_s, query_files.size(), query_path.c_str());
+
+    const std::vector<std::string> methods = {"thumbnail", "gradient", "chromaticity", "fused",
+                                              "sequence"};
+    std::vector<places::TraversalMatcher> matchers;
+    for (const std::string& m : methods) {
+      TraversalMatcherConfig c = cfg;
+      c.method = m;
+      matchers.emplace_back(refs, c);
+    }
+    std::vector<std::vector<places::QueryOutcome>> outcomes(methods.size());
+    std::vector<double> match_s(methods.size(), 0.0);
+    double describe_s = 0.0;
+    for (size_t i = 0; i < query_files.size(); ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const places::ImageDescriptors d =
+          places::computeDescriptors(traversal_detail::readImage(query_files[i], "query"),
+                                     cfg.descriptor);
+      describe_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      for (size_t m = 0; m < methods.size(); ++m) {
+        const auto t1 = std::chrono::steady_clock::now();
+        const std::vector<float>& s = matchers[m].add(d);
+        places::QueryOutcome o;
+        o.ranked = places::smallestK(s, 5);
+        o.confidence = places::separation(s);
+        match_s[m] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+        o.truth_reference = truth[i].reference;
+        o.tolerance = truth[i].tolerance;
+        outcomes[m].push_back(std::move(o));
+      }
+    }
+
+    fs::create_directories(output);
+    std::ofstream qcsv(fs::path(output) / "queries.csv");
+    qcsv << "method,query,truth,tolerance,best,confidence,right\n";
+    std::ofstream pcsv(fs::path(output) / "pr_curves.csv");
+    pcsv << "method,threshold,precision,recall\n";
+    YAML::Emitter y;
+    y << YAML::BeginMap << YAML::Key << "reference" << YAML::Value << ref_path;
+    y << YAML::Key << "query" << YAML::Value << query_path;
+    y << YAML::Key << "tolerance_frames" << YAML::Value << tolerance;
+    y << YAML::Key << "ground_truth" << YAML::Value << (gt_path.empty() ? "same index" : gt_path);
+    y << YAML::Key << "sequence_frames" << YAML::Value << cfg.sequence.sequence_frames;
+    y << YAML::Key << "methods" << YAML::Value << YAML::BeginMap;
+    std::printf("  %-13s %9s %9s %7s %12s %9s\n", "method", "recall@1", "recall@5", "pr_auc",
+                "r@100%prec", "match_ms");
+    places::TraversalMetrics chosen;
+    double chosen_match_ms = 0.0;
+    const double nq = static_cast<double>(query_files.size());
+    for (size_t m = 0; m < methods.size(); ++m) {
+      const places::TraversalMetrics r = places::scoreTraversal(outcomes[m]);
+      const double ms = 1000.0 * match_s[m] / nq;
+      std::printf("  %-13s %9.3f %9.3f %7.3f %12.3f %9.3f%s\n", methods[m].c_str(), r.recall_at_1,
+                  r.recall_at_5, r.pr_auc, r.recall_at_full_precision, ms,
+                  methods[m] == cfg.method ? "  <- --method" : "");
+      for (size_t i = 0; i < outcomes[m].size(); ++i) {
+        const auto& o = outcomes[m][i];
+        qcsv << methods[m] << "," << i + 1 << "," << (o.truth_reference + 1) << "," << o.tolerance
+             << "," << o.ranked[0] + 1 << "," << o.confidence << "," << o.rightAt(1) << "\n";
+      }
+      for (const auto& p : r.curve)
+        pcsv << methods[m] << "," << p.threshold << "," << p.precision << "," << p.recall << "\n";
+      y << YAML::Key << methods[m] << YAML::Value << YAML::BeginMap;
+      y << YAML::Key << "recall_at_1" << YAML::Value << r.recall_at_1;
+      y << YAML::Key << "recall_at_5" << YAML::Value << r.recall_at_5;
+      y << YAML::Key << "pr_auc" << YAML::Value << r.pr_auc;
+      y << YAML::Key << "recall_at_full_precision" << YAML::Value << r.recall_at_full_precision;
+      y << YAML::Key << "match_ms" << YAML::Value << ms << YAML::EndMap;
+      if (methods[m] == cfg.method) {
+        chosen = r;
+        chosen_match_ms = ms;
+      }
+    }
+    y << YAML::EndMap;
+    const double qps = nq / (describe_s + chosen_match_ms * nq / 1000.0);
+    y << YAML::Key << "queries" << YAML::Value << query_files.size();
+    y << YAML::Key << "references" << YAML::Value << refs.size();
+    y << YAML::Key << "queries_per_s" << YAML::Value << qps << YAML::EndMap;
+    std::ofstream(fs::path(output) / "results.yaml") << y.c_str() << "\n";
+    qcsv.close();
+    pcsv.close();
+    std::printf(
+        "evaluate_places: mode=traversal method=%s recall_at_1=%.3f recall_at_5=%.3f pr_auc=%.3f "
+        "recall_at_full_precision=%.3f queries=%zu queries_per_s=%.1f match_ms=%.3f "
+        "references=%d\n",
+        cfg.method.c_str(), chosen.recall_at_1, chosen.recall_at_5, chosen.pr_auc,
+        chosen.recall_at_full_precision, query_files.size(), qps, chosen_match_ms, refs.size());
+  } catch (const std::exception& e) {
+    std::cerr << "evaluate_places: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace adaptive_perception::tools
