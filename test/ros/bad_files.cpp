@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 #include <ros/package.h>
 #include <ros/ros.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
@@ -13,6 +12,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "rostest_support.h"
 
 namespace fs = std::filesystem;
 
@@ -30,27 +31,15 @@ void writeAll(const fs::path& p, const std::string& s) {
   out << s;
 }
 
-struct NodeRun {
-  int status = -1;  // exit status; -1 when killed by the timeout or a signal
-  std::string output;
-};
+using NodeRun = adaptive_perception::rostest_support::CommandRun;
 
 /// Runs `rosrun adaptive_perception NODE ARGS` (stdout and stderr together) for at most 30 s, as
 /// the node PREFIX + NODE (private parameters set on the command line stay on the parameter
 /// server: each group of tests names its nodes apart).
 NodeRun runNode(const std::string& node, const std::string& args,
                 const std::string& prefix = "bad_files_") {
-  const std::string cmd = "timeout -s KILL 30 rosrun adaptive_perception " + node +
-                          " __name:=" + prefix + node + " " + args + " 2>&1";
-  NodeRun r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-  const int st = ::pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-
-  return r;
+  return adaptive_perception::rostest_support::runCommand(
+      "rosrun adaptive_perception " + node + " __name:=" + prefix + node + " " + args, 30);
 }
 
 struct Case {

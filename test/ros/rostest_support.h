@@ -8,12 +8,35 @@
 #include <std_msgs/String.h>
 #include <topic_tools/shape_shifter.h>
 
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
 #include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
 
 namespace adaptive_perception::rostest_support {
+
+struct CommandRun {
+  int status = -1;  // exit status; -1 when killed by the timeout or a signal
+  std::string output;  // stdout and stderr together
+};
+
+/// Runs `command` through the shell for at most `timeout_s` seconds (then SIGKILL).
+inline CommandRun runCommand(const std::string& command, int timeout_s = 30) {
+  const std::string cmd =
+      "timeout -s KILL " + std::to_string(timeout_s) + " " + command + " 2>&1";
+  CommandRun r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
+  const int st = ::pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
 
 /// Polls `done` every `poll_s` seconds of wall time until it returns true, ROS shuts down or
 /// `timeout_s` passes; returns the last value of `done`.
