@@ -32,6 +32,11 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
                         "'; allowed: recognise, train");
   train_mode_ = mode == "train";
   places::PlaceRecognizerConfig rc;
+  rc.cue = P::get<std::string>(pnh, "cue", rc.cue);
+  rc.fusion.thumbnail = P::getInRange(pnh, "thumbnail_weight", rc.fusion.thumbnail, 0.0, 1000.0);
+  rc.fusion.gradient = P::getInRange(pnh, "gradient_weight", rc.fusion.gradient, 0.0, 1000.0);
+  rc.fusion.chromaticity =
+      P::getInRange(pnh, "chromaticity_weight", rc.fusion.chromaticity, 0.0, 1000.0);
   rc.color_space = P::get<std::string>(pnh, "color_space", rc.color_space);
   rc.method = P::get<std::string>(pnh, "method", rc.method);
   rc.window = P::getInRange(pnh, "window", rc.window, 1, 1000);
@@ -65,6 +70,7 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
     throw std::runtime_error(path + ": no such place database (and ~create_if_missing is false)");
   }
   histograms_ = db_->settings().histogramConfig();
+  db_->useDescriptors(descriptors_);  // refuses a database whose descriptors have other settings
   reload();
 
   place_pub_ = nh.advertise<PlaceRecognition>(ros_topics::kPlace, 10);
@@ -108,7 +114,12 @@ HistogramPlaceRecognizerNode::~HistogramPlaceRecognizerNode() {
 void HistogramPlaceRecognizerNode::reload() {
   places::PlaceIndex index = db_->loadIndex();
   std::vector<std::vector<int>> adj = db_->adjacencyLists(index);
-  recognizer_->setDatabase(std::move(index), std::move(adj));
+  places::PlaceDescriptorIndex descriptors = db_->loadDescriptorIndex(index, descriptors_);
+  try {
+    recognizer_->setDatabase(std::move(index), std::move(adj), std::move(descriptors));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(db_->path() + ": " + e.what() + " (parameter ~cue)");
+  }
 }
 
 std::string HistogramPlaceRecognizerNode::flush() {
@@ -155,8 +166,10 @@ void HistogramPlaceRecognizerNode::onImage(
   if (restart) recognizer_->reset();
   if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   places::ImageHistograms h;
+  places::ImageDescriptors d;
   try {
     h = places::computeHistograms(bgr, histograms_);
+    d = places::computeDescriptors(bgr, descriptors_);
   } catch (const std::exception& e) {
     ROS_ERROR_THROTTLE(10.0, "histogram_place_recognizer: image dropped: %s", e.what());
     ++bad_images_;
@@ -176,7 +189,7 @@ void HistogramPlaceRecognizerNode::onImage(
   if (!target.empty()) {
     char src[64];
     std::snprintf(src, sizeof(src), "%s@%.3f", ros_topics::kCameraImage, msg->header.stamp.toSec());
-    pending_[target].push_back({src, msg->header.stamp.toSec(), h, {}, {}, {}});
+    pending_[target].push_back({src, msg->header.stamp.toSec(), h, {}, {}, d, {}});
     bool done = false;
     if (collect_) {
       if (collect_->started.isZero()) {
@@ -209,7 +222,7 @@ void HistogramPlaceRecognizerNode::onImage(
   }
   places::PlaceResult r;
   try {
-    r = recognizer_->add(h);
+    r = recognizer_->add(h, &d);
   } catch (const std::exception& e) {
     ROS_ERROR_THROTTLE(10.0, "histogram_place_recognizer: recognition failed: %s", e.what());
     return;
@@ -219,8 +232,9 @@ void HistogramPlaceRecognizerNode::onImage(
   const auto& names = recognizer_->index().placeNames();
   out.place = names[r.recognition.place];
   out.confidence = r.recognition.confidence;
-  out.method = places::distanceName(r.recognition.method);
-  out.color_space = places::spaceName(r.recognition.space);
+  const bool by_histogram = r.recognition.space >= 0;
+  out.method = by_histogram ? places::distanceName(r.recognition.method) : "nearest";
+  out.color_space = by_histogram ? places::spaceName(r.recognition.space) : r.cue;
   out.images = static_cast<std::uint32_t>(r.images);
   out.places = names;
   out.distances = r.recognition.total_distances;

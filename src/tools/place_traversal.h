@@ -53,9 +53,9 @@ inline int runTraversalEvaluation(Args& args) {
   cfg.method = args.get("method", cfg.method);
   cfg.sequence.sequence_frames =
       static_cast<int>(args.getInt("sequence_frames", cfg.sequence.sequence_frames));
-  cfg.thumbnail_weight = args.getDouble("thumbnail_weight", cfg.thumbnail_weight);
-  cfg.gradient_weight = args.getDouble("gradient_weight", cfg.gradient_weight);
-  cfg.chromaticity_weight = args.getDouble("chromaticity_weight", cfg.chromaticity_weight);
+  cfg.fusion.thumbnail = args.getDouble("thumbnail_weight", cfg.fusion.thumbnail);
+  cfg.fusion.gradient = args.getDouble("gradient_weight", cfg.fusion.gradient);
+  cfg.fusion.chromaticity = args.getDouble("chromaticity_weight", cfg.fusion.chromaticity);
   const std::string output = args.get("output", "results/evaluate_places");
   args.finish();
   if (ref_path.empty() || query_path.empty())

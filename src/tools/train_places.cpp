@@ -6,7 +6,8 @@
 //
 // Images come from a bag (camera/image_raw labelled by ground_truth/place) or a CSV list of
 // `image_path,place` lines. Per place, --images_per_place images spread evenly over that place's
-// images are stored (0: all), with their histograms in every colour space of the database. A new
+// images are stored (0: all), with their histograms in every colour space of the database and
+// their whole-image descriptors (places/global_descriptor.h, default settings). A new
 // database takes --bins/--spaces/--mask (defaults 256, all eight spaces, no mask); an existing one
 // keeps its own, and explicit options that differ are refused. Adjacency: consecutive images with
 // different places make the two places adjacent (the route walked), unless --no_adjacency.
@@ -71,6 +72,8 @@ int main(int argc, char** argv) {
     if (explicit_settings) db.requireSettings(wanted);
     db.beginBatch();
     const places::HistogramConfig use = db.settings().histogramConfig();
+    const places::GlobalDescriptorConfig descriptors;
+    db.useDescriptors(descriptors);
 
     // Histograms of every image, grouped by place in arrival order.
     std::map<std::string, std::vector<places::TrainingImage>> by_place;
@@ -81,6 +84,7 @@ int main(int argc, char** argv) {
       ti.source = li.source;
       ti.stamp_s = li.stamp_s;
       ti.histograms = places::computeHistograms(li.bgr, use);
+      ti.descriptors = places::computeDescriptors(li.bgr, descriptors);
       if (features) {
         ti.features = places::extractSift(li.bgr, sift);
         ti.structure = places::lineStructure(li.bgr, places::LineStructureConfig{});

@@ -22,6 +22,7 @@
 //
 // A grey image (Nordland) has no chromaticity: every pixel falls in the grey bin, so the cue
 // carries nothing there, as it should.
+#include <array>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -50,7 +51,27 @@ struct GlobalDescriptorConfig {
   void validate() const;  // throws std::invalid_argument naming the bad field
   /// Bytes of one descriptor of `kind` with these settings.
   int length(DescriptorKind kind) const;
+  /// "thumbnail=64x32/8 gradient=256x128/32 chromaticity=8": what a stored descriptor was made
+  /// with (two configurations agree when these strings do).
+  std::string toString() const;
 };
+
+/// How the cues are weighed when fused (z-scores of each cue's distances, weighted mean). The
+/// weights were chosen once on development data (docs/places_across_light.md).
+struct FusionWeights {
+  double thumbnail = 1.0;  // each >= 0, not all 0
+  double gradient = 1.0;
+  double chromaticity = 0.0;
+
+  void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+/// True for "thumbnail", "gradient", "chromaticity" and "fused".
+bool isCueName(const std::string& name);
+/// The weight of each descriptor kind for a cue: a single descriptor's name gives 1 for it and 0
+/// for the others, "fused" gives `fusion`. Throws std::invalid_argument for another name.
+std::array<double, kNumDescriptorKinds> cueWeights(const std::string& cue,
+                                                   const FusionWeights& fusion);
 
 /// The descriptor of a bgr8 (CV_8UC3) or mono8 (CV_8UC1) image as one row (CV_8UC1, 1 x
 /// length(kind)). Throws std::invalid_argument on another type or an empty image.

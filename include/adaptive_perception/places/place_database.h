@@ -16,8 +16,10 @@
 // images(id, place_id, source, stamp_s); histograms(image_id, space, data BLOB of 3 * bins
 // little-endian float32); features(image_id, rows, data BLOB of rows x 128 uint8 SIFT
 // descriptors); poses(image_id, x_m, y_m, yaw_rad); structure(image_id, data BLOB of D
-// little-endian float32, line_structure.h). The last three are optional per image (room
-// classification, papers/002) and are added to an older file when it is opened for writing.
+// little-endian float32, line_structure.h); descriptors(image_id, kind, data BLOB of the
+// global_descriptor.h row of that kind), with meta 'descriptors' holding the settings they were
+// made with. The last four are optional per image (room classification, papers/002; the
+// whole-image cues) and are added to an older file when it is opened for writing.
 #include <array>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -25,7 +27,9 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/places/global_descriptor.h"
 #include "adaptive_perception/places/histogram.h"
+#include "adaptive_perception/places/place_descriptor_index.h"
 #include "adaptive_perception/places/place_matcher.h"
 
 struct sqlite3;
@@ -54,6 +58,7 @@ struct TrainingImage {
   ImageHistograms histograms;  // must have every space of the settings
   cv::Mat features;            // optional: N x 128 CV_32F SIFT descriptors (stored as uint8)
   cv::Mat structure;           // optional: 1 x D CV_32F line-structure descriptor
+  ImageDescriptors descriptors;  // optional: every whole-image descriptor (see useDescriptors)
   std::optional<std::array<double, 3>> pose;  // optional: x_m, y_m, yaw_rad in map
 };
 
@@ -92,6 +97,13 @@ class PlaceDatabase {
   /// Throws std::runtime_error naming both settings when `wanted` differs from the stored ones.
   void requireSettings(const DatabaseSettings& wanted) const;
 
+  /// Declares the settings of the whole-image descriptors about to be stored: written to a
+  /// database that has none yet; throws std::runtime_error naming both when it holds
+  /// descriptors made with other settings.
+  void useDescriptors(const GlobalDescriptorConfig& config);
+  /// The settings of the stored descriptors ("" when none are stored).
+  const std::string& descriptorSettings() const { return descriptor_settings_; }
+
   /// Adds the images to `place` (created when new) in one transaction; returns the stored count.
   /// Throws std::invalid_argument when an image lacks a space of the settings or has other bins;
   /// nothing is stored then.
@@ -121,6 +133,11 @@ class PlaceDatabase {
   /// Loads the histograms of `spaces` (default: all stored) into a contiguous in-memory index,
   /// places in name order. Throws std::invalid_argument for a space the database lacks.
   PlaceIndex loadIndex(const std::vector<int>& spaces = {}) const;
+  /// The whole-image descriptors of every image that has them, places in `index`'s order; empty
+  /// when none are stored. Throws std::runtime_error naming both settings when they were made
+  /// with settings other than `config`, or when a stored row is damaged.
+  PlaceDescriptorIndex loadDescriptorIndex(const PlaceIndex& index,
+                                           const GlobalDescriptorConfig& config) const;
   /// Every image that has SIFT features, in the order stored, with its place and pose.
   std::vector<TrainingFrame> loadFrames() const;
   /// Adjacency lists in the index's place order (for PlaceFilter).
@@ -138,6 +155,7 @@ class PlaceDatabase {
   bool in_batch_ = false;
   bool recovered_journal_ = false;
   DatabaseSettings settings_;
+  std::string descriptor_settings_;
 };
 
 }  // namespace adaptive_perception::places

@@ -56,7 +56,7 @@ class PlaceIndex {
 
 /// The outcome of recognising one set of m test images with one space and method.
 struct Recognition {
-  int space = 0;
+  int space = 0;  // -1: a whole-image cue (place_recognizer.h), no colour space
   Distance method = Distance::kChiSquare;
   int place = -1;                       // argmin of total_distances
   double confidence = 0.0;              // eq. (7): votes[place] / test_images

@@ -1,19 +1,28 @@
 #pragma once
-// Online place recognition over a stream of images: each image's node distances (eq. 5) in the
-// configured colour spaces and methods, a sliding window of the last M images combined by eqs.
-// (6)-(7), the most confident space / method when set to "auto" (papers/004 section 6), and the
-// topological Bayes filter (place_filter.h) over the database's adjacency. Used by the
-// histogram_place_recognizer node and evaluate_places.
+// Online place recognition over a stream of images: each image's node distances, a sliding
+// window of the last M images combined by eqs. (6)-(7), and the topological Bayes filter
+// (place_filter.h) over the database's adjacency. Used by the histogram_place_recognizer node and
+// evaluate_places.
+//
+// The node distances come from the configured cue: "fused" (default), "thumbnail", "gradient" or
+// "chromaticity", the whole-image cues of global_descriptor.h against each place's nearest
+// training image (place_descriptor_index.h), which hold across a change of light; or "histogram",
+// the paper's colour histograms (eq. 5) in color_space / method, with the most confident space /
+// method when those are "auto" (papers/004 section 6).
 #include <deque>
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/places/place_descriptor_index.h"
 #include "adaptive_perception/places/place_filter.h"
 #include "adaptive_perception/places/place_matcher.h"
 
 namespace adaptive_perception::places {
 
 struct PlaceRecognizerConfig {
+  std::string cue = "fused";  // fused, thumbnail, gradient, chromaticity, or histogram
+  FusionWeights fusion;       // the fused cue's weights
+  // cue "histogram" only:
   std::string color_space = "auto";  // a space name (histogram.h) or "auto": all the database has
   std::string method = "auto";       // a distance name, or "auto": chi_square, jeffrey, ks
   int window = 5;                    // images combined by eqs. (6)-(7), 1..1000
@@ -24,7 +33,8 @@ struct PlaceRecognizerConfig {
 };
 
 struct PlaceResult {
-  Recognition recognition;     // of the window, in the chosen space / method
+  std::string cue;             // the configured cue
+  Recognition recognition;     // of the window (histogram cue: in the chosen space / method)
   int images = 0;              // in the window
   std::vector<double> belief;  // the filter's, per place (empty without filter)
   int filtered_place = -1;
@@ -35,13 +45,19 @@ class PlaceRecognizer {
   explicit PlaceRecognizer(PlaceRecognizerConfig config = {});
 
   /// Installs the training images and the adjacency (index order); clears the window and resets
-  /// the filter. Throws std::invalid_argument when the configured space is not in the index.
-  void setDatabase(PlaceIndex index, std::vector<std::vector<int>> adjacency);
+  /// the filter. Throws std::invalid_argument when the configured space is not in the index, or
+  /// when a whole-image cue is configured and `descriptors` lacks images the index has (a
+  /// database stored before the cues existed: train it again, or use the histogram cue).
+  void setDatabase(PlaceIndex index, std::vector<std::vector<int>> adjacency,
+                   PlaceDescriptorIndex descriptors = PlaceDescriptorIndex());
+  /// True when the configured cue needs each image's whole-image descriptors in add().
+  bool usesDescriptors() const { return config_.cue != "histogram"; }
   /// Spaces whose histograms add() needs.
   const std::vector<int>& spaces() const { return spaces_; }
   /// Adds one image and recognises the window. Throws std::logic_error when the database has no
-  /// trained place, std::invalid_argument when `h` lacks a needed space.
-  PlaceResult add(const ImageHistograms& h);
+  /// trained place, std::invalid_argument when `h` lacks a needed space or a whole-image cue is
+  /// configured and `d` is null.
+  PlaceResult add(const ImageHistograms& h, const ImageDescriptors* d = nullptr);
   /// Clears the window and resets the filter (time jumped back, robot kidnapped).
   void reset();
   const PlaceIndex& index() const { return index_; }
@@ -50,6 +66,7 @@ class PlaceRecognizer {
  private:
   PlaceRecognizerConfig config_;
   PlaceIndex index_;
+  PlaceDescriptorIndex descriptors_;
   std::vector<int> spaces_;
   std::vector<Distance> methods_;
   std::deque<std::vector<std::vector<double>>> window_;  // [image][combo][place]

@@ -7,11 +7,12 @@
 //   thumbnail, gradient, chromaticity   one whole-image cue (global_descriptor.h) alone;
 //   fused      the single-image cues combined: each cue's distances to the references turned into
 //              z-scores over the references (so that cues of different scales add), then the
-//              weighted mean with the *_weight fields;
+//              weighted mean with `fusion`'s weights;
 //   sequence   (default) SeqSLAM trajectory search (sequence_matcher.h) over the fused distances
 //              of the last sequence.sequence_frames queries.
 // The fusion weights are settings chosen once on development data (docs/places_across_light.md
-// gives the measurements), never from the images being recognised.
+// gives the measurements), never from the images being recognised. Every method's scores are
+// z-scores over the references (lower = better).
 #include <array>
 #include <string>
 #include <vector>
@@ -25,15 +26,11 @@ struct TraversalMatcherConfig {
   GlobalDescriptorConfig descriptor;
   SequenceMatcherConfig sequence;
   std::string method = "sequence";  // thumbnail, gradient, chromaticity, fused, sequence
-  double thumbnail_weight = 1.0;    // fusion weights, >= 0, not all 0 among the cues used
-  double gradient_weight = 1.0;
-  double chromaticity_weight = 0.0;
+  FusionWeights fusion;
 
   void validate() const;  // throws std::invalid_argument naming the bad field
   /// The method names above, for messages.
   static const char* methodNames();
-  /// The weight of each cue the method uses (a single cue: 1 for it, 0 for the others).
-  std::array<double, kNumDescriptorKinds> cueWeights() const;
 };
 
 /// The reference traversal: descriptors of every cue, one row per image, in traversal order.
@@ -52,21 +49,23 @@ class ReferenceTraversal {
   std::array<cv::Mat, kNumDescriptorKinds> rows_;
 };
 
+/// One query's distances to every stored image for a cue (cueWeights): each weighted
+/// descriptor's mean absolute differences as z-scores over the stored images, then their weighted
+/// mean. Throws std::invalid_argument when nothing is stored.
+std::vector<float> cueDistances(const ReferenceTraversal& stored, const ImageDescriptors& query,
+                                const std::array<double, kNumDescriptorKinds>& weights);
+
 class TraversalMatcher {
  public:
   /// `references` must outlive the matcher and not change while it is used.
   TraversalMatcher(const ReferenceTraversal& references, TraversalMatcherConfig config = {});
 
-  /// The next query image: its score against every reference (lower = better; the method's
-  /// units: mean absolute difference for one cue, z-score for fused and sequence). Throws
+  /// The next query image: its score against every reference (lower = better). Throws
   /// std::invalid_argument when the reference traversal is empty.
   const std::vector<float>& add(const ImageDescriptors& query);
   /// Forgets the query history (sequence), e.g. when time jumped back.
   void reset();
   const TraversalMatcherConfig& config() const { return config_; }
-
-  /// The fused single-image distances of one query (z-scores), exposed for tests.
-  std::vector<float> fusedDistances(const ImageDescriptors& query) const;
 
  private:
   const ReferenceTraversal& refs_;

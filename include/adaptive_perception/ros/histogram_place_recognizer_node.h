@@ -1,13 +1,18 @@
 #pragma once
-// histogram_place_recognizer: topological place recognition by colour-histogram correlation
-// (papers/004), with a SQLite place database (places/place_database.h) and a Bayes filter over
-// the places' adjacency.
+// histogram_place_recognizer: topological place recognition (papers/004) with a SQLite place
+// database (places/place_database.h) and a Bayes filter over the places' adjacency. By default it
+// recognises by the fused whole-image cues (patch-normalised thumbnail and gradient histograms,
+// places/global_descriptor.h), which hold across a change of light; ~cue histogram gives the
+// paper's colour-histogram correlation.
 //
 // Parameters (private; config/histogram_place_recognizer.yaml documents defaults and ranges):
 //   ~database (path, required), ~create_if_missing (true), ~bins (256), ~spaces ("all"), ~mask
 //   ("none" | "auto" | "ring:cx,cy,r_in,r_out") -- the last three build a new database; given
 //   for an existing one they must match it or the node refuses to start --, ~mode (recognise |
-//   train), ~color_space ("auto" or a space), ~method ("auto" or a distance), ~window (5),
+//   train), ~cue ("fused" | "thumbnail" | "gradient" | "chromaticity" | "histogram"; a database
+//   stored before the cues existed needs "histogram" or training again), ~thumbnail_weight (1),
+//   ~gradient_weight (1), ~chromaticity_weight (0) (the fused cue's), and for the histogram cue
+//   ~color_space ("auto" or a space), ~method ("auto" or a distance); ~window (5),
 //   ~use_filter (true), ~stay_probability (0.8), ~teleport_probability (0.02),
 //   ~likelihood_sharpness (4), ~max_rate_hz (5; images beyond it are dropped), ~train_batch (15),
 //   ~train_every_n (1).
@@ -67,6 +72,7 @@ class HistogramPlaceRecognizerNode {
 
   std::optional<places::PlaceDatabase> db_;
   places::HistogramConfig histograms_;
+  places::GlobalDescriptorConfig descriptors_;
   std::unique_ptr<places::PlaceRecognizer> recognizer_;
   bool train_mode_ = false;
   ros_conv::ImageGate gate_{"histogram_place_recognizer", 5.0};

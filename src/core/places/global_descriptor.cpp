@@ -150,6 +150,38 @@ int GlobalDescriptorConfig::length(DescriptorKind kind) const {
   return 0;
 }
 
+std::string GlobalDescriptorConfig::toString() const {
+  return "thumbnail=" + std::to_string(thumbnail_width_px) + "x" +
+         std::to_string(thumbnail_height_px) + "/" + std::to_string(patch_px) + " gradient=" +
+         std::to_string(hog_width_px) + "x" + std::to_string(hog_height_px) + "/" +
+         std::to_string(hog_cell_px) + " chromaticity=" + std::to_string(chroma_bins);
+}
+
+void FusionWeights::validate() const {
+  for (double w : {thumbnail, gradient, chromaticity})
+    if (!(std::isfinite(w) && w >= 0.0 && w <= 1000.0))
+      throw std::invalid_argument("FusionWeights: each weight must be in [0, 1000]");
+  if (!(thumbnail + gradient + chromaticity > 0.0))
+    throw std::invalid_argument(
+        "FusionWeights: at least one of the thumbnail, gradient and chromaticity weights must be "
+        "> 0");
+}
+
+bool isCueName(const std::string& name) {
+  if (name == "fused") return true;
+  for (const char* n : kNames)
+    if (name == n) return true;
+  return false;
+}
+
+std::array<double, kNumDescriptorKinds> cueWeights(const std::string& cue,
+                                                   const FusionWeights& fusion) {
+  if (cue == "fused") return {fusion.thumbnail, fusion.gradient, fusion.chromaticity};
+  std::array<double, kNumDescriptorKinds> w{};
+  w[static_cast<int>(descriptorFromName(cue))] = 1.0;
+  return w;
+}
+
 cv::Mat computeDescriptor(const cv::Mat& image, DescriptorKind kind,
                           const GlobalDescriptorConfig& config) {
   switch (kind) {

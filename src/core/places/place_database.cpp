@@ -23,7 +23,9 @@ constexpr const char* kOptionalTables =
     "data BLOB NOT NULL);"
     "CREATE TABLE IF NOT EXISTS poses (image_id INTEGER PRIMARY KEY, x_m REAL NOT NULL, y_m REAL "
     "NOT NULL, yaw_rad REAL NOT NULL);"
-    "CREATE TABLE IF NOT EXISTS structure (image_id INTEGER PRIMARY KEY, data BLOB NOT NULL);";
+    "CREATE TABLE IF NOT EXISTS structure (image_id INTEGER PRIMARY KEY, data BLOB NOT NULL);"
+    "CREATE TABLE IF NOT EXISTS descriptors (image_id INTEGER NOT NULL, kind INTEGER NOT NULL, "
+    "data BLOB NOT NULL, PRIMARY KEY (image_id, kind));";
 
 // A prepared statement that finalizes itself.
 class Statement {
@@ -165,7 +167,8 @@ PlaceDatabase::PlaceDatabase(PlaceDatabase&& o) noexcept
       read_only_(o.read_only_),
       in_batch_(o.in_batch_),
       recovered_journal_(o.recovered_journal_),
-      settings_(o.settings_) {
+      settings_(o.settings_),
+      descriptor_settings_(std::move(o.descriptor_settings_)) {
   o.db_ = nullptr;
   o.in_batch_ = false;
 }
@@ -182,6 +185,7 @@ PlaceDatabase& PlaceDatabase::operator=(PlaceDatabase&& o) noexcept {
     o.in_batch_ = false;
     recovered_journal_ = o.recovered_journal_;
     settings_ = o.settings_;
+    descriptor_settings_ = std::move(o.descriptor_settings_);
   }
   return *this;
 }
@@ -228,7 +232,8 @@ int PlaceDatabase::replaceImages(const std::string& place, const std::vector<Tra
     count.bind(1, static_cast<long long>(pid));
     if (count.step()) before = static_cast<int>(count.integer(0));
     exec("DELETE FROM features" + in_place + "DELETE FROM poses" + in_place +
-         "DELETE FROM structure" + in_place + "DELETE FROM histograms" + in_place +
+         "DELETE FROM structure" + in_place + "DELETE FROM descriptors" + in_place +
+         "DELETE FROM histograms" + in_place +
          "DELETE FROM images WHERE place_id = " + std::to_string(pid) + ";");
   }
   const int added = addImages(place, images);
@@ -371,6 +376,22 @@ void PlaceDatabase::readSettings() {
   } catch (const std::exception& e) {
     throw std::runtime_error(path_ + ": damaged place database settings (" + e.what() + ")");
   }
+  descriptor_settings_ = meta.count("descriptors") ? meta["descriptors"] : "";
+}
+
+void PlaceDatabase::useDescriptors(const GlobalDescriptorConfig& config) {
+  const std::string wanted = config.toString();
+  if (descriptor_settings_ == wanted) return;
+  if (!descriptor_settings_.empty())
+    throw std::runtime_error(path_ + ": its whole-image descriptors were made with " +
+                             descriptor_settings_ + ", asked for " + wanted +
+                             "; use those settings or build a new database");
+  Transaction t(db_, path_);
+  Statement meta(db_, "INSERT OR REPLACE INTO meta (key, value) VALUES ('descriptors', ?)", path_);
+  meta.bind(1, wanted);
+  meta.step();
+  t.commit();
+  descriptor_settings_ = wanted;
 }
 
 void PlaceDatabase::requireSettings(const DatabaseSettings& wanted) const {
@@ -411,6 +432,18 @@ int PlaceDatabase::addImages(const std::string& place, const std::vector<Trainin
     if (!st.empty() && (st.rows != 1 || st.type() != CV_32F))
       throw std::invalid_argument("addImages: image " + images[i].source +
                                   " has a line-structure descriptor that is not 1 x D CV_32F");
+    const auto& rows = images[i].descriptors.rows;
+    if (!rows.empty()) {
+      if (descriptor_settings_.empty())
+        throw std::logic_error("addImages: call useDescriptors() before storing descriptors");
+      if (rows.size() != static_cast<size_t>(kNumDescriptorKinds))
+        throw std::invalid_argument("addImages: image " + images[i].source +
+                                    " lacks a whole-image descriptor");
+      for (const cv::Mat& r : rows)
+        if (r.rows != 1 || r.type() != CV_8UC1 || !r.isContinuous())
+          throw std::invalid_argument("addImages: image " + images[i].source +
+                                      " has a descriptor that is not one continuous 8-bit row");
+    }
   }
   Transaction t(db_, path_);
   const int pid = placeId(place, true);
@@ -419,6 +452,7 @@ int PlaceDatabase::addImages(const std::string& place, const std::vector<Trainin
   Statement feat(db_, "INSERT INTO features (image_id, rows, data) VALUES (?, ?, ?)", path_);
   Statement pose(db_, "INSERT INTO poses (image_id, x_m, y_m, yaw_rad) VALUES (?, ?, ?, ?)", path_);
   Statement structure(db_, "INSERT INTO structure (image_id, data) VALUES (?, ?)", path_);
+  Statement desc(db_, "INSERT INTO descriptors (image_id, kind, data) VALUES (?, ?, ?)", path_);
   for (const TrainingImage& ti : images) {
     img.bind(1, static_cast<long long>(pid)).bind(2, ti.source).bind(3, ti.stamp_s);
     img.step();
@@ -445,6 +479,13 @@ int PlaceDatabase::addImages(const std::string& place, const std::vector<Trainin
       structure.step();
       structure.reset();
     }
+    for (size_t k = 0; k < ti.descriptors.rows.size(); ++k) {
+      const cv::Mat& r = ti.descriptors.rows[k];
+      desc.bind(1, iid).bind(2, static_cast<long long>(k));
+      desc.bindBlob(3, r.data, static_cast<int>(r.total()));
+      desc.step();
+      desc.reset();
+    }
     if (ti.pose) {
       pose.bind(1, iid).bind(2, (*ti.pose)[0]).bind(3, (*ti.pose)[1]).bind(4, (*ti.pose)[2]);
       pose.step();
@@ -466,6 +507,9 @@ bool PlaceDatabase::removePlace(const std::string& place) {
        id +
        ");"
        "DELETE FROM structure WHERE image_id IN (SELECT id FROM images WHERE place_id = " +
+       id +
+       ");"
+       "DELETE FROM descriptors WHERE image_id IN (SELECT id FROM images WHERE place_id = " +
        id +
        ");"
        "DELETE FROM histograms WHERE image_id IN (SELECT id FROM images WHERE place_id = " +
@@ -567,6 +611,53 @@ PlaceIndex PlaceDatabase::loadIndex(const std::vector<int>& spaces_in) const {
   }
   flush();
   return index;
+}
+
+PlaceDescriptorIndex PlaceDatabase::loadDescriptorIndex(const PlaceIndex& index,
+                                                        const GlobalDescriptorConfig& config) const {
+  PlaceDescriptorIndex out(index.placeNames(), config);
+  if (descriptor_settings_.empty()) return out;
+  if (descriptor_settings_ != config.toString())
+    throw std::runtime_error(path_ + ": its whole-image descriptors were made with " +
+                             descriptor_settings_ + ", asked for " + config.toString() +
+                             "; use those settings or build a new database");
+  Statement q(db_,
+              "SELECT p.name, d.image_id, d.kind, d.data FROM descriptors d JOIN images i ON "
+              "i.id = d.image_id JOIN places p ON p.id = i.place_id ORDER BY d.image_id, d.kind",
+              path_);
+  long long current = -1;
+  int current_place = -1;
+  ImageDescriptors d;
+  auto flush = [&] {
+    if (current < 0) return;
+    if (d.rows.size() != static_cast<size_t>(kNumDescriptorKinds))
+      throw std::runtime_error(path_ + ": image " + std::to_string(current) +
+                               " lacks some of its whole-image descriptors");
+    out.addImage(current_place, d);
+  };
+  while (q.step()) {
+    const long long iid = q.integer(1);
+    if (iid != current) {
+      flush();
+      current = iid;
+      current_place = index.placeIndex(q.text(0));
+      d.rows.clear();
+    }
+    const int kind = static_cast<int>(q.integer(2));
+    const int expected = kind >= 0 && kind < kNumDescriptorKinds
+                             ? config.length(static_cast<DescriptorKind>(kind))
+                             : -1;
+    if (kind != static_cast<int>(d.rows.size()) || q.bytes(3) != expected)
+      throw std::runtime_error(path_ + ": image " + std::to_string(iid) +
+                               " has a damaged whole-image descriptor (kind " +
+                               std::to_string(kind) + ", " + std::to_string(q.bytes(3)) +
+                               " bytes)");
+    cv::Mat row(1, expected, CV_8UC1);
+    std::memcpy(row.data, q.blob(3), expected);
+    d.rows.push_back(row);
+  }
+  flush();
+  return out;
 }
 
 std::vector<TrainingFrame> PlaceDatabase::loadFrames() const {

@@ -1,10 +1,16 @@
 #include "adaptive_perception/places/place_recognizer.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace adaptive_perception::places {
 
 void PlaceRecognizerConfig::validate() const {
+  if (cue != "histogram" && !isCueName(cue))
+    throw std::invalid_argument("cue '" + cue +
+                                "' is not one of fused, thumbnail, gradient, chromaticity, "
+                                "histogram");
+  fusion.validate();
   if (color_space != "auto") spaceIndex(color_space);  // throws naming the valid ones
   if (method != "auto") distanceFromName(method);
   if (window < 1 || window > 1000)
@@ -18,10 +24,21 @@ PlaceRecognizer::PlaceRecognizer(PlaceRecognizerConfig config) : config_(std::mo
                                       : std::vector<Distance>{distanceFromName(config_.method)};
 }
 
-void PlaceRecognizer::setDatabase(PlaceIndex index, std::vector<std::vector<int>> adjacency) {
+void PlaceRecognizer::setDatabase(PlaceIndex index, std::vector<std::vector<int>> adjacency,
+                                  PlaceDescriptorIndex descriptors) {
   if (static_cast<int>(adjacency.size()) != index.numPlaces())
     throw std::invalid_argument("setDatabase: adjacency for " + std::to_string(adjacency.size()) +
                                 " places, the index has " + std::to_string(index.numPlaces()));
+  if (usesDescriptors()) {
+    int stored = 0;
+    for (int s = 0; s < kNumSpaces; ++s) stored = std::max(stored, index.totalImages(s));
+    if (descriptors.numPlaces() != index.numPlaces() || descriptors.totalImages() < stored)
+      throw std::invalid_argument(
+          "the place database holds " + std::to_string(stored) + " training images but " +
+          std::to_string(descriptors.totalImages()) + " with whole-image descriptors (stored "
+          "before the cues existed?): train it again, or set the cue to histogram");
+  }
+  descriptors_ = std::move(descriptors);
   std::vector<int> spaces;
   if (config_.color_space == "auto") {
     for (int s = 0; s < kNumSpaces; ++s)
@@ -47,26 +64,38 @@ void PlaceRecognizer::reset() {
     filter_.emplace_back(adjacency_, config_.filter);
 }
 
-PlaceResult PlaceRecognizer::add(const ImageHistograms& h) {
+PlaceResult PlaceRecognizer::add(const ImageHistograms& h, const ImageDescriptors* d) {
   if (index_.numPlaces() == 0 || spaces_.empty())
     throw std::logic_error("the place database has no trained place yet");
   std::vector<std::vector<double>> per_combo;
-  for (int s : spaces_)
-    for (Distance m : methods_) per_combo.push_back(index_.nodeDistances(s, m, h));
+  if (usesDescriptors()) {
+    if (!d) throw std::invalid_argument("PlaceRecognizer::add: the " + config_.cue +
+                                        " cue needs the image's whole-image descriptors");
+    per_combo.push_back(descriptors_.nodeDistances(cueWeights(config_.cue, config_.fusion), *d));
+  } else {
+    for (int s : spaces_)
+      for (Distance m : methods_) per_combo.push_back(index_.nodeDistances(s, m, h));
+  }
   window_.push_back(std::move(per_combo));
   while (static_cast<int>(window_.size()) > config_.window) window_.pop_front();
 
   std::vector<Recognition> recs;
   size_t c = 0;
-  for (int s : spaces_)
-    for (Distance m : methods_) {
-      std::vector<std::vector<double>> rows;
-      for (const auto& img : window_) rows.push_back(img[c]);
-      recs.push_back(combineTestImages(rows, s, m));
-      ++c;
-    }
+  const auto combine = [&](int s, Distance m) {
+    std::vector<std::vector<double>> rows;
+    for (const auto& img : window_) rows.push_back(img[c]);
+    recs.push_back(combineTestImages(rows, s, m));
+    ++c;
+  };
+  if (usesDescriptors()) {
+    combine(-1, Distance::kChiSquare);  // no colour space, no histogram distance
+  } else {
+    for (int s : spaces_)
+      for (Distance m : methods_) combine(s, m);
+  }
   ++seen_;
   PlaceResult out;
+  out.cue = config_.cue;
   const Recognition& best = mostConfident(recs);
   out.recognition = best;
   out.images = static_cast<int>(window_.size());

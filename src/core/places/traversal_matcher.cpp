@@ -10,15 +10,6 @@ void need(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("TraversalMatcherConfig: " + what);
 }
 
-bool isCue(const std::string& m, DescriptorKind* kind) {
-  for (int k = 0; k < kNumDescriptorKinds; ++k)
-    if (m == descriptorName(static_cast<DescriptorKind>(k))) {
-      *kind = static_cast<DescriptorKind>(k);
-      return true;
-    }
-  return false;
-}
-
 /// In place: (v - mean) / std over the vector (std floored so equal values give 0).
 void zScore(std::vector<float>& v) {
   double s = 0.0, q = 0.0;
@@ -36,26 +27,12 @@ const char* TraversalMatcherConfig::methodNames() {
   return "thumbnail, gradient, chromaticity, fused, sequence";
 }
 
-std::array<double, kNumDescriptorKinds> TraversalMatcherConfig::cueWeights() const {
-  DescriptorKind k;
-  if (isCue(method, &k)) {
-    std::array<double, kNumDescriptorKinds> w{};
-    w[static_cast<int>(k)] = 1.0;
-    return w;
-  }
-  return {thumbnail_weight, gradient_weight, chromaticity_weight};
-}
-
 void TraversalMatcherConfig::validate() const {
   descriptor.validate();
   sequence.validate();
-  DescriptorKind k;
-  need(isCue(method, &k) || method == "fused" || method == "sequence",
+  fusion.validate();
+  need(isCueName(method) || method == "sequence",
        "method '" + method + "' is not one of " + methodNames());
-  for (double w : {thumbnail_weight, gradient_weight, chromaticity_weight})
-    need(std::isfinite(w) && w >= 0.0 && w <= 1000.0, "the *_weight fields must be in [0, 1000]");
-  need(thumbnail_weight + gradient_weight + chromaticity_weight > 0.0,
-       "at least one of thumbnail_weight, gradient_weight, chromaticity_weight must be > 0");
 }
 
 ReferenceTraversal::ReferenceTraversal(GlobalDescriptorConfig config) : config_(config) {
@@ -81,33 +58,30 @@ TraversalMatcher::TraversalMatcher(const ReferenceTraversal& references,
 
 void TraversalMatcher::reset() { sequence_.reset(); }
 
-std::vector<float> TraversalMatcher::fusedDistances(const ImageDescriptors& query) const {
-  if (refs_.size() == 0) throw std::invalid_argument("TraversalMatcher: no reference image");
-  const auto w = config_.cueWeights();
-  std::vector<float> fused(refs_.size(), 0.0f);
+std::vector<float> cueDistances(const ReferenceTraversal& stored, const ImageDescriptors& query,
+                                const std::array<double, kNumDescriptorKinds>& weights) {
+  if (stored.size() == 0) throw std::invalid_argument("cueDistances: no stored image");
+  std::vector<float> fused(stored.size(), 0.0f);
   double total = 0.0;
   for (int k = 0; k < kNumDescriptorKinds; ++k) {
-    if (w[k] <= 0.0) continue;
+    if (weights[k] <= 0.0) continue;
     std::vector<float> d =
-        descriptorDistances(query.rows.at(k), refs_.rows(static_cast<DescriptorKind>(k)));
+        descriptorDistances(query.rows.at(k), stored.rows(static_cast<DescriptorKind>(k)));
     zScore(d);
-    for (size_t j = 0; j < d.size(); ++j) fused[j] += static_cast<float>(w[k]) * d[j];
-    total += w[k];
+    for (size_t j = 0; j < d.size(); ++j) fused[j] += static_cast<float>(weights[k]) * d[j];
+    total += weights[k];
   }
+  if (!(total > 0.0)) throw std::invalid_argument("cueDistances: every weight is 0");
   for (float& f : fused) f = static_cast<float>(f / total);
   return fused;
 }
 
 const std::vector<float>& TraversalMatcher::add(const ImageDescriptors& query) {
   if (refs_.size() == 0) throw std::invalid_argument("TraversalMatcher: no reference image");
-  DescriptorKind k;
-  if (isCue(config_.method, &k)) {
-    scores_ = descriptorDistances(query.rows.at(static_cast<int>(k)), refs_.rows(k));
-    return scores_;
-  }
-  scores_ = fusedDistances(query);
-  if (config_.method == "fused") return scores_;
-  return sequence_.add(scores_);
+  const bool sequence = config_.method == "sequence";
+  scores_ = cueDistances(refs_, query, cueWeights(sequence ? "fused" : config_.method,
+                                                  config_.fusion));
+  return sequence ? sequence_.add(scores_) : scores_;
 }
 
 }  // namespace adaptive_perception::places

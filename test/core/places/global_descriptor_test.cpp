@@ -144,20 +144,29 @@ TEST(TraversalMatcher, RouteSeenAgainUnderOtherLight) {
 
 TEST(TraversalMatcher, FusedDistancesAreWeightedZScores) {
   places::TraversalMatcherConfig cfg;
-  cfg.method = "fused";
-  cfg.thumbnail_weight = 1.0;
-  cfg.gradient_weight = 0.0;
   places::ReferenceTraversal refs(cfg.descriptor);
   for (int i = 0; i < 6; ++i) refs.add(places::computeDescriptors(texture(20 + i), cfg.descriptor));
-  places::TraversalMatcher m(refs, cfg);
   const places::ImageDescriptors q = places::computeDescriptors(texture(30), cfg.descriptor);
-  const std::vector<float> f = m.fusedDistances(q);
-  std::vector<float> d = places::descriptorDistances(q.rows[0], refs.rows(places::DescriptorKind::kThumbnail));
-  double mean = 0.0, sq = 0.0;
-  for (float v : d) mean += v / 6.0;
-  for (float v : d) sq += (v - mean) * (v - mean) / 6.0;
-  for (int j = 0; j < 6; ++j) EXPECT_NEAR(f[j], (d[j] - mean) / std::sqrt(sq), 1e-4);
+  const auto z = [&](places::DescriptorKind k) {
+    std::vector<float> d = places::descriptorDistances(q.rows[static_cast<int>(k)], refs.rows(k));
+    double mean = 0.0, sq = 0.0;
+    for (float v : d) mean += v / 6.0;
+    for (float v : d) sq += (v - mean) * (v - mean) / 6.0;
+    for (float& v : d) v = static_cast<float>((v - mean) / std::sqrt(sq));
+    return d;
+  };
+  const std::vector<float> zt = z(places::DescriptorKind::kThumbnail);
+  const std::vector<float> zg = z(places::DescriptorKind::kGradient);
+  const std::vector<float> f = places::cueDistances(refs, q, {1.0, 3.0, 0.0});
+  for (int j = 0; j < 6; ++j) EXPECT_NEAR(f[j], (zt[j] + 3.0 * zg[j]) / 4.0, 1e-4);
+  const std::vector<float> t =
+      places::cueDistances(refs, q, places::cueWeights("thumbnail", places::FusionWeights{}));
+  for (int j = 0; j < 6; ++j) EXPECT_NEAR(t[j], zt[j], 1e-4);
+  EXPECT_THROW(places::cueWeights("nearest", {}), std::invalid_argument);
   cfg.method = "nearest";
+  EXPECT_THROW(cfg.validate(), std::invalid_argument);
+  cfg.method = "fused";
+  cfg.fusion = {0.0, 0.0, 0.0};
   EXPECT_THROW(cfg.validate(), std::invalid_argument);
   places::ReferenceTraversal empty(cfg.descriptor);
   places::TraversalMatcher none(empty, {});

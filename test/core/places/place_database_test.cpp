@@ -49,7 +49,7 @@ class PlaceDatabaseTest : public ::testing::Test {
   std::vector<TrainingImage> images(int first, int n) const {
     std::vector<TrainingImage> out;
     for (int i = first; i < first + n; ++i)
-      out.push_back({"image_" + std::to_string(i) + ".png", 0.5 * i, hist(i), {}, {}, {}});
+      out.push_back({"image_" + std::to_string(i) + ".png", 0.5 * i, hist(i), {}, {}, {}, {}});
     return out;
   }
   static std::string contents(const std::string& path) {
@@ -379,4 +379,54 @@ TEST_F(PlaceDatabaseTest, SiftFeaturesAndPosesRoundTrip) {
   EXPECT_FALSE(frames[1].has_pose);
   EXPECT_TRUE(frames[1].structure.empty());
   EXPECT_EQ(db.imageCount(), 3);
+}
+
+TEST_F(PlaceDatabaseTest, WholeImageDescriptorsRoundTripAndRefuseOtherSettings) {
+  const GlobalDescriptorConfig dc;
+  const auto withDescriptors = [&](int first, int n) {
+    std::vector<TrainingImage> v = images(first, n);
+    for (size_t i = 0; i < v.size(); ++i) {
+      cv::Mat img(64, 96, CV_8UC3);
+      cv::randu(img, 0, 256);
+      v[i].descriptors = computeDescriptors(img, dc);
+    }
+    return v;
+  };
+  const std::vector<TrainingImage> kitchen = withDescriptors(0, 2), hall = withDescriptors(5, 1);
+  {
+    PlaceDatabase db = PlaceDatabase::create(file("d.sqlite"), settings_);
+    EXPECT_EQ(db.descriptorSettings(), "");
+    EXPECT_THROW(db.addImages("kitchen", kitchen), std::logic_error);  // settings not declared
+    db.useDescriptors(dc);
+    db.addImages("kitchen", kitchen);
+    db.addImages("hall", hall);
+    db.addImages("hall", images(7, 1));  // an image without descriptors is allowed
+  }
+  const PlaceDatabase db = PlaceDatabase::open(file("d.sqlite"), true);
+  EXPECT_EQ(db.descriptorSettings(), dc.toString());
+  const PlaceIndex index = db.loadIndex();
+  const PlaceDescriptorIndex d = db.loadDescriptorIndex(index, dc);
+  ASSERT_EQ(d.totalImages(), 3);
+  ASSERT_EQ(d.placeNames(), index.placeNames());  // hall, kitchen
+  // The stored kitchen image 1 is its own nearest image: distance 0 at kitchen.
+  const std::vector<double> nd = d.nodeDistances({1.0, 1.0, 1.0}, kitchen[1].descriptors);
+  EXPECT_EQ(nd[index.placeIndex("kitchen")], 0.0);
+  EXPECT_GT(nd[index.placeIndex("hall")], 0.0);
+  // Other settings: refused, both named.
+  GlobalDescriptorConfig other;
+  other.thumbnail_width_px = 32;
+  try {
+    db.loadDescriptorIndex(index, other);
+    ADD_FAILURE() << "other descriptor settings were accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(dc.toString()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(other.toString()), std::string::npos) << e.what();
+  }
+  PlaceDatabase rw = PlaceDatabase::open(file("d.sqlite"));
+  EXPECT_THROW(rw.useDescriptors(other), std::runtime_error);
+  // Replacing a place's images removes its descriptors with them.
+  rw.replaceImages("kitchen", images(20, 1));
+  EXPECT_EQ(rw.loadDescriptorIndex(rw.loadIndex(), dc).totalImages(), 1);
+  rw.removePlace("hall");
+  EXPECT_EQ(rw.loadDescriptorIndex(rw.loadIndex(), dc).totalImages(), 0);
 }

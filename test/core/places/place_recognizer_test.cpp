@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 using namespace adaptive_perception::places;
 
 namespace {
@@ -27,6 +29,7 @@ PlaceIndex twoPlaces() {
 
 TEST(PlaceRecognizer, WindowCombinesTheLastImages) {
   PlaceRecognizerConfig cfg;
+  cfg.cue = "histogram";
   cfg.color_space = "rgb";
   cfg.method = "ks";
   cfg.window = 3;
@@ -54,6 +57,7 @@ TEST(PlaceRecognizer, WindowCombinesTheLastImages) {
 TEST(PlaceRecognizer, AutoPicksTheMostConfidentSpace) {
   // rgb is ambiguous (p = 0.5: a tie, first place wins, margin 0), hsv clearly says b.
   PlaceRecognizerConfig cfg;
+  cfg.cue = "histogram";
   cfg.window = 2;
   cfg.use_filter = true;
   PlaceRecognizer r(cfg);
@@ -75,10 +79,53 @@ TEST(PlaceRecognizer, RefusesBadConfigAndEmptyDatabase) {
   bad = {};
   bad.window = 0;
   EXPECT_THROW(PlaceRecognizer{bad}, std::invalid_argument);
+  bad = {};
+  bad.cue = "sift";
+  EXPECT_THROW(PlaceRecognizer{bad}, std::invalid_argument);
   PlaceRecognizerConfig cfg;
+  cfg.cue = "histogram";
   cfg.color_space = "hsi";
   PlaceRecognizer r(cfg);
   EXPECT_THROW(r.setDatabase(twoPlaces(), {{1}, {0}}), std::invalid_argument);  // no hsi
   PlaceRecognizer empty;
   EXPECT_THROW(empty.add(hist(0.5f, 0.5f)), std::logic_error);
+  // The default (fused) cue on a database without whole-image descriptors.
+  PlaceRecognizer fused;
+  EXPECT_THROW(fused.setDatabase(twoPlaces(), {{1}, {0}}), std::invalid_argument);
+}
+
+namespace {
+cv::Mat texture(int seed) {
+  cv::Mat img(96, 128, CV_8UC3);
+  cv::RNG rng(seed);
+  rng.fill(img, cv::RNG::UNIFORM, 0, 256);
+  cv::GaussianBlur(img, img, cv::Size(0, 0), 2.0);
+  cv::normalize(img, img, 40, 200, cv::NORM_MINMAX);
+  return img;
+}
+}  // namespace
+
+TEST(PlaceRecognizer, FusedCueFindsThePlaceOfTheNearestTrainingImage) {
+  // Place a: views 0 and 1; place b: views 2 and 3. The query is view 3 under half the light.
+  const PlaceIndex hist_index = twoPlaces();
+  PlaceDescriptorIndex desc(hist_index.placeNames());
+  const GlobalDescriptorConfig dc;
+  for (int v = 0; v < 4; ++v) desc.addImage(v < 2 ? 0 : 1, computeDescriptors(texture(v), dc));
+  PlaceRecognizerConfig cfg;
+  cfg.window = 1;
+  PlaceRecognizer r(cfg);
+  ASSERT_TRUE(r.usesDescriptors());
+  // twoPlaces() has one histogram image per place; the descriptors cover at least as many.
+  r.setDatabase(hist_index, {{1}, {0}}, desc);
+  cv::Mat dim;
+  texture(3).convertTo(dim, -1, 0.5, 0.0);
+  const ImageDescriptors q = computeDescriptors(dim, dc);
+  const PlaceResult x = r.add(hist(0.5f, 0.5f), &q);
+  EXPECT_EQ(x.cue, "fused");
+  EXPECT_EQ(x.recognition.place, 1);
+  EXPECT_EQ(x.recognition.space, -1);
+  EXPECT_EQ(x.recognition.total_distances[1], 0.0);  // the nearest image of all
+  EXPECT_GT(x.recognition.total_distances[0], 0.0);
+  EXPECT_EQ(x.filtered_place, 1);
+  EXPECT_THROW(r.add(hist(0.5f, 0.5f)), std::invalid_argument);  // no descriptors given
 }
