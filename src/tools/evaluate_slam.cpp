@@ -7,9 +7,13 @@
 //                 [--range_noise_std_m 0.01] [--max_gap_m 0.3] [--odom_noise_scale 1]
 //                 [--line_model_rho_std_m 0.02] [--line_model_alpha_std_rad 0.01]
 //                 [--merge_landmarks 1] [--share_landmarks 1] [--first_estimate_jacobians 0]
-//                 [--output DIR]
+//                 [--front_end none|laser_odometry] [--output DIR]
 //                 [--name TITLE]
 //
+// --front_end laser_odometry: each scan is first matched against the last keyframes
+// (slam/scan_matcher.h), and the matched pose stands in for the wheel odometry in the EKF's
+// prediction; its own trajectory goes to OUTPUT/laser_odometry.tum and its relation error to
+// the summary (front_end_relation_trans_error_m, -1 without).
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
 // /tf_static (identity when absent). The external variant simulates an absolute position sensor
 // from ground_truth/pose with --external_std_m noise on every scan (the bag must have ground
@@ -58,6 +62,7 @@
 #include "adaptive_perception/slam/line_ekf_slam.h"
 #include "adaptive_perception/slam/map_drawing.h"
 #include "adaptive_perception/slam/relations.h"
+#include "adaptive_perception/slam/scan_matcher.h"
 #include "adaptive_perception/world/camera_model.h"
 #include "tool_args.h"
 
@@ -155,7 +160,8 @@ int main(int argc, char** argv) {
                    "[--relations FILE] [--make_relations FILE] [--external_std_m S] [--seed N] "
                    "[--max_scans N] [--range_noise_std_m S] [--max_gap_m M] [--odom_noise_scale K] "
                    "[--line_model_rho_std_m S] [--line_model_alpha_std_rad S] [--merge_landmarks "
-                   "0|1] [--share_landmarks 0|1] [--first_estimate_jacobians 0|1] [--output DIR] [--name TITLE]");
+                   "0|1] [--share_landmarks 0|1] [--first_estimate_jacobians 0|1] "
+                   "[--front_end none|laser_odometry] [--output DIR] [--name TITLE]");
   const std::string bag_path = args.get("bag", "");
   slam::LineEkfSlamConfig cfg;
   const std::string association = args.get("association", "jcbb");
@@ -177,6 +183,7 @@ int main(int argc, char** argv) {
   cfg.first_estimate_jacobians =
       args.getInt("first_estimate_jacobians", cfg.first_estimate_jacobians ? 1 : 0) != 0;
   const double odom_scale = args.getDouble("odom_noise_scale", 1.0);
+  const std::string front_end = args.get("front_end", "none");
   localization::MotionModelConfig& m = cfg.motion;
   for (double* a : {&m.alpha1, &m.alpha2, &m.alpha3, &m.alpha4, &m.min_translation_std_m,
                     &m.min_rotation_std_rad})
@@ -186,6 +193,8 @@ int main(int argc, char** argv) {
   lines.max_gap_m = args.getDouble("max_gap_m", lines.max_gap_m);
   args.finish();
   if (bag_path.empty()) args.fail("--bag FILE is required");
+  if (front_end != "none" && front_end != "laser_odometry")
+    args.fail("--front_end must be none or laser_odometry");
   try {
     cfg.association = slam::parseAssociation(association);
     cfg.variant = slam::parseVariant(variant);
@@ -251,7 +260,11 @@ int main(int argc, char** argv) {
     nis_csv << "scan,nis,dof,merged\n";
     long merged = 0;
     const math::SE2* prev_odom = nullptr;
-    std::map<double, math::SE2> estimate;
+    std::map<double, math::SE2> estimate, front_estimate;
+    slam::LaserOdometry laser_odometry;
+    std::ofstream front_tum;
+    if (front_end == "laser_odometry") front_tum.open(fs::path(output) / "laser_odometry.tum");
+    double front_s = 0.0;
     std::vector<std::pair<math::SE2, Eigen::Matrix3d>> est_cov;
     std::vector<math::SE2> truth_at_scan;
     slam::MapTrajectory est_path{"estimate", cv::Scalar(0, 0, 220), {}},
@@ -263,9 +276,22 @@ int main(int argc, char** argv) {
       if (prev_odom) dead_reckoning = dead_reckoning * math::between(*prev_odom, *o);
       prev_odom = o;
       const auto c0 = std::chrono::steady_clock::now();
-      ekf.predictFromOdometry(*o);
+      const laser::LaserScan2D scan2d = ros_conv::fromLaserScan(*s);
+      math::SE2 prediction = *o;
+      if (front_end == "laser_odometry") {
+        std::vector<laser::ScanPoint> pts;
+        laser::validPoints(scan2d, 0.0, &pts);
+        std::vector<Eigen::Vector2d> robot;
+        robot.reserve(pts.size());
+        for (const auto& p : pts) robot.push_back(mount.transformPoint(p.p_m));
+        prediction = laser_odometry.add(robot, *o);
+        front_estimate[s->header.stamp.toSec()] = prediction;
+        tum(front_tum, s->header.stamp.toSec(), prediction);
+        front_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+      }
+      ekf.predictFromOdometry(prediction);
       const slam::LineEkfSlam::UpdateResult up =
-          ekf.update(slam::toObservations(extractor.extract(ros_conv::fromLaserScan(*s)), mount));
+          ekf.update(slam::toObservations(extractor.extract(scan2d), mount));
       nis_sum += up.nis;
       nis_dof += up.nis_dof;
       nis_csv << nis_rows++ << "," << up.nis << "," << up.nis_dof << "," << up.merged << "\n";
@@ -335,9 +361,10 @@ int main(int argc, char** argv) {
     if (!truth_path.points_m.empty()) paths.insert(paths.begin() + 1, truth_path);
     cv::imwrite((fs::path(output) / "map.png").string(),
                 slam::drawLineMap(segments, paths, name + " (" + variant + ")"));
-    slam::RelationErrors rel;
+    slam::RelationErrors rel, front_rel;
     if (!relations.empty()) {
       rel = slam::evaluateRelations(relations, estimate, 0.01);
+      if (!front_estimate.empty()) front_rel = slam::evaluateRelations(relations, front_estimate, 0.01);
       if (rel.used == 0)
         throw std::runtime_error(relations_path + ": no relation matches the bag's scan stamps");
     }
@@ -351,7 +378,9 @@ int main(int argc, char** argv) {
         "nis_per_dof=%.2f relation_trans_error_m=%.4f "
         "relation_trans_error_m_std=%.4f relation_rot_error_deg=%.3f "
         "relation_rot_error_deg_std=%.3f relations_used=%d landmarks=%d fixed_landmarks=%d "
-        "merged=%ld scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f\n",
+        "merged=%ld scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f "
+        "front_end=%s front_end_relation_trans_error_m=%.4f front_end_relation_rot_error_deg=%.3f "
+        "front_end_matched=%.3f front_end_ms_mean=%.3f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
         with_truth ? double(below) / with_truth : -1.0,
@@ -359,7 +388,11 @@ int main(int argc, char** argv) {
         has_rel ? rel.trans_std_m : -1.0, has_rel ? math::radToDeg(rel.rot_mean_rad) : -1.0,
         has_rel ? math::radToDeg(rel.rot_std_rad) : -1.0, rel.used, confirmed,
         ekf.numFixedLandmarks(), merged, scans.size(), 1e3 * compute_s / scans.size(), 1e3 * max_update_s,
-        duration / std::max(compute_s, 1e-9));
+        duration / std::max(compute_s, 1e-9), front_end.c_str(),
+        has_rel && !front_estimate.empty() ? front_rel.trans_mean_m : -1.0,
+        has_rel && !front_estimate.empty() ? math::radToDeg(front_rel.rot_mean_rad) : -1.0,
+        laser_odometry.scans() ? double(laser_odometry.matched()) / laser_odometry.scans() : -1.0,
+        1e3 * front_s / scans.size());
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";
     return 1;

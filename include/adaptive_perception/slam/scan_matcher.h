@@ -1,0 +1,110 @@
+#pragma once
+// Scan-to-map matching for a laser-odometry front end: a scan's points are placed where they best
+// overlap a likelihood field built from earlier scans (Olson, "Real-time correlative scan
+// matching", ICRA 2009: an exhaustive search over a window of poses, then a local refinement).
+//
+// The likelihood field: the map points rasterised at resolution_m, each cell's value
+// exp(-d^2 / (2 hit_std_m^2)) with d its distance to the nearest map point (OpenCV's exact
+// Euclidean distance transform), read with bilinear interpolation. A pose's score is the mean
+// field value over the scan's points (1: every point on a map point; 0: none near one).
+//
+// The search: yaw over [-search_yaw_rad, +search_yaw_rad] around the prior in steps of
+// yaw_step_rad, and for each yaw every translation of whole cells within search_xy_m; then the
+// best pose is refined by a coordinate search on the interpolated field, halving its steps down to
+// a hundredth of a cell and of a yaw step.
+#include <Eigen/Core>
+#include <deque>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "adaptive_perception/math/se2.h"
+
+namespace adaptive_perception::slam {
+
+struct ScanMatcherConfig {
+  double resolution_m = 0.05;      // field cell size
+  double hit_std_m = 0.1;          // field width around each map point
+  double search_xy_m = 0.3;        // translation window half-width around the prior
+  double search_yaw_rad = 0.2;     // rotation window half-width (about 11.5 degrees)
+  double yaw_step_rad = 0.01;      // coarse rotation step
+  void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+class LikelihoodField {
+ public:
+  /// The field of `points_m` (map frame) over their bounding box plus `margin_m`. Throws
+  /// std::invalid_argument on no point or a box larger than 4096 x 4096 cells.
+  LikelihoodField(const std::vector<Eigen::Vector2d>& points_m, double resolution_m,
+                  double hit_std_m, double margin_m);
+  /// Bilinear value at a map point; 0 outside the field.
+  double at(const Eigen::Vector2d& p_m) const;
+  /// The mean of at() over `points_robot` placed at `pose`.
+  double score(const std::vector<Eigen::Vector2d>& points_robot, const math::SE2& pose) const;
+
+  double resolution() const { return resolution_m_; }
+  const cv::Mat& values() const { return field_; }  // CV_32F, row = y, col = x
+  Eigen::Vector2d origin() const { return origin_m_; }  // the map point of cell (0, 0)'s centre
+
+ private:
+  cv::Mat field_;
+  Eigen::Vector2d origin_m_;
+  double resolution_m_;
+};
+
+struct ScanMatch {
+  math::SE2 pose;
+  double score = 0.0;  // LikelihoodField::score at pose
+};
+
+/// The best pose of `points_robot` (robot frame) within the window around `prior`.
+ScanMatch matchScan(const LikelihoodField& field, const std::vector<Eigen::Vector2d>& points_robot,
+                    const math::SE2& prior, const ScanMatcherConfig& config);
+
+/// Laser odometry: each scan matched against a local map of the last keyframes, the wheel
+/// odometry's increment as the prior. A scan becomes a keyframe (and the field is rebuilt) once
+/// the robot has moved keyframe_translation_m or turned keyframe_rotation_rad from the last one.
+/// A match scoring below min_score is not trusted: the pose follows the wheel odometry.
+struct LaserOdometryConfig {
+  ScanMatcherConfig matcher;
+  double max_range_m = 25.0;           // farther points are left out (sparse, and long-range
+                                       // returns carry the most angular error)
+  double keyframe_translation_m = 0.2;
+  double keyframe_rotation_rad = 0.1;
+  int local_map_keyframes = 20;        // keyframes in the local map, >= 1
+  double min_score = 0.25;             // 0..1
+  int min_points = 20;                 // fewer valid points: follow the wheel odometry
+  void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+class LaserOdometry {
+ public:
+  explicit LaserOdometry(LaserOdometryConfig config = {});
+  /// The next scan: its points in the robot frame and the wheel odometry pose at its stamp.
+  /// Returns the robot's matched pose, starting from the first scan's wheel odometry pose (so that
+  /// it can stand in for the wheel odometry).
+  math::SE2 add(const std::vector<Eigen::Vector2d>& points_robot, const math::SE2& odom);
+  void reset();
+  /// Of the last add(): the match score, and whether the match was taken (else odometry).
+  double lastScore() const { return last_score_; }
+  bool lastMatched() const { return last_matched_; }
+  long matched() const { return matched_; }
+  long scans() const { return scans_; }
+
+ private:
+  void rebuildField();
+
+  LaserOdometryConfig config_;
+  struct Keyframe {
+    math::SE2 pose;
+    std::vector<Eigen::Vector2d> points_robot;
+  };
+  std::deque<Keyframe> keyframes_;
+  std::vector<LikelihoodField> field_;  // zero or one
+  bool started_ = false;
+  math::SE2 pose_, last_odom_;
+  double last_score_ = 0.0;
+  bool last_matched_ = false;
+  long matched_ = 0, scans_ = 0;
+};
+
+}  // namespace adaptive_perception::slam

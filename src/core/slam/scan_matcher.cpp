@@ -1,0 +1,232 @@
+#include "adaptive_perception/slam/scan_matcher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
+
+namespace adaptive_perception::slam {
+
+namespace {
+void need(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+}  // namespace
+
+void ScanMatcherConfig::validate() const {
+  need(std::isfinite(resolution_m) && resolution_m >= 0.005 && resolution_m <= 1.0,
+       "ScanMatcherConfig: resolution_m must be in [0.005, 1]");
+  need(std::isfinite(hit_std_m) && hit_std_m > 0.0 && hit_std_m <= 5.0,
+       "ScanMatcherConfig: hit_std_m must be in (0, 5]");
+  need(std::isfinite(search_xy_m) && search_xy_m >= 0.0 && search_xy_m <= 50.0 * resolution_m,
+       "ScanMatcherConfig: search_xy_m must be in [0, 50 resolution_m]");
+  need(std::isfinite(search_yaw_rad) && search_yaw_rad >= 0.0 && search_yaw_rad <= 3.2,
+       "ScanMatcherConfig: search_yaw_rad must be in [0, 3.2]");
+  need(std::isfinite(yaw_step_rad) && yaw_step_rad >= 1e-4 && yaw_step_rad <= 0.5,
+       "ScanMatcherConfig: yaw_step_rad must be in [1e-4, 0.5]");
+}
+
+void LaserOdometryConfig::validate() const {
+  matcher.validate();
+  need(std::isfinite(max_range_m) && max_range_m > 0.1,
+       "LaserOdometryConfig: max_range_m must be > 0.1");
+  need(std::isfinite(keyframe_translation_m) && keyframe_translation_m >= 0.0,
+       "LaserOdometryConfig: keyframe_translation_m must be >= 0");
+  need(std::isfinite(keyframe_rotation_rad) && keyframe_rotation_rad >= 0.0,
+       "LaserOdometryConfig: keyframe_rotation_rad must be >= 0");
+  need(local_map_keyframes >= 1 && local_map_keyframes <= 10000,
+       "LaserOdometryConfig: local_map_keyframes must be in [1, 10000]");
+  need(std::isfinite(min_score) && min_score >= 0.0 && min_score <= 1.0,
+       "LaserOdometryConfig: min_score must be in [0, 1]");
+  need(min_points >= 1, "LaserOdometryConfig: min_points must be >= 1");
+}
+
+LikelihoodField::LikelihoodField(const std::vector<Eigen::Vector2d>& points_m, double resolution_m,
+                                 double hit_std_m, double margin_m)
+    : resolution_m_(resolution_m) {
+  if (points_m.empty()) throw std::invalid_argument("LikelihoodField: no map point");
+  Eigen::Vector2d lo = points_m.front(), hi = points_m.front();
+  for (const auto& p : points_m) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  lo.array() -= margin_m;
+  hi.array() += margin_m;
+  const int w = static_cast<int>(std::ceil((hi.x() - lo.x()) / resolution_m)) + 1;
+  const int h = static_cast<int>(std::ceil((hi.y() - lo.y()) / resolution_m)) + 1;
+  if (w > 4096 || h > 4096)
+    throw std::invalid_argument("LikelihoodField: the map points span more than 4096 cells");
+  origin_m_ = lo;
+  cv::Mat free(h, w, CV_8UC1, cv::Scalar(255));  // 0 at map points
+  for (const auto& p : points_m) {
+    const int x = static_cast<int>(std::lround((p.x() - lo.x()) / resolution_m));
+    const int y = static_cast<int>(std::lround((p.y() - lo.y()) / resolution_m));
+    if (x >= 0 && x < w && y >= 0 && y < h) free.at<uchar>(y, x) = 0;
+  }
+  cv::Mat dist;
+  cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  const double k = -0.5 * (resolution_m * resolution_m) / (hit_std_m * hit_std_m);
+  field_.create(h, w, CV_32F);
+  for (int y = 0; y < h; ++y) {
+    const float* d = dist.ptr<float>(y);
+    float* f = field_.ptr<float>(y);
+    for (int x = 0; x < w; ++x) f[x] = static_cast<float>(std::exp(k * d[x] * d[x]));
+  }
+}
+
+double LikelihoodField::at(const Eigen::Vector2d& p) const {
+  const double fx = (p.x() - origin_m_.x()) / resolution_m_;
+  const double fy = (p.y() - origin_m_.y()) / resolution_m_;
+  const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+  if (x0 < 0 || y0 < 0 || x0 + 1 >= field_.cols || y0 + 1 >= field_.rows) return 0.0;
+  const double ax = fx - x0, ay = fy - y0;
+  const float* r0 = field_.ptr<float>(y0);
+  const float* r1 = field_.ptr<float>(y0 + 1);
+  return (1 - ay) * ((1 - ax) * r0[x0] + ax * r0[x0 + 1]) +
+         ay * ((1 - ax) * r1[x0] + ax * r1[x0 + 1]);
+}
+
+double LikelihoodField::score(const std::vector<Eigen::Vector2d>& points_robot,
+                              const math::SE2& pose) const {
+  if (points_robot.empty()) return 0.0;
+  double s = 0.0;
+  for (const auto& p : points_robot) s += at(pose.transformPoint(p));
+  return s / points_robot.size();
+}
+
+ScanMatch matchScan(const LikelihoodField& field, const std::vector<Eigen::Vector2d>& points_robot,
+                    const math::SE2& prior, const ScanMatcherConfig& c) {
+  ScanMatch best{prior, field.score(points_robot, prior)};
+  if (points_robot.empty()) return best;
+  const double res = field.resolution();
+  const int k = static_cast<int>(std::floor(c.search_xy_m / res));
+  const int side = 2 * k + 1;
+  const cv::Mat& f = field.values();
+  const int yaw_steps = static_cast<int>(std::floor(c.search_yaw_rad / c.yaw_step_rad));
+  std::vector<double> acc(side * side);
+  const Eigen::Vector2d origin = field.origin();
+  for (int yi = -yaw_steps; yi <= yaw_steps; ++yi) {
+    const double yaw = prior.yaw_rad + yi * c.yaw_step_rad;
+    const double cs = std::cos(yaw), sn = std::sin(yaw);
+    std::fill(acc.begin(), acc.end(), 0.0);
+    for (const auto& p : points_robot) {
+      const double wx = prior.x_m + cs * p.x() - sn * p.y();
+      const double wy = prior.y_m + sn * p.x() + cs * p.y();
+      const int cx = static_cast<int>(std::lround((wx - origin.x()) / res));
+      const int cy = static_cast<int>(std::lround((wy - origin.y()) / res));
+      const int x_lo = std::max(0, cx - k), x_hi = std::min(f.cols - 1, cx + k);
+      if (x_lo > x_hi) continue;
+      for (int dy = -k; dy <= k; ++dy) {
+        const int y = cy + dy;
+        if (y < 0 || y >= f.rows) continue;
+        const float* row = f.ptr<float>(y);
+        double* a = &acc[(dy + k) * side + (x_lo - cx + k)];
+        for (int x = x_lo; x <= x_hi; ++x) *a++ += row[x];
+      }
+    }
+    const auto it = std::max_element(acc.begin(), acc.end());
+    const double s = *it / points_robot.size();
+    if (s > best.score) {
+      const int idx = static_cast<int>(it - acc.begin());
+      best.score = s;
+      best.pose = math::SE2(prior.x_m + (idx % side - k) * res, prior.y_m + (idx / side - k) * res,
+                            yaw);
+    }
+  }
+  // Refinement on the interpolated field.
+  double step_xy = 0.5 * res, step_yaw = 0.5 * c.yaw_step_rad;
+  best.score = field.score(points_robot, best.pose);
+  while (step_xy > 0.01 * res) {
+    bool moved = false;
+    for (int d = 0; d < 6; ++d) {
+      math::SE2 t = best.pose;
+      const double sgn = d % 2 == 0 ? 1.0 : -1.0;
+      if (d < 2) t.x_m += sgn * step_xy;
+      else if (d < 4) t.y_m += sgn * step_xy;
+      else t = math::SE2(t.x_m, t.y_m, t.yaw_rad + sgn * step_yaw);
+      const double s = field.score(points_robot, t);
+      if (s > best.score) {
+        best = {t, s};
+        moved = true;
+      }
+    }
+    if (!moved) {
+      step_xy *= 0.5;
+      step_yaw *= 0.5;
+    }
+  }
+  return best;
+}
+
+LaserOdometry::LaserOdometry(LaserOdometryConfig config) : config_(config) { config_.validate(); }
+
+void LaserOdometry::reset() {
+  keyframes_.clear();
+  field_.clear();
+  started_ = false;
+  pose_ = last_odom_ = math::SE2();
+  last_score_ = 0.0;
+  last_matched_ = false;
+}
+
+void LaserOdometry::rebuildField() {
+  std::vector<Eigen::Vector2d> pts;
+  for (const Keyframe& k : keyframes_)
+    for (const auto& p : k.points_robot) pts.push_back(k.pose.transformPoint(p));
+  field_.clear();
+  if (!pts.empty())
+    field_.emplace_back(pts, config_.matcher.resolution_m, config_.matcher.hit_std_m,
+                        config_.matcher.search_xy_m + 1.0);
+}
+
+math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
+                             const math::SE2& odom) {
+  ++scans_;
+  std::vector<Eigen::Vector2d> pts;
+  pts.reserve(points_robot.size());
+  const double r2 = config_.max_range_m * config_.max_range_m;
+  for (const auto& p : points_robot)
+    if (p.allFinite() && p.squaredNorm() <= r2) pts.push_back(p);
+  if (!started_) {
+    started_ = true;
+    pose_ = odom;
+    last_odom_ = odom;
+    last_score_ = 0.0;
+    last_matched_ = false;
+    if (static_cast<int>(pts.size()) >= config_.min_points) {
+      keyframes_.push_back({pose_, pts});
+      rebuildField();
+    }
+    return pose_;
+  }
+  const math::SE2 prior = pose_ * math::between(last_odom_, odom);
+  last_odom_ = odom;
+  last_matched_ = false;
+  last_score_ = 0.0;
+  if (static_cast<int>(pts.size()) >= config_.min_points && !field_.empty()) {
+    const ScanMatch m = matchScan(field_.front(), pts, prior, config_.matcher);
+    last_score_ = m.score;
+    if (m.score >= config_.min_score) {
+      pose_ = m.pose;
+      last_matched_ = true;
+      ++matched_;
+    } else {
+      pose_ = prior;
+    }
+  } else {
+    pose_ = prior;
+  }
+  const math::SE2 since = keyframes_.empty() ? math::SE2(1e9, 0, 0)
+                                             : math::between(keyframes_.back().pose, pose_);
+  if (static_cast<int>(pts.size()) >= config_.min_points &&
+      (std::hypot(since.x_m, since.y_m) >= config_.keyframe_translation_m ||
+       std::fabs(since.yaw_rad) >= config_.keyframe_rotation_rad)) {
+    keyframes_.push_back({pose_, std::move(pts)});
+    while (static_cast<int>(keyframes_.size()) > config_.local_map_keyframes) keyframes_.pop_front();
+    rebuildField();
+  }
+  return pose_;
+}
+
+}  // namespace adaptive_perception::slam
