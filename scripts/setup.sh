@@ -22,6 +22,8 @@ PACKAGES=(
   python3-diagnostic-msgs python3-std-msgs
   # core libraries
   libeigen3-dev libopencv-dev libyaml-cpp-dev libbz2-dev libsqlite3-dev
+  # the pose graph of the SLAM loop closing (slam/pose_graph.h)
+  libceres-dev
   # OpenCV's CSRT and KCF trackers, the peers of evaluate_tracking
   libopencv-contrib-dev
   # sample videos (a face sequence) for the tracking evaluation

@@ -7,13 +7,16 @@
 //                 [--range_noise_std_m 0.01] [--max_gap_m 0.3] [--odom_noise_scale 1]
 //                 [--line_model_rho_std_m 0.02] [--line_model_alpha_std_rad 0.01]
 //                 [--merge_landmarks 1] [--share_landmarks 1] [--first_estimate_jacobians 0]
-//                 [--front_end none|laser_odometry] [--output DIR]
+//                 [--front_end none|laser_odometry] [--loop_closing 0|1] [--output DIR]
 //                 [--name TITLE]
 //
 // --front_end laser_odometry: each scan is first matched against the last keyframes
 // (slam/scan_matcher.h), and the matched pose stands in for the wheel odometry in the EKF's
 // prediction; its own trajectory goes to OUTPUT/laser_odometry.tum and its relation error to
-// the summary (front_end_relation_trans_error_m, -1 without).
+// the summary (front_end_relation_trans_error_m, -1 without). --loop_closing 1: a pose graph over
+// keyframes of the EKF's trajectory with loop edges from scan matching (slam/pose_graph.h);
+// OUTPUT/estimate.tum then holds every scan's optimised pose (OUTPUT/ekf.tum the EKF's own), and
+// the relation keys are of the optimised trajectory (ekf_relation_trans_error_m: the EKF's).
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
 // /tf_static (identity when absent). The external variant simulates an absolute position sensor
 // from ground_truth/pose with --external_std_m noise on every scan (the bag must have ground
@@ -62,6 +65,7 @@
 #include "adaptive_perception/slam/line_ekf_slam.h"
 #include "adaptive_perception/slam/map_drawing.h"
 #include "adaptive_perception/slam/relations.h"
+#include "adaptive_perception/slam/pose_graph.h"
 #include "adaptive_perception/slam/scan_matcher.h"
 #include "adaptive_perception/world/camera_model.h"
 #include "tool_args.h"
@@ -161,7 +165,8 @@ int main(int argc, char** argv) {
                    "[--max_scans N] [--range_noise_std_m S] [--max_gap_m M] [--odom_noise_scale K] "
                    "[--line_model_rho_std_m S] [--line_model_alpha_std_rad S] [--merge_landmarks "
                    "0|1] [--share_landmarks 0|1] [--first_estimate_jacobians 0|1] "
-                   "[--front_end none|laser_odometry] [--output DIR] [--name TITLE]");
+                   "[--front_end none|laser_odometry] [--loop_closing 0|1] [--output DIR] "
+                   "[--name TITLE]");
   const std::string bag_path = args.get("bag", "");
   slam::LineEkfSlamConfig cfg;
   const std::string association = args.get("association", "jcbb");
@@ -184,6 +189,7 @@ int main(int argc, char** argv) {
       args.getInt("first_estimate_jacobians", cfg.first_estimate_jacobians ? 1 : 0) != 0;
   const double odom_scale = args.getDouble("odom_noise_scale", 1.0);
   const std::string front_end = args.get("front_end", "none");
+  const bool loop_closing = args.getInt("loop_closing", 0) != 0;
   localization::MotionModelConfig& m = cfg.motion;
   for (double* a : {&m.alpha1, &m.alpha2, &m.alpha3, &m.alpha4, &m.min_translation_std_m,
                     &m.min_rotation_std_rad})
@@ -245,7 +251,7 @@ int main(int argc, char** argv) {
     slam::LineEkfSlam ekf(cfg, t0 ? *t0 : math::SE2());
     laser::LineExtractor extractor(lines);
     fs::create_directories(output);
-    std::ofstream est_tum(fs::path(output) / "estimate.tum"),
+    std::ofstream ekf_tum(fs::path(output) / "ekf.tum"),
         truth_tum(fs::path(output) / "truth.tum"), odom_tum(fs::path(output) / "odometry.tum");
     std::ofstream cov_csv(fs::path(output) / "pose_covariance.csv");
     cov_csv << "t,xx,xy,yy,yawyaw\n";
@@ -262,6 +268,8 @@ int main(int argc, char** argv) {
     const math::SE2* prev_odom = nullptr;
     std::map<double, math::SE2> estimate, front_estimate;
     slam::LaserOdometry laser_odometry;
+    slam::LoopClosingMapper mapper;
+    std::vector<double> scan_stamps;
     std::ofstream front_tum;
     if (front_end == "laser_odometry") front_tum.open(fs::path(output) / "laser_odometry.tum");
     double front_s = 0.0;
@@ -278,12 +286,14 @@ int main(int argc, char** argv) {
       const auto c0 = std::chrono::steady_clock::now();
       const laser::LaserScan2D scan2d = ros_conv::fromLaserScan(*s);
       math::SE2 prediction = *o;
-      if (front_end == "laser_odometry") {
+      std::vector<Eigen::Vector2d> robot;
+      if (front_end == "laser_odometry" || loop_closing) {
         std::vector<laser::ScanPoint> pts;
         laser::validPoints(scan2d, 0.0, &pts);
-        std::vector<Eigen::Vector2d> robot;
         robot.reserve(pts.size());
         for (const auto& p : pts) robot.push_back(mount.transformPoint(p.p_m));
+      }
+      if (front_end == "laser_odometry") {
         prediction = laser_odometry.add(robot, *o);
         front_estimate[s->header.stamp.toSec()] = prediction;
         tum(front_tum, s->header.stamp.toSec(), prediction);
@@ -306,7 +316,16 @@ int main(int argc, char** argv) {
       max_update_s = std::max(max_update_s, dt);
       const double t = s->header.stamp.toSec();
       estimate[t] = ekf.pose();
-      tum(est_tum, t, ekf.pose());
+      tum(ekf_tum, t, ekf.pose());
+      if (loop_closing) {
+        const auto c1 = std::chrono::steady_clock::now();
+        mapper.add(robot, ekf.pose());
+        const double dl =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - c1).count();
+        compute_s += dl;
+        max_update_s = std::max(max_update_s, dt + dl);
+        scan_stamps.push_back(t);
+      }
       const Eigen::Matrix3d pc = ekf.poseCovariance();
       cov_csv << std::fixed << t << "," << pc(0, 0) << "," << pc(0, 1) << "," << pc(1, 1) << ","
               << pc(2, 2) << "\n";
@@ -323,6 +342,17 @@ int main(int argc, char** argv) {
         truth_at_scan.push_back(*g);
         ++with_truth;
       }
+    }
+    const std::map<double, math::SE2> ekf_estimate = estimate;
+    if (loop_closing) {
+      const std::vector<math::SE2> final_poses = mapper.trajectory();
+      for (size_t i = 0; i < scan_stamps.size(); ++i) estimate[scan_stamps[i]] = final_poses[i];
+      est_path.points_m.clear();
+      for (const auto& [t, p] : estimate) est_path.points_m.emplace_back(p.x_m, p.y_m);
+    }
+    {
+      std::ofstream est_tum(fs::path(output) / "estimate.tum");
+      for (const auto& [t, p] : estimate) tum(est_tum, t, p);
     }
     // NEES, in the anchored frame for the anchor variant (known only once both anchors are fixed;
     // the frame is the same from the moment they are, and before that the map is the start frame).
@@ -361,9 +391,10 @@ int main(int argc, char** argv) {
     if (!truth_path.points_m.empty()) paths.insert(paths.begin() + 1, truth_path);
     cv::imwrite((fs::path(output) / "map.png").string(),
                 slam::drawLineMap(segments, paths, name + " (" + variant + ")"));
-    slam::RelationErrors rel, front_rel;
+    slam::RelationErrors rel, front_rel, ekf_rel;
     if (!relations.empty()) {
       rel = slam::evaluateRelations(relations, estimate, 0.01);
+      ekf_rel = slam::evaluateRelations(relations, ekf_estimate, 0.01);
       if (!front_estimate.empty()) front_rel = slam::evaluateRelations(relations, front_estimate, 0.01);
       if (rel.used == 0)
         throw std::runtime_error(relations_path + ": no relation matches the bag's scan stamps");
@@ -380,7 +411,8 @@ int main(int argc, char** argv) {
         "relation_rot_error_deg_std=%.3f relations_used=%d landmarks=%d fixed_landmarks=%d "
         "merged=%ld scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f "
         "front_end=%s front_end_relation_trans_error_m=%.4f front_end_relation_rot_error_deg=%.3f "
-        "front_end_matched=%.3f front_end_ms_mean=%.3f\n",
+        "front_end_matched=%.3f front_end_ms_mean=%.3f loop_closures=%d graph_nodes=%d "
+        "ekf_relation_trans_error_m=%.4f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
         with_truth ? double(below) / with_truth : -1.0,
@@ -392,7 +424,8 @@ int main(int argc, char** argv) {
         has_rel && !front_estimate.empty() ? front_rel.trans_mean_m : -1.0,
         has_rel && !front_estimate.empty() ? math::radToDeg(front_rel.rot_mean_rad) : -1.0,
         laser_odometry.scans() ? double(laser_odometry.matched()) / laser_odometry.scans() : -1.0,
-        1e3 * front_s / scans.size());
+        1e3 * front_s / scans.size(), mapper.loopClosures(), mapper.nodes(),
+        has_rel ? ekf_rel.trans_mean_m : -1.0);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";
     return 1;

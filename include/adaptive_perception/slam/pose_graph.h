@@ -1,0 +1,103 @@
+#pragma once
+// Loop closing for the line-landmark EKF: a pose graph over keyframes (Lu and Milios 1997; the
+// graph-mapping column of Kuemmerle et al. 2009), optimised with Ceres.
+//
+// PoseGraph2D: nodes are SE(2) poses, edges relative poses z_ij = x_i^-1 x_j with an information
+// matrix; the residual of an edge is sqrt(info) [R_i^T (t_j - t_i) - t_z; wrap(th_j - th_i -
+// th_z)]; loop edges go through a Cauchy loss (a wrong loop closure is down-weighted rather than
+// bending the whole map). Node 0 is held fixed.
+//
+// LoopClosingMapper: takes every scan with its pose from the local estimator (the EKF over line
+// landmarks driven by laser odometry); a scan becomes a graph node once the local pose moved
+// node_translation_m or turned node_rotation_rad since the last node, the edge between
+// consecutive nodes is the local estimator's relative pose. Each new node is matched
+// (scan_matcher.h: a coarse correlative search at coarse_resolution_m over a wide window, then the
+// fine matcher) against the submap of each older node (at least min_node_gap nodes back) that
+// lies within search_radius_m of its current estimate, nearest first, at most
+// max_candidates_per_node; a match scoring at least min_loop_score adds a loop edge, and the graph
+// is optimised. Every scan's final pose is its last node's optimised pose composed with the local
+// motion since that node.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "adaptive_perception/math/se2.h"
+#include "adaptive_perception/slam/scan_matcher.h"
+
+namespace adaptive_perception::slam {
+
+class PoseGraph2D {
+ public:
+  int addNode(const math::SE2& initial);
+  /// Throws std::invalid_argument on an unknown node or a non-positive-definite information.
+  void addEdge(int i, int j, const math::SE2& z_ij, const Eigen::Matrix3d& information,
+               bool loop = false);
+  /// Levenberg-Marquardt with a sparse Cholesky solver; returns the final cost.
+  double optimize(int max_iterations = 30);
+  int numNodes() const { return static_cast<int>(x_.size()); }
+  int numEdges() const { return static_cast<int>(edges_.size()); }
+  int numLoopEdges() const;
+  math::SE2 node(int i) const;
+
+ private:
+  struct Edge {
+    int i, j;
+    math::SE2 z;
+    Eigen::Matrix3d sqrt_info;
+    bool loop;
+  };
+  std::vector<std::array<double, 3>> x_;
+  std::vector<Edge> edges_;
+};
+
+struct LoopClosingConfig {
+  double node_translation_m = 0.5;   // a new graph node after this much motion
+  double node_rotation_rad = 0.5;    // or this much turning
+  double odometry_std_m = 0.02;      // per node edge: the local estimator's relative-pose std
+  double odometry_std_rad = 0.01;
+  int min_node_gap = 20;             // nodes back along the chain before a node is a candidate
+  double search_radius_m = 4.0;      // candidate nodes within this of the current estimate
+  int max_candidates_per_node = 2;
+  int submap_half_nodes = 4;         // a candidate's submap: its scan and this many either side
+  double coarse_resolution_m = 0.1;  // the wide search
+  double coarse_search_xy_m = 1.5;
+  double coarse_search_yaw_rad = 0.5;
+  double coarse_yaw_step_rad = 0.02;
+  ScanMatcherConfig fine;            // then the fine match (its own window) at fine.resolution_m
+  double min_loop_score = 0.55;      // of the fine match, 0..1
+  double loop_std_m = 0.05;          // a loop edge's std
+  double loop_std_rad = 0.02;
+  double max_range_m = 25.0;         // scan points farther than this are left out
+  void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+class LoopClosingMapper {
+ public:
+  explicit LoopClosingMapper(LoopClosingConfig config = {});
+  /// One scan (points in the robot frame) with the local estimator's pose.
+  void add(const std::vector<Eigen::Vector2d>& points_robot, const math::SE2& local_pose);
+  /// The final pose of every scan added, in order.
+  std::vector<math::SE2> trajectory() const;
+  int loopClosures() const { return graph_.numLoopEdges(); }
+  int nodes() const { return graph_.numNodes(); }
+  long attempts() const { return attempts_; }
+
+ private:
+  bool tryLoop(int node);
+
+  LoopClosingConfig config_;
+  PoseGraph2D graph_;
+  struct NodeData {
+    math::SE2 local;  // the local estimator's pose at the node
+    std::vector<Eigen::Vector2d> points;
+  };
+  std::vector<NodeData> nodes_;
+  struct ScanRef {
+    int node;
+    math::SE2 offset;  // local motion since the node
+  };
+  std::vector<ScanRef> scans_;
+  long attempts_ = 0;
+};
+
+}  // namespace adaptive_perception::slam

@@ -1,0 +1,204 @@
+#include "adaptive_perception/slam/pose_graph.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "adaptive_perception/math/angles.h"
+
+namespace adaptive_perception::slam {
+
+namespace {
+void need(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("LoopClosingConfig: " + what);
+}
+
+struct EdgeCost {
+  EdgeCost(const math::SE2& z, const Eigen::Matrix3d& sqrt_info) : z_(z), sqrt_info_(sqrt_info) {}
+  template <typename T>
+  bool operator()(const T* xi, const T* xj, T* r) const {
+    using std::cos;
+    using std::sin;
+    using std::atan2;
+    const T c = cos(xi[2]), s = sin(xi[2]);
+    const T dx = xj[0] - xi[0], dy = xj[1] - xi[1];
+    const T e0 = c * dx + s * dy - T(z_.x_m);
+    const T e1 = -s * dx + c * dy - T(z_.y_m);
+    const T a = xj[2] - xi[2] - T(z_.yaw_rad);
+    const T e2 = atan2(sin(a), cos(a));
+    for (int k = 0; k < 3; ++k)
+      r[k] = T(sqrt_info_(k, 0)) * e0 + T(sqrt_info_(k, 1)) * e1 + T(sqrt_info_(k, 2)) * e2;
+    return true;
+  }
+  math::SE2 z_;
+  Eigen::Matrix3d sqrt_info_;
+};
+}  // namespace
+
+int PoseGraph2D::addNode(const math::SE2& x) {
+  x_.push_back({x.x_m, x.y_m, x.yaw_rad});
+  return numNodes() - 1;
+}
+
+void PoseGraph2D::addEdge(int i, int j, const math::SE2& z, const Eigen::Matrix3d& info,
+                          bool loop) {
+  if (i < 0 || j < 0 || i >= numNodes() || j >= numNodes() || i == j)
+    throw std::invalid_argument("PoseGraph2D::addEdge: unknown node");
+  const Eigen::LLT<Eigen::Matrix3d> llt(info);
+  if (llt.info() != Eigen::Success || !info.allFinite())
+    throw std::invalid_argument("PoseGraph2D::addEdge: information not positive definite");
+  edges_.push_back({i, j, z, Eigen::Matrix3d(llt.matrixU()), loop});
+}
+
+int PoseGraph2D::numLoopEdges() const {
+  return static_cast<int>(
+      std::count_if(edges_.begin(), edges_.end(), [](const Edge& e) { return e.loop; }));
+}
+
+math::SE2 PoseGraph2D::node(int i) const { return math::SE2(x_.at(i)[0], x_[i][1], x_[i][2]); }
+
+double PoseGraph2D::optimize(int max_iterations) {
+  if (x_.empty()) return 0.0;
+  ceres::Problem problem;
+  for (const Edge& e : edges_)
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<EdgeCost, 3, 3, 3>(new EdgeCost(e.z, e.sqrt_info)),
+        e.loop ? new ceres::CauchyLoss(1.0) : nullptr, x_[e.i].data(), x_[e.j].data());
+  if (!problem.HasParameterBlock(x_[0].data())) return 0.0;
+  problem.SetParameterBlockConstant(x_[0].data());
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = max_iterations;
+  options.function_tolerance = 1e-12;  // the defaults stop about 1e-4 m short of the optimum
+  options.gradient_tolerance = 1e-14;
+  options.parameter_tolerance = 1e-12;
+  options.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  for (auto& x : x_) x[2] = math::wrapAngle(x[2]);
+  return summary.final_cost;
+}
+
+void LoopClosingConfig::validate() const {
+  need(std::isfinite(node_translation_m) && node_translation_m > 0.0,
+       "node_translation_m must be > 0");
+  need(std::isfinite(node_rotation_rad) && node_rotation_rad > 0.0,
+       "node_rotation_rad must be > 0");
+  for (double v : {odometry_std_m, odometry_std_rad, loop_std_m, loop_std_rad})
+    need(std::isfinite(v) && v > 0.0, "the *_std_* fields must be > 0");
+  need(min_node_gap >= 1, "min_node_gap must be >= 1");
+  need(std::isfinite(search_radius_m) && search_radius_m >= 0.0, "search_radius_m must be >= 0");
+  need(max_candidates_per_node >= 0, "max_candidates_per_node must be >= 0");
+  need(submap_half_nodes >= 0, "submap_half_nodes must be >= 0");
+  ScanMatcherConfig coarse;
+  coarse.resolution_m = coarse_resolution_m;
+  coarse.search_xy_m = coarse_search_xy_m;
+  coarse.search_yaw_rad = coarse_search_yaw_rad;
+  coarse.yaw_step_rad = coarse_yaw_step_rad;
+  coarse.validate();
+  fine.validate();
+  need(std::isfinite(min_loop_score) && min_loop_score >= 0.0 && min_loop_score <= 1.0,
+       "min_loop_score must be in [0, 1]");
+  need(std::isfinite(max_range_m) && max_range_m > 0.1, "max_range_m must be > 0.1");
+}
+
+LoopClosingMapper::LoopClosingMapper(LoopClosingConfig config) : config_(config) {
+  config_.validate();
+}
+
+void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
+                            const math::SE2& local_pose) {
+  bool new_node = nodes_.empty();
+  if (!new_node) {
+    const math::SE2 d = math::between(nodes_.back().local, local_pose);
+    new_node = std::hypot(d.x_m, d.y_m) >= config_.node_translation_m ||
+               std::fabs(d.yaw_rad) >= config_.node_rotation_rad;
+  }
+  if (new_node) {
+    std::vector<Eigen::Vector2d> pts;
+    const double r2 = config_.max_range_m * config_.max_range_m;
+    for (const auto& p : points_robot)
+      if (p.allFinite() && p.squaredNorm() <= r2) pts.push_back(p);
+    if (nodes_.empty()) {
+      graph_.addNode(local_pose);
+    } else {
+      const int prev = graph_.numNodes() - 1;
+      const math::SE2 z = math::between(nodes_.back().local, local_pose);
+      graph_.addNode(graph_.node(prev) * z);
+      Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
+      info(0, 0) = info(1, 1) = 1.0 / (config_.odometry_std_m * config_.odometry_std_m);
+      info(2, 2) = 1.0 / (config_.odometry_std_rad * config_.odometry_std_rad);
+      graph_.addEdge(prev, prev + 1, z, info);
+    }
+    nodes_.push_back({local_pose, std::move(pts)});
+    if (tryLoop(graph_.numNodes() - 1)) graph_.optimize();
+  }
+  scans_.push_back({static_cast<int>(nodes_.size()) - 1,
+                    math::between(nodes_.back().local, local_pose)});
+}
+
+bool LoopClosingMapper::tryLoop(int n) {
+  if (nodes_[n].points.size() < 20) return false;
+  const math::SE2 xn = graph_.node(n);
+  std::vector<std::pair<double, int>> cands;
+  for (int k = 0; k + config_.min_node_gap <= n; ++k) {
+    const math::SE2 xk = graph_.node(k);
+    const double d = std::hypot(xk.x_m - xn.x_m, xk.y_m - xn.y_m);
+    if (d <= config_.search_radius_m) cands.emplace_back(d, k);
+  }
+  std::sort(cands.begin(), cands.end());
+  bool closed = false;
+  int tried = 0;
+  for (const auto& [d, k] : cands) {
+    if (tried >= config_.max_candidates_per_node) break;
+    ++tried;
+    ++attempts_;
+    // The submap of node k in k's frame.
+    std::vector<Eigen::Vector2d> sub;
+    const math::SE2 xk_inv = graph_.node(k).inverse();
+    const int lo = std::max(0, k - config_.submap_half_nodes);
+    const int hi = std::min(n - config_.min_node_gap, k + config_.submap_half_nodes);
+    for (int m = lo; m <= hi; ++m) {
+      const math::SE2 rel = xk_inv * graph_.node(m);
+      for (const auto& p : nodes_[m].points) sub.push_back(rel.transformPoint(p));
+    }
+    if (sub.size() < 50) continue;
+    const math::SE2 prior = xk_inv * xn;
+    ScanMatcherConfig coarse;
+    coarse.resolution_m = config_.coarse_resolution_m;
+    coarse.search_xy_m = config_.coarse_search_xy_m;
+    coarse.search_yaw_rad = config_.coarse_search_yaw_rad;
+    coarse.yaw_step_rad = config_.coarse_yaw_step_rad;
+    coarse.hit_std_m = 2.0 * config_.fine.hit_std_m;
+    try {
+      const LikelihoodField coarse_field(sub, coarse.resolution_m, coarse.hit_std_m,
+                                         coarse.search_xy_m + 1.0);
+      const ScanMatch c = matchScan(coarse_field, nodes_[n].points, prior, coarse);
+      const LikelihoodField fine_field(sub, config_.fine.resolution_m, config_.fine.hit_std_m,
+                                       config_.fine.search_xy_m + 1.0);
+      const ScanMatch f = matchScan(fine_field, nodes_[n].points, c.pose, config_.fine);
+      if (f.score < config_.min_loop_score) continue;
+      Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
+      info(0, 0) = info(1, 1) = 1.0 / (config_.loop_std_m * config_.loop_std_m);
+      info(2, 2) = 1.0 / (config_.loop_std_rad * config_.loop_std_rad);
+      graph_.addEdge(k, n, f.pose, info, true);
+      closed = true;
+    } catch (const std::invalid_argument&) {
+      continue;  // a submap too large for a field: no match
+    }
+  }
+  return closed;
+}
+
+std::vector<math::SE2> LoopClosingMapper::trajectory() const {
+  std::vector<math::SE2> out;
+  out.reserve(scans_.size());
+  for (const ScanRef& s : scans_) out.push_back(graph_.node(s.node) * s.offset);
+  return out;
+}
+
+}  // namespace adaptive_perception::slam
