@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The relations benchmark (Kuemmerle et al. 2009) on every real log in data/laser/ that has a
+# relations file: carmen_to_bag with its defaults but the lasers' own poses as odometry, then
+# evaluate_slam with the same settings on every log (FLAGS, default: the laser-odometry front end
+# and loop closing), and one table of relation errors (mean and std, translational and rotational)
+# beside the published figures of the usual peers, plus each log's map PNG. Writes
+# results/slam_benchmark/<log>/ (evaluate_slam's output, log.txt), table.csv and table.md.
+# Usage: [FLAGS="--front_end laser_odometry --loop_closing 1"] scripts/evaluate_slam_benchmark.sh [LOG ...]
+# About 10 minutes on two cores for the three logs.
+set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+BIN="$AP_WS/devel/lib/adaptive_perception"
+FLAGS="${FLAGS:---front_end laser_odometry --loop_closing 1}"
+[ -x "$BIN/evaluate_slam" ] || "$AP_ROOT/scripts/setup.sh" || exit 1
+OUT="$AP_ROOT/results/slam_benchmark"
+mkdir -p "$OUT"
+logs=("$@")
+if [ "${#logs[@]}" -eq 0 ]; then
+  for r in "$AP_ROOT"/data/laser/relations/*.relations; do logs+=("$(basename "$r" .relations)"); done
+fi
+# Published mean translational relation errors (m): scan matching, GMapping, graph mapping
+# (Kuemmerle et al. 2009, Table 1), Cartographer (Hess et al., ICRA 2016, Table 3).
+published() {
+  case "$1" in
+    intel) echo "0.220 0.070 0.031 0.0229" ;;
+    fr079) echo "0.258 0.061 0.056 0.0452" ;;
+    mit-csail) echo "0.106 0.049 0.004 0.0319" ;;
+    *) echo "- - - -" ;;
+  esac
+}
+csv="$OUT/table.csv"
+echo "log,scans,relations_used,trans_error_m,trans_error_m_std,rot_error_deg,rot_error_deg_std,ekf_trans_error_m,front_end_trans_error_m,loop_closures,realtime_factor,published_scan_matching_m,published_gmapping_m,published_graph_mapping_m,published_cartographer_m" > "$csv"
+for log in "${logs[@]}"; do
+  dir="$OUT/$log"
+  mkdir -p "$dir"
+  rel="$AP_ROOT/data/laser/relations/$log.relations"
+  [ -f "$rel" ] || { echo "evaluate_slam_benchmark: no relations for $log (skipped)"; continue; }
+  "$BIN/carmen_to_bag" --input "$AP_ROOT/data/laser/$log.clf.bz2" --output "$dir/$log.bag" \
+    --overwrite --max_issues 3 --odometry laser_poses > "$dir/log.txt" 2>&1 || {
+    echo "evaluate_slam_benchmark: $log: carmen_to_bag failed: $(tail -n 1 "$dir/log.txt")"; continue; }
+  # shellcheck disable=SC2086
+  if ! "$BIN/evaluate_slam" --bag "$dir/$log.bag" --relations "$rel" $FLAGS --output "$dir" \
+      --name "$log" >> "$dir/log.txt" 2>&1; then
+    echo "evaluate_slam_benchmark: $log: evaluate_slam failed: $(tail -n 1 "$dir/log.txt")"; continue
+  fi
+  rm -f "$dir/$log.bag"
+  line="$(grep '^evaluate_slam:' "$dir/log.txt" | tail -n 1)"
+  echo "$log $line"
+  v() { summary_value "$line" "$1"; }
+  read -r p_sm p_gm p_graph p_carto <<< "$(published "$log")"
+  echo "$log,$(v scans),$(v relations_used),$(v relation_trans_error_m),$(v relation_trans_error_m_std),$(v relation_rot_error_deg),$(v relation_rot_error_deg_std),$(v ekf_relation_trans_error_m),$(v front_end_relation_trans_error_m),$(v loop_closures),$(v realtime_factor),$p_sm,$p_gm,$p_graph,$p_carto" >> "$csv"
+done
+md="$OUT/table.md"
+{
+  echo "| log | scans | relations | translational error (m) | std | rotational error (deg) | std | EKF alone (m) | front end alone (m) | loop closures | x real time | published: scan matching | GMapping | graph mapping | Cartographer |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  tail -n +2 "$csv" | awk -F, '{printf "| %s |", $1; for (i = 2; i <= NF; ++i) printf " %s |", $i; printf "\n"}'
+} > "$md"
+cat "$md"
+echo "evaluate_slam_benchmark: flags '$FLAGS'; table in $csv and $md, maps in $OUT/<log>/map.png"
