@@ -52,7 +52,7 @@ for log in "${logs[@]}"; do
 done
 md="$OUT/table.md"
 {
-  echo "| log | scans | relations | translational error (m) | std | rotational error (deg) | std | EKF alone (m) | front end alone (m) | loop closures | x real time | published: scan matching | GMapping | graph mapping | Cartographer |"
+  echo "| log | scans | relations | translational error (m) | std | rotational error (deg) | std | EKF before loop closing (m) | front end alone (m) | loop closures | x real time | published: scan matching | GMapping | graph mapping | Cartographer |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   tail -n +2 "$csv" | awk -F, '{printf "| %s |", $1; for (i = 2; i <= NF; ++i) printf " %s |", $i; printf "\n"}'
 } > "$md"

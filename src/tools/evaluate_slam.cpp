@@ -27,7 +27,7 @@
 //       merged=.. (landmark pairs merged as the same wall over the run)
 //       scans=.. update_ms_mean=.. update_ms_max=.. realtime_factor=..
 // ate_m: RMS position error over the scans (no alignment: the map frame starts at the first true
-// pose). nees_in_bounds: share of scans whose pose NEES lies inside the 95% chi-square interval of
+// pose; with --loop_closing, of the optimised trajectory). nees_in_bounds: share of scans whose pose NEES lies inside the 95% chi-square interval of
 // 3 degrees of freedom; nees_below_bounds the share below it (under-confident: the rest of the
 // misses are over-confident); nees_mean should be near 3. nis_per_dof: the normalised innovation squared
 // of the line updates summed over the run over their degrees of freedom (near 1 for a consistent
@@ -349,6 +349,16 @@ int main(int argc, char** argv) {
       for (size_t i = 0; i < scan_stamps.size(); ++i) estimate[scan_stamps[i]] = final_poses[i];
       est_path.points_m.clear();
       for (const auto& [t, p] : estimate) est_path.points_m.emplace_back(p.x_m, p.y_m);
+      // ate_m and final_position_error_m are of the optimised trajectory.
+      if (with_truth > 0) {
+        sq = 0.0;
+        for (const auto& [t, p] : estimate) {
+          const math::SE2* g = nearest(truth, ros::Time(t));
+          if (!g) continue;
+          final_err = std::hypot(p.x_m - g->x_m, p.y_m - g->y_m);
+          sq += final_err * final_err;
+        }
+      }
     }
     {
       std::ofstream est_tum(fs::path(output) / "estimate.tum");

@@ -14,8 +14,9 @@
 // (scan_matcher.h: a coarse correlative search at coarse_resolution_m over a wide window, then the
 // fine matcher) against the submap of each older node (at least min_node_gap nodes back) that
 // lies within search_radius_m of its current estimate, nearest first, at most
-// max_candidates_per_node; a match scoring at least min_loop_score adds a loop edge, and the graph
-// is optimised. Every scan's final pose is its last node's optimised pose composed with the local
+// max_candidates_per_node; a match scoring at least min_loop_score adds a loop edge whose
+// information is the match's own (scan_matcher.h, matchInformation; a corridor's length is not
+// constrained), and the graph is optimised. Every scan's final pose is its last node's optimised pose composed with the local
 // motion since that node.
 #include <Eigen/Core>
 #include <array>
@@ -65,9 +66,10 @@ struct LoopClosingConfig {
   double coarse_yaw_step_rad = 0.02;
   ScanMatcherConfig fine;            // then the fine match (its own window) at fine.resolution_m
   double min_loop_score = 0.55;      // of the fine match, 0..1
-  double loop_std_m = 0.05;          // a loop edge's std
-  double loop_std_rad = 0.02;
+  double loop_std_m = 0.05;          // a loop edge's std in its best-seen direction (the others
+                                     // from the match's information, matchInformation)
   double max_range_m = 25.0;         // scan points farther than this are left out
+  double connect_gap_m = 0.3;        // consecutive returns closer than this make one wall
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -11,7 +11,8 @@
 // The search: yaw over [-search_yaw_rad, +search_yaw_rad] around the prior in steps of
 // yaw_step_rad, and for each yaw every translation of whole cells within search_xy_m; then the
 // best pose is refined by a coordinate search on the interpolated field, halving its steps down to
-// a hundredth of a cell and of a yaw step.
+// a hundredth of a cell and of a yaw step. Both maximise the score minus a small pull towards the
+// prior (prior_penalty).
 #include <Eigen/Core>
 #include <deque>
 #include <opencv2/core.hpp>
@@ -27,15 +28,23 @@ struct ScanMatcherConfig {
   double search_xy_m = 0.3;        // translation window half-width around the prior
   double search_yaw_rad = 0.2;     // rotation window half-width (about 11.5 degrees)
   double yaw_step_rad = 0.01;      // coarse rotation step
+  // The prior's pull: a pose's score loses prior_penalty * ((dx^2 + dy^2) / search_xy_m^2 +
+  // dyaw^2 / search_yaw_rad^2) for its distance from the prior, so that along a direction the
+  // scan cannot see (a straight corridor) the match keeps the odometry's motion instead of the
+  // first of many equal scores.
+  double prior_penalty = 0.05;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
 class LikelihoodField {
  public:
-  /// The field of `points_m` (map frame) over their bounding box plus `margin_m`. Throws
-  /// std::invalid_argument on no point or a box larger than 4096 x 4096 cells.
+  /// The field of `points_m` (map frame) over their bounding box plus `margin_m`. Consecutive
+  /// points closer than `connect_gap_m` are joined by a line (a scan's returns along one wall), so
+  /// that the field is as high between a wall's samples as on them and a match along a wall is not
+  /// drawn to the samples' own spacing. Throws std::invalid_argument on no point or a box larger
+  /// than 4096 x 4096 cells.
   LikelihoodField(const std::vector<Eigen::Vector2d>& points_m, double resolution_m,
-                  double hit_std_m, double margin_m);
+                  double hit_std_m, double margin_m, double connect_gap_m = 0.0);
   /// Bilinear value at a map point; 0 outside the field.
   double at(const Eigen::Vector2d& p_m) const;
   /// The mean of at() over `points_robot` placed at `pose`.
@@ -53,17 +62,29 @@ class LikelihoodField {
 
 struct ScanMatch {
   math::SE2 pose;
-  double score = 0.0;  // LikelihoodField::score at pose
+  double score = 0.0;  // LikelihoodField::score at pose (without the prior's pull)
 };
 
 /// The best pose of `points_robot` (robot frame) within the window around `prior`.
 ScanMatch matchScan(const LikelihoodField& field, const std::vector<Eigen::Vector2d>& points_robot,
                     const math::SE2& prior, const ScanMatcherConfig& config);
 
+/// The information (inverse covariance) of a match: the number of points times the negative
+/// Hessian of the mean score at the pose (central differences on the interpolated field), its
+/// negative eigenvalues set to 0. Each point counts as one measurement of a wall with the
+/// field's width as its noise; along a direction the scan cannot see (a straight corridor) the
+/// information is about 0.
+Eigen::Matrix3d matchInformation(const LikelihoodField& field,
+                                 const std::vector<Eigen::Vector2d>& points_robot,
+                                 const math::SE2& pose);
+
 /// Laser odometry: each scan matched against a local map of the last keyframes, the wheel
-/// odometry's increment as the prior. A scan becomes a keyframe (and the field is rebuilt) once
-/// the robot has moved keyframe_translation_m or turned keyframe_rotation_rad from the last one.
-/// A match scoring below min_score is not trusted: the pose follows the wheel odometry.
+/// odometry's increment as the prior. The match and the prior are fused by their information
+/// (matchInformation; the odometry's from odom_std_m + odom_std_per_m * distance and
+/// odom_std_rad + odom_std_per_rad * turn), so that the odometry fills in what the scan cannot
+/// see. A scan becomes a keyframe (and the field is rebuilt) once the robot has moved
+/// keyframe_translation_m or turned keyframe_rotation_rad from the last one. A match scoring
+/// below min_score is not trusted: the pose follows the wheel odometry.
 struct LaserOdometryConfig {
   ScanMatcherConfig matcher;
   double max_range_m = 25.0;           // farther points are left out (sparse, and long-range
@@ -73,6 +94,11 @@ struct LaserOdometryConfig {
   int local_map_keyframes = 20;        // keyframes in the local map, >= 1
   double min_score = 0.25;             // 0..1
   int min_points = 20;                 // fewer valid points: follow the wheel odometry
+  double connect_gap_m = 0.3;          // consecutive returns closer than this make one wall
+  double odom_std_m = 0.02;            // the wheel odometry's error per step: a floor
+  double odom_std_per_m = 0.1;         // plus this share of the distance
+  double odom_std_rad = 0.01;          // and in rotation
+  double odom_std_per_rad = 0.1;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -88,7 +89,7 @@ void LoopClosingConfig::validate() const {
        "node_translation_m must be > 0");
   need(std::isfinite(node_rotation_rad) && node_rotation_rad > 0.0,
        "node_rotation_rad must be > 0");
-  for (double v : {odometry_std_m, odometry_std_rad, loop_std_m, loop_std_rad})
+  for (double v : {odometry_std_m, odometry_std_rad, loop_std_m})
     need(std::isfinite(v) && v > 0.0, "the *_std_* fields must be > 0");
   need(min_node_gap >= 1, "min_node_gap must be >= 1");
   need(std::isfinite(search_radius_m) && search_radius_m >= 0.0, "search_radius_m must be >= 0");
@@ -176,15 +177,22 @@ bool LoopClosingMapper::tryLoop(int n) {
     coarse.hit_std_m = 2.0 * config_.fine.hit_std_m;
     try {
       const LikelihoodField coarse_field(sub, coarse.resolution_m, coarse.hit_std_m,
-                                         coarse.search_xy_m + 1.0);
+                                         coarse.search_xy_m + 1.0, config_.connect_gap_m);
       const ScanMatch c = matchScan(coarse_field, nodes_[n].points, prior, coarse);
       const LikelihoodField fine_field(sub, config_.fine.resolution_m, config_.fine.hit_std_m,
-                                       config_.fine.search_xy_m + 1.0);
+                                       config_.fine.search_xy_m + 1.0, config_.connect_gap_m);
       const ScanMatch f = matchScan(fine_field, nodes_[n].points, c.pose, config_.fine);
       if (f.score < config_.min_loop_score) continue;
-      Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
-      info(0, 0) = info(1, 1) = 1.0 / (config_.loop_std_m * config_.loop_std_m);
-      info(2, 2) = 1.0 / (config_.loop_std_rad * config_.loop_std_rad);
+      // The match's own information, scaled as a whole so that its best-seen translation has
+      // loop_std_m: along a corridor the scan cannot see, the loop edge says next to nothing.
+      Eigen::Matrix3d info = matchInformation(fine_field, nodes_[n].points, f.pose);
+      const double best_xy =
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(info.topLeftCorner<2, 2>())
+              .eigenvalues()
+              .maxCoeff();
+      if (!(best_xy > 0.0)) continue;
+      info *= 1.0 / (config_.loop_std_m * config_.loop_std_m * best_xy);
+      info += 1e-6 * Eigen::Matrix3d::Identity();  // positive definite for the solver
       graph_.addEdge(k, n, f.pose, info, true);
       closed = true;
     } catch (const std::invalid_argument&) {

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <Eigen/Eigenvalues>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
+
+#include "adaptive_perception/math/angles.h"
 
 namespace adaptive_perception::slam {
 
@@ -25,6 +28,8 @@ void ScanMatcherConfig::validate() const {
        "ScanMatcherConfig: search_yaw_rad must be in [0, 3.2]");
   need(std::isfinite(yaw_step_rad) && yaw_step_rad >= 1e-4 && yaw_step_rad <= 0.5,
        "ScanMatcherConfig: yaw_step_rad must be in [1e-4, 0.5]");
+  need(std::isfinite(prior_penalty) && prior_penalty >= 0.0 && prior_penalty <= 1.0,
+       "ScanMatcherConfig: prior_penalty must be in [0, 1]");
 }
 
 void LaserOdometryConfig::validate() const {
@@ -40,10 +45,17 @@ void LaserOdometryConfig::validate() const {
   need(std::isfinite(min_score) && min_score >= 0.0 && min_score <= 1.0,
        "LaserOdometryConfig: min_score must be in [0, 1]");
   need(min_points >= 1, "LaserOdometryConfig: min_points must be >= 1");
+  need(std::isfinite(connect_gap_m) && connect_gap_m >= 0.0,
+       "LaserOdometryConfig: connect_gap_m must be >= 0");
+  for (double v : {odom_std_m, odom_std_rad})
+    need(std::isfinite(v) && v > 0.0, "LaserOdometryConfig: odom_std_m and odom_std_rad must be > 0");
+  for (double v : {odom_std_per_m, odom_std_per_rad})
+    need(std::isfinite(v) && v >= 0.0,
+         "LaserOdometryConfig: odom_std_per_m and odom_std_per_rad must be >= 0");
 }
 
 LikelihoodField::LikelihoodField(const std::vector<Eigen::Vector2d>& points_m, double resolution_m,
-                                 double hit_std_m, double margin_m)
+                                 double hit_std_m, double margin_m, double connect_gap_m)
     : resolution_m_(resolution_m) {
   if (points_m.empty()) throw std::invalid_argument("LikelihoodField: no map point");
   Eigen::Vector2d lo = points_m.front(), hi = points_m.front();
@@ -59,10 +71,16 @@ LikelihoodField::LikelihoodField(const std::vector<Eigen::Vector2d>& points_m, d
     throw std::invalid_argument("LikelihoodField: the map points span more than 4096 cells");
   origin_m_ = lo;
   cv::Mat free(h, w, CV_8UC1, cv::Scalar(255));  // 0 at map points
-  for (const auto& p : points_m) {
-    const int x = static_cast<int>(std::lround((p.x() - lo.x()) / resolution_m));
-    const int y = static_cast<int>(std::lround((p.y() - lo.y()) / resolution_m));
-    if (x >= 0 && x < w && y >= 0 && y < h) free.at<uchar>(y, x) = 0;
+  const auto cell = [&](const Eigen::Vector2d& p) {
+    return cv::Point(static_cast<int>(std::lround((p.x() - lo.x()) / resolution_m)),
+                     static_cast<int>(std::lround((p.y() - lo.y()) / resolution_m)));
+  };
+  const double gap2 = connect_gap_m * connect_gap_m;
+  for (size_t i = 0; i < points_m.size(); ++i) {
+    const cv::Point c = cell(points_m[i]);
+    if (c.x >= 0 && c.x < w && c.y >= 0 && c.y < h) free.at<uchar>(c) = 0;
+    if (i > 0 && (points_m[i] - points_m[i - 1]).squaredNorm() < gap2)
+      cv::line(free, cell(points_m[i - 1]), c, cv::Scalar(0), 1, cv::LINE_8);
   }
   cv::Mat dist;
   cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
@@ -97,17 +115,29 @@ double LikelihoodField::score(const std::vector<Eigen::Vector2d>& points_robot,
 
 ScanMatch matchScan(const LikelihoodField& field, const std::vector<Eigen::Vector2d>& points_robot,
                     const math::SE2& prior, const ScanMatcherConfig& c) {
-  ScanMatch best{prior, field.score(points_robot, prior)};
-  if (points_robot.empty()) return best;
+  if (points_robot.empty()) return {prior, 0.0};
   const double res = field.resolution();
+  const double inv_xy2 = c.search_xy_m > 0 ? 1.0 / (c.search_xy_m * c.search_xy_m) : 0.0;
+  const double inv_yaw2 = c.search_yaw_rad > 0 ? 1.0 / (c.search_yaw_rad * c.search_yaw_rad) : 0.0;
+  const auto pull = [&](double dx, double dy, double dyaw) {
+    return c.prior_penalty * ((dx * dx + dy * dy) * inv_xy2 + dyaw * dyaw * inv_yaw2);
+  };
+  const auto objective = [&](const math::SE2& p) {
+    return field.score(points_robot, p) -
+           pull(p.x_m - prior.x_m, p.y_m - prior.y_m, math::angleDiff(p.yaw_rad, prior.yaw_rad));
+  };
+  math::SE2 best_pose = prior;
+  double best = objective(prior);
   const int k = static_cast<int>(std::floor(c.search_xy_m / res));
   const int side = 2 * k + 1;
   const cv::Mat& f = field.values();
   const int yaw_steps = static_cast<int>(std::floor(c.search_yaw_rad / c.yaw_step_rad));
   std::vector<double> acc(side * side);
   const Eigen::Vector2d origin = field.origin();
+  const double n = static_cast<double>(points_robot.size());
   for (int yi = -yaw_steps; yi <= yaw_steps; ++yi) {
-    const double yaw = prior.yaw_rad + yi * c.yaw_step_rad;
+    const double dyaw = yi * c.yaw_step_rad;
+    const double yaw = prior.yaw_rad + dyaw;
     const double cs = std::cos(yaw), sn = std::sin(yaw);
     std::fill(acc.begin(), acc.end(), 0.0);
     for (const auto& p : points_robot) {
@@ -125,29 +155,30 @@ ScanMatch matchScan(const LikelihoodField& field, const std::vector<Eigen::Vecto
         for (int x = x_lo; x <= x_hi; ++x) *a++ += row[x];
       }
     }
-    const auto it = std::max_element(acc.begin(), acc.end());
-    const double s = *it / points_robot.size();
-    if (s > best.score) {
-      const int idx = static_cast<int>(it - acc.begin());
-      best.score = s;
-      best.pose = math::SE2(prior.x_m + (idx % side - k) * res, prior.y_m + (idx / side - k) * res,
-                            yaw);
+    for (int idx = 0; idx < side * side; ++idx) {
+      const double dx = (idx % side - k) * res, dy = (idx / side - k) * res;
+      const double v = acc[idx] / n - pull(dx, dy, dyaw);
+      if (v > best) {
+        best = v;
+        best_pose = math::SE2(prior.x_m + dx, prior.y_m + dy, yaw);
+      }
     }
   }
   // Refinement on the interpolated field.
   double step_xy = 0.5 * res, step_yaw = 0.5 * c.yaw_step_rad;
-  best.score = field.score(points_robot, best.pose);
+  best = objective(best_pose);
   while (step_xy > 0.01 * res) {
     bool moved = false;
     for (int d = 0; d < 6; ++d) {
-      math::SE2 t = best.pose;
+      math::SE2 t = best_pose;
       const double sgn = d % 2 == 0 ? 1.0 : -1.0;
       if (d < 2) t.x_m += sgn * step_xy;
       else if (d < 4) t.y_m += sgn * step_xy;
       else t = math::SE2(t.x_m, t.y_m, t.yaw_rad + sgn * step_yaw);
-      const double s = field.score(points_robot, t);
-      if (s > best.score) {
-        best = {t, s};
+      const double v = objective(t);
+      if (v > best) {
+        best = v;
+        best_pose = t;
         moved = true;
       }
     }
@@ -156,7 +187,33 @@ ScanMatch matchScan(const LikelihoodField& field, const std::vector<Eigen::Vecto
       step_yaw *= 0.5;
     }
   }
-  return best;
+  return {best_pose, field.score(points_robot, best_pose)};
+}
+
+Eigen::Matrix3d matchInformation(const LikelihoodField& field,
+                                 const std::vector<Eigen::Vector2d>& points_robot,
+                                 const math::SE2& pose) {
+  const double h[3] = {0.5 * field.resolution(), 0.5 * field.resolution(), 0.005};
+  const auto at = [&](const Eigen::Vector3d& d) {
+    return field.score(points_robot, math::SE2(pose.x_m + d.x(), pose.y_m + d.y(),
+                                               pose.yaw_rad + d.z()));
+  };
+  const double f0 = at(Eigen::Vector3d::Zero());
+  Eigen::Matrix3d H;
+  for (int a = 0; a < 3; ++a)
+    for (int b = a; b < 3; ++b) {
+      Eigen::Vector3d ea = Eigen::Vector3d::Zero(), eb = Eigen::Vector3d::Zero();
+      ea(a) = h[a];
+      eb(b) = h[b];
+      const double v = a == b ? (at(ea) - 2.0 * f0 + at(-ea)) / (h[a] * h[a])
+                              : (at(ea + eb) - at(ea - eb) - at(eb - ea) + at(-ea - eb)) /
+                                    (4.0 * h[a] * h[b]);
+      H(a, b) = H(b, a) = -v;
+    }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(H);
+  const Eigen::Vector3d lambda = es.eigenvalues().cwiseMax(0.0);
+  return static_cast<double>(points_robot.size()) * es.eigenvectors() * lambda.asDiagonal() *
+         es.eigenvectors().transpose();
 }
 
 LaserOdometry::LaserOdometry(LaserOdometryConfig config) : config_(config) { config_.validate(); }
@@ -177,7 +234,7 @@ void LaserOdometry::rebuildField() {
   field_.clear();
   if (!pts.empty())
     field_.emplace_back(pts, config_.matcher.resolution_m, config_.matcher.hit_std_m,
-                        config_.matcher.search_xy_m + 1.0);
+                        config_.matcher.search_xy_m + 1.0, config_.connect_gap_m);
 }
 
 math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
@@ -208,7 +265,18 @@ math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
     const ScanMatch m = matchScan(field_.front(), pts, prior, config_.matcher);
     last_score_ = m.score;
     if (m.score >= config_.min_score) {
-      pose_ = m.pose;
+      // Fuse the match with the prior by their information, in the prior's tangent space.
+      const math::SE2 step = math::between(pose_, prior);
+      const double sd_xy = config_.odom_std_m + config_.odom_std_per_m * std::hypot(step.x_m, step.y_m);
+      const double sd_yaw = config_.odom_std_rad + config_.odom_std_per_rad * std::fabs(step.yaw_rad);
+      const Eigen::Matrix3d P_inv =
+          Eigen::Vector3d(1.0 / (sd_xy * sd_xy), 1.0 / (sd_xy * sd_xy), 1.0 / (sd_yaw * sd_yaw))
+              .asDiagonal();
+      const Eigen::Matrix3d H = matchInformation(field_.front(), pts, m.pose);
+      const Eigen::Vector3d dm(m.pose.x_m - prior.x_m, m.pose.y_m - prior.y_m,
+                               math::angleDiff(m.pose.yaw_rad, prior.yaw_rad));
+      const Eigen::Vector3d d = (P_inv + H).ldlt().solve(H * dm);
+      pose_ = math::SE2(prior.x_m + d.x(), prior.y_m + d.y(), prior.yaw_rad + d.z());
       last_matched_ = true;
       ++matched_;
     } else {
