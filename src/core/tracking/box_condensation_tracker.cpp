@@ -57,6 +57,19 @@ void BoxTrackerConfig::validate() const {
     fail("scale_step = " + std::to_string(scale_step) + " (allowed: 0 < x < 1)");
   if (!(template_rate >= 0.0 && template_rate <= 1.0))
     fail("template_rate = " + std::to_string(template_rate) + " (allowed: 0..1)");
+  if (!(filter_gain >= 0.0 && std::isfinite(filter_gain)))
+    fail("filter_gain = " + std::to_string(filter_gain) + " (allowed: >= 0)");
+  if (filter_scales < 0 || filter_scales > 5)
+    fail("filter_scales = " + std::to_string(filter_scales) + " (allowed: 0..5)");
+  if (!(filter_scale_step > 0.0 && filter_scale_step < 0.5))
+    fail("filter_scale_step = " + std::to_string(filter_scale_step) + " (allowed: 0 < x < 0.5)");
+  if (!(peak_fraction >= 0.0 && peak_fraction < 1.0))
+    fail("peak_fraction = " + std::to_string(peak_fraction) + " (allowed: 0 <= x < 1)");
+  try {
+    filter.validate();
+  } catch (const std::invalid_argument& e) {
+    fail(std::string("filter.") + e.what());
+  }
 }
 
 namespace {
@@ -91,8 +104,23 @@ void normalize(std::vector<float>* h) {
 }  // namespace
 
 BoxCondensationTracker::BoxCondensationTracker(BoxTrackerConfig config, std::uint64_t seed)
-    : config_(config), rng_(seed) {
-  config_.validate();
+    : config_(config), rng_(seed), filter_((config.validate(), config.filter)) {}
+
+double BoxCondensationTracker::FilterMaps::at(const CorrelationFilter& f, double step, double x,
+                                              double y, double sample_log_scale) const {
+  if (maps.empty()) return 0.0;
+  const int k_max = static_cast<int>(maps.size() / 2);
+  const int k = std::clamp(static_cast<int>(std::lround((sample_log_scale - log_scale) / step)),
+                           -k_max, k_max);
+  const cv::Mat& m = maps[k + k_max];
+  const cv::Size2d cell = f.cellPx(std::exp(log_scale + k * step));
+  const double u = m.cols / 2 + (x - centre.x) / cell.width;
+  const double v = m.rows / 2 + (y - centre.y) / cell.height;
+  if (!(u >= 0.0 && v >= 0.0 && u <= m.cols - 1 && v <= m.rows - 1)) return 0.0;
+  const int u0 = std::min(static_cast<int>(u), m.cols - 2), v0 = std::min(static_cast<int>(v), m.rows - 2);
+  const double fu = u - u0, fv = v - v0;
+  return (1 - fv) * ((1 - fu) * m.at<float>(v0, u0) + fu * m.at<float>(v0, u0 + 1)) +
+         fv * ((1 - fu) * m.at<float>(v0 + 1, u0) + fu * m.at<float>(v0 + 1, u0 + 1));
 }
 
 cv::Rect2d BoxCondensationTracker::boxOf(const Sample& s) const {
@@ -227,6 +255,7 @@ void BoxCondensationTracker::init(const cv::Mat& image, const cv::Rect2d& box) {
     smoothedGrey(image, region, std::sqrt(box.area()), &grey);
     template_ = patch(grey, region.tl(), box);
   }
+  if (config_.filter_gain > 0.0) filter_.init(image, box);
   samples_.assign(config_.samples, estimate_);
   weights_.assign(config_.samples, 1.0 / config_.samples);
   lost_frames_ = 0;
@@ -268,6 +297,54 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
     next[i] = s;
   }
   samples_.swap(next);
+
+  // The correlation filter's maps about the predicted centre, and the samples drawn about the
+  // best peak.
+  cv::Mat grey_image;
+  FilterMaps filter_maps;
+  const bool use_filter = config_.filter_gain > 0.0 && filter_.initialized();
+  if (use_filter) {
+    if (image.channels() == 1)
+      grey_image = image;
+    else
+      cv::cvtColor(image, grey_image, cv::COLOR_BGR2GRAY);
+    filter_maps.centre = {estimate_.x + config_.velocity_gain * vx_,
+                          estimate_.y + config_.velocity_gain * vy_};
+    filter_maps.log_scale = estimate_.log_scale;
+    double best_value = -1e300;
+    cv::Point2d best_at = filter_maps.centre;
+    double best_log = estimate_.log_scale;
+    for (int k = -config_.filter_scales; k <= config_.filter_scales; ++k) {
+      const double log_scale = estimate_.log_scale + k * config_.filter_scale_step;
+      filter_maps.maps.push_back(
+          filter_.response(grey_image, filter_maps.centre, std::exp(log_scale)));
+      double value = 0.0;
+      cv::Point at;
+      cv::minMaxLoc(filter_maps.maps.back(), nullptr, &value, nullptr, &at);
+      if (value > best_value) {
+        const cv::Size2d cell = filter_.cellPx(std::exp(log_scale));
+        best_value = value;
+        best_log = log_scale;
+        best_at = {filter_maps.centre.x + (at.x - filter_.cols() / 2) * cell.width,
+                   filter_maps.centre.y + (at.y - filter_.rows() / 2) * cell.height};
+      }
+    }
+    const int drawn = static_cast<int>(config_.peak_fraction * n);
+    const cv::Size2d cell = filter_.cellPx(std::exp(best_log));
+    for (int i = n - drawn; i < n; ++i) {
+      Sample& s = samples_[i];
+      s.x = std::clamp(best_at.x + rng_.gaussian(0.0, 0.5 * cell.width), 0.0,
+                       static_cast<double>(image.cols));
+      s.y = std::clamp(best_at.y + rng_.gaussian(0.0, 0.5 * cell.height), 0.0,
+                       static_cast<double>(image.rows));
+      s.log_scale = std::clamp(best_log + rng_.gaussian(0.0, sd_scale), min_log,
+                               std::max(min_log, max_log));
+    }
+  }
+  auto filter_score = [&](const Sample& s) {
+    return use_filter ? filter_maps.at(filter_, config_.filter_scale_step, s.x, s.y, s.log_scale)
+                      : 0.0;
+  };
 
   // 2. The object likelihood over the region the samples' rings span, and its summed-area table.
   cv::Rect2d span = grown(boxOf(samples_[0]), config_.ring_scale);
@@ -320,8 +397,9 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   std::vector<double> log_w(n);
   for (int i = 0; i < n; ++i) {
     const cv::Rect2d box = boxOf(samples_[i]);
-    log_w[i] =
-        config_.score_gain * score(box) + (use_template ? config_.template_gain * ncc(box) : 0.0);
+    log_w[i] = config_.score_gain * score(box) +
+               (use_template ? config_.template_gain * ncc(box) : 0.0) +
+               config_.filter_gain * filter_score(samples_[i]);
   }
   math::normalizeLogWeights(log_w, &weights_);
   const int best =
@@ -358,7 +436,8 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   const cv::Rect2d mean_box = boxOf(mean);
   const double confidence =
       score(mean_box) +
-      (use_template ? config_.template_gain / config_.score_gain * ncc(mean_box) : 0.0);
+      (use_template ? config_.template_gain / config_.score_gain * ncc(mean_box) : 0.0) +
+      config_.filter_gain / config_.score_gain * filter_score(mean);
   out.lost = confidence < config_.lost_score;
   if (out.lost) {
     // Doubtful: the estimate stays where the target was last seen with confidence; the samples
@@ -383,6 +462,8 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
       h_object_[k] = (1.0f - a) * h_object_[k] + a * o[k];
       h_surround_[k] = (1.0f - a) * h_surround_[k] + a * s[k];
     }
+    if (use_filter)
+      filter_.update(grey_image, {estimate_.x, estimate_.y}, std::exp(estimate_.log_scale));
     if (use_template && config_.template_rate > 0.0) {
       const std::vector<float> p = patch(grey, out.search.tl(), out.box);
       if (!p.empty()) {
