@@ -352,7 +352,9 @@ def main():
     fps = r.f("bench_rbpf", "frames_per_s")
     r.w(f"| RBPF localization, 100 particles, 208 x 160 | {r.v('bench_rbpf', 'frames_per_s', '{:.1f}')} "
         f"frames/s ({f'{1000 / fps:.0f} ms' if fps else '-'} per frame) | 0.8 s per frame (1.2 GHz PC) |")
-    r.w(f"| CONDENSATION, 100 samples, 320 x 240 | {r.v('bench_tracker', 'fps', '{:.1f}')} frames/s | "
+    r.w(f"| CONDENSATION, 100 samples, 320 x 240 | {r.v('bench_tracker', 'condensation_fps', '{:.1f}')} "
+        "frames/s | not given |")
+    r.w(f"| box tracker (the default), 320 x 240 | {r.v('bench_tracker', 'fps', '{:.1f}')} frames/s | "
         "not given |")
     r.w(f"| SIFT room classification against 1,700 frames, one image | "
         f"{r.v('bench_appearance', 'ms_per_frame', '{:.1f}')} ms "

@@ -77,7 +77,7 @@ struct BoxTrackerConfig {
   // proposal, as in ICONDENSATION: a fast target is found where the prior's spread does not
   // reach). The filter learns (its learning_rate) on the frames the colour model learns on.
   CorrelationFilterConfig filter;
-  double filter_gain = 30.0;        // 0 = off, >= 0
+  double filter_gain = 60.0;        // 0 = off, >= 0
   int filter_scales = 2;            // 0..5
   double filter_scale_step = 0.03;  // > 0
   double peak_fraction = 0.2;       // [0, 1)

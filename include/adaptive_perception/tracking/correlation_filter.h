@@ -32,7 +32,7 @@ struct CorrelationFilterConfig {
   int orientations = 9;        // unsigned gradient-orientation bins over 0..pi, 2..18
   double label_sigma = 0.1;    // sd of the Gaussian label, as a share of the target's side, > 0
   double lambda = 1e-2;        // ridge regularisation, > 0
-  double learning_rate = 0.02; // of update(), [0, 1]
+  double learning_rate = 0.01; // of update(), [0, 1]
   void validate() const;       // throws std::invalid_argument naming the field
 };
 
