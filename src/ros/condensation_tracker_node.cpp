@@ -13,11 +13,17 @@ namespace adaptive_perception {
 
 CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   namespace P = ros_params;
-  const std::string mode = P::get<std::string>(pnh, "mode", "condensation");
-  if (mode != "condensation" && mode != "ellipse")
+  const std::string mode = P::get<std::string>(pnh, "mode", "box");
+  if (mode != "box" && mode != "condensation" && mode != "ellipse")
     throw P::ParamError("parameter " + pnh.resolveName("mode") + " = '" + mode +
-                        "' must be condensation or ellipse");
-  ellipse_mode_ = mode == "ellipse";
+                        "' must be box, condensation or ellipse");
+  mode_ = mode == "box" ? Mode::kBox : mode == "condensation" ? Mode::kCondensation : Mode::kEllipse;
+  tracking::BoxTrackerConfig& b = box_config_;
+  b.samples = P::getInRange(pnh, "box_samples", b.samples, 10, 100000);
+  b.filter_gain = P::getInRange(pnh, "box_filter_gain", b.filter_gain, 0.0, 1e4);
+  b.peak_fraction = P::getInRange(pnh, "box_peak_fraction", b.peak_fraction, 0.0, 0.99);
+  b.lost_score = P::getInRange(pnh, "box_lost_score", b.lost_score, -1.0, 1.0);
+  b.validate();
   tracking::CondensationConfig& c = config_;
   c.samples = P::getInRange(pnh, "samples", c.samples, 1, 100000);
   try {
@@ -69,7 +75,7 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   diagnostics_.add(*freq_);
   diagnostics_.add("tracking", this, &CondensationTrackerNode::diagnose);
   ROS_INFO("condensation_tracker: mode %s, %d samples, colour space %s, %s", mode.c_str(),
-           c.samples, tracking::colorSpaceName(c.quantizer.space).c_str(),
+           mode_ == Mode::kBox ? b.samples : c.samples, tracking::colorSpaceName(c.quantizer.space).c_str(),
            pending_target_ ? "target from ~initial_roi" : "waiting for a target");
 }
 
@@ -140,7 +146,11 @@ void CondensationTrackerNode::onImage(const ros::MessageEvent<const sensor_msgs:
     const cv::Rect2d roi = *pending_target_;
     pending_target_.reset();
     try {  // a new tracker replaces the running one only once it started
-      if (ellipse_mode_) {
+      if (mode_ == Mode::kBox) {
+        auto next = std::make_unique<tracking::BoxCondensationTracker>(box_config_, seed_);
+        next->init(bgr, roi);
+        box_ = std::move(next);
+      } else if (mode_ == Mode::kEllipse) {
         auto next = std::make_unique<tracking::EllipseTracker>(ellipse_config_);
         next->init(bgr, tracking::Ellipse::inscribed(roi));
         ellipse_ = std::move(next);
@@ -154,22 +164,34 @@ void CondensationTrackerNode::onImage(const ros::MessageEvent<const sensor_msgs:
                roi.height);
     } catch (const std::invalid_argument& e) {
       ROS_ERROR("condensation_tracker: cannot start on the target (%s): %s", e.what(),
-                tracker_ || ellipse_ ? "the running track goes on" : "no track");
+                tracker_ || ellipse_ || box_ ? "the running track goes on" : "no track");
     }
     return;
   }
-  if (!tracker_ && !ellipse_) return;
+  if (!tracker_ && !ellipse_ && !box_) return;
   TrackedObject out;
   out.header = msg->header;
-  out.mode = ellipse_mode_ ? "ellipse" : "condensation";
-  out.color_space = tracking::colorSpaceName(config_.quantizer.space);
+  out.mode = mode_ == Mode::kBox ? "box" : mode_ == Mode::kEllipse ? "ellipse" : "condensation";
+  out.color_space = mode_ == Mode::kBox ? std::string(box_config_.chroma ? "chromaticity" : "rgb")
+                                        : tracking::colorSpaceName(config_.quantizer.space);
   tracking::Contour contour;
   cv::Mat segmentation;
   cv::Rect search;
   std::vector<tracking::Contour> sample_contours;
   std::vector<double> sample_weights;
+  std::vector<cv::Rect2d> sample_boxes;
   bool lost = false;
-  if (ellipse_) {
+  if (box_) {
+    const tracking::BoxTrackResult r = box_->track(bgr);
+    lost = r.lost;
+    out.confidence = r.confidence;
+    const cv::Rect2d& q = r.box;
+    contour = {{q.x, q.y}, {q.x + q.width, q.y}, {q.x + q.width, q.y + q.height}, {q.x, q.y + q.height}};
+    search = r.search;
+    sample_boxes = r.samples;
+    sample_weights = r.weights;
+    out.samples = static_cast<std::uint32_t>(r.samples.size());
+  } else if (ellipse_) {
     const tracking::EllipseResult r = ellipse_->track(bgr);
     lost = r.lost;
     out.confidence = r.intersection;
@@ -206,7 +228,13 @@ void CondensationTrackerNode::onImage(const ros::MessageEvent<const sensor_msgs:
   std::vector<cv::Point2f> pts;
   for (const auto& p : contour)
     pts.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
-  if (pts.size() >= 5) {
+  if (box_) {  // the box's inscribed ellipse
+    out.ellipse_cx = static_cast<float>(box.x + box.width / 2.0);
+    out.ellipse_cy = static_cast<float>(box.y + box.height / 2.0);
+    out.ellipse_width = static_cast<float>(box.width);
+    out.ellipse_height = static_cast<float>(box.height);
+    out.ellipse_angle = 0.0f;
+  } else if (pts.size() >= 5) {
     const cv::RotatedRect e = cv::fitEllipse(pts);
     out.ellipse_cx = e.center.x;
     out.ellipse_cy = e.center.y;
@@ -237,6 +265,11 @@ void CondensationTrackerNode::onImage(const ros::MessageEvent<const sensor_msgs:
     const double wmax = sample_weights.empty()
                             ? 0.0
                             : *std::max_element(sample_weights.begin(), sample_weights.end());
+    for (size_t i = 0; i < sample_boxes.size() && wmax > 0.0; ++i) {
+      const double level = 0.25 + 0.75 * sample_weights[i] / wmax;
+      if (level < 0.3) continue;  // the faintest would only hide the image
+      cv::rectangle(over, cv::Rect(sample_boxes[i]), cv::Scalar(255 * level, 255 * level, 0), 1);
+    }
     for (size_t i = 0; i < sample_contours.size() && wmax > 0.0; ++i) {
       if (sample_contours[i].size() < 3) continue;
       const double level = 0.25 + 0.75 * sample_weights[i] / wmax;
@@ -256,7 +289,7 @@ void CondensationTrackerNode::onImage(const ros::MessageEvent<const sensor_msgs:
 }
 
 void CondensationTrackerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
-  if (!tracker_ && !ellipse_)
+  if (!tracker_ && !ellipse_ && !box_)
     stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "waiting for a target");
   else if (lost_)
     stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "target lost");

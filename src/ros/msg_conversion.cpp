@@ -71,6 +71,14 @@ cv::Mat imageToBgr8(const sensor_msgs::Image& msg) {
       cv::cvtColor(view, out, cv::COLOR_RGB2BGR);
     return out;
   }
+  if (msg.encoding == enc::MONO8) {  // grey: the three channels equal
+    checkBuffer(msg, 1);
+    const cv::Mat view(msg.height, msg.width, CV_8UC1, const_cast<std::uint8_t*>(msg.data.data()),
+                       msg.step);
+    cv::Mat out;
+    cv::cvtColor(view, out, cv::COLOR_GRAY2BGR);
+    return out;
+  }
   if (msg.encoding == enc::YUV422) {
     const cv::Mat yuv = imageToYuv(msg);
     cv::Mat out(yuv.size(), CV_8UC3);
@@ -86,7 +94,7 @@ cv::Mat imageToBgr8(const sensor_msgs::Image& msg) {
     return out;
   }
   throw ImageFormatError("unsupported image encoding '" + msg.encoding +
-                         "' (accepted: bgr8, rgb8, yuv422)");
+                         "' (accepted: bgr8, rgb8, mono8, yuv422)");
 }
 
 sensor_msgs::Image uyvyToImage(const cv::Mat& uyvy, const std_msgs::Header& header) {

@@ -1,12 +1,12 @@
 // simulate_tracking: the synthetic tracking sequences of papers/001 section 3.4 with ground
 // truth (sim/tracking_scene.h).
 //
-//   simulate_tracking --scenario circles|lambertian_rectangle|distractor [--seed N]
+//   simulate_tracking --scenario circles|lambertian_rectangle|distractor|handheld [--seed N]
 //                     [--frames 300] [--width 320] [--height 240] [--rate_hz 30] [--noise_sd 4]
-//                     [--no_clutter] (--output FILE.bag | --video FILE.avi [--ground_truth CSV])
-//                     [--overwrite]
+//                     [--no_clutter] (--output FILE.bag [--encoding bgr8|rgb8|mono8]
+//                     | --video FILE.avi [--ground_truth CSV]) [--overwrite]
 //
-// A bag holds camera/image_raw (bgr8) and ground_truth/box (PolygonStamped, the 4 corners of the
+// A bag holds camera/image_raw (bgr8 unless --encoding) and ground_truth/box (PolygonStamped, the 4 corners of the
 // target's box, same stamp). A video is Motion-JPEG AVI (OpenCV's own writer, no codec needed)
 // with a CSV `frame,x,y,w,h` (default: the video's path with .csv). Existing outputs are kept
 // unless --overwrite. Last line: `simulate_tracking: scenario=S frames=N output=PATH`.
@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "adaptive_perception/ros/bag_writer.h"
@@ -30,10 +31,10 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
-                   "simulate_tracking --scenario circles|lambertian_rectangle|distractor "
+                   "simulate_tracking --scenario circles|lambertian_rectangle|distractor|handheld "
                    "[--seed N] [--frames N] [--width PX] [--height PX] [--rate_hz HZ] "
-                   "[--noise_sd L] [--no_clutter] (--output FILE.bag | --video FILE.avi "
-                   "[--ground_truth CSV]) [--overwrite]");
+                   "[--noise_sd L] [--no_clutter] (--output FILE.bag [--encoding "
+                   "bgr8|rgb8|mono8] | --video FILE.avi [--ground_truth CSV]) [--overwrite]");
   sim::TrackingSceneConfig cfg;
   const std::string scenario = args.get("scenario", "circles");
   const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
@@ -47,7 +48,10 @@ int main(int argc, char** argv) {
   const std::string video = args.get("video", "");
   std::string truth_csv = args.get("ground_truth", "");
   const bool overwrite = args.has("overwrite");
+  const std::string encoding = args.get("encoding", "bgr8");
   args.finish();
+  if (encoding != "bgr8" && encoding != "rgb8" && encoding != "mono8")
+    args.fail("--encoding: '" + encoding + "' (bgr8, rgb8 or mono8)");
   if (output.empty() == video.empty())
     args.fail("give exactly one of --output FILE.bag and --video FILE");
   if (!video.empty() && truth_csv.empty())
@@ -87,8 +91,20 @@ int main(int argc, char** argv) {
         h.stamp = stamp;
         h.seq = static_cast<std::uint32_t>(k);
         h.frame_id = ros_topics::kCameraOpticalFrame;
-        bag->write("/" + std::string(ros_topics::kCameraImage), stamp,
-                   ros_conv::bgr8ToImage(f.bgr, h));
+        sensor_msgs::Image image;
+        if (encoding == "mono8") {
+          cv::Mat grey;
+          cv::cvtColor(f.bgr, grey, cv::COLOR_BGR2GRAY);
+          image = ros_conv::mono8ToImage(grey, h);
+        } else if (encoding == "rgb8") {
+          cv::Mat rgb;
+          cv::cvtColor(f.bgr, rgb, cv::COLOR_BGR2RGB);
+          image = ros_conv::bgr8ToImage(rgb, h);
+          image.encoding = "rgb8";
+        } else {
+          image = ros_conv::bgr8ToImage(f.bgr, h);
+        }
+        bag->write("/" + std::string(ros_topics::kCameraImage), stamp, image);
         geometry_msgs::PolygonStamped box;
         box.header = h;
         const cv::Rect2d& b = f.truth;

@@ -21,6 +21,9 @@ TEST(CondensationTrackerSim, TracksTheTarget) {
   ros::NodeHandle nh, p("~");
   const double min_success = p.param("min_success_rate", 0.9);
   const double min_output = p.param("min_output_fraction", 0.9);
+  // The contour of mode condensation has ~contour_points points; that of mode box the box's 4.
+  const int contour_points = p.param("contour_points", 48);
+  const std::string mode = p.param<std::string>("mode", "condensation");
   std::mutex mutex;
   std::map<ros::Time, cv::Rect2d> truth;
   std::map<ros::Time, ap::TrackedObject> objects;
@@ -70,7 +73,8 @@ TEST(CondensationTrackerSim, TracksTheTarget) {
     const double inter = (box & t->second).area();
     const double iou = inter / (box.area() + t->second.area() - inter);
     success += !o.lost && iou >= 0.5;
-    EXPECT_EQ(o.contour.points.size(), 48u);  // ~contour_points
+    EXPECT_EQ(o.contour.points.size(), static_cast<std::size_t>(contour_points));
+    EXPECT_EQ(o.mode, mode);
   }
   ASSERT_GT(scored, 0);
   const double rate = static_cast<double>(success) / scored;

@@ -3,17 +3,20 @@
 # seed 1, $2 frames) as a bag, reads the target's first box from the same sequence written as a
 # video + CSV, starts condensation_tracker with it as ~initial_roi, announces /test_phase (test,
 # done) and plays the bag. Fixed seed: the same frames every run.
-# Usage (as a launch node): tracking_test_player.sh SCENARIO FRAMES MODE [roslaunch args]
+# Usage (as a launch node): tracking_test_player.sh SCENARIO FRAMES MODE [ENCODING] [roslaunch args]
+# (ENCODING: of the bag's images, bgr8 by default, or rgb8 / mono8).
 set -euo pipefail
 SCENARIO="${1:-distractor}"
 FRAMES="${2:-150}"
 MODE="${3:-condensation}"
+ENCODING=bgr8
+case "${4:-}" in bgr8 | rgb8 | mono8) ENCODING="$4" ;; esac
 OUT="$(mktemp -d)"
 NODE=""
 cleanup() { [ -n "$NODE" ] && kill "$NODE" 2> /dev/null; wait 2> /dev/null; rm -rf "$OUT"; }
 trap cleanup EXIT
 rosrun adaptive_perception simulate_tracking --scenario "$SCENARIO" --seed 1 --frames "$FRAMES" \
-  --output "$OUT/seq.bag" > /dev/null 2>&1
+  --output "$OUT/seq.bag" --encoding "$ENCODING" > /dev/null 2>&1
 rosrun adaptive_perception simulate_tracking --scenario "$SCENARIO" --seed 1 --frames 1 \
   --video "$OUT/first.avi" > /dev/null 2>&1
 ROI="[$(sed -n 2p "$OUT/first.csv" | cut -d, -f2-5)]"

@@ -1,10 +1,14 @@
 #pragma once
 // condensation_tracker: tracks one object by its colour distribution (papers/001 section 3):
-// CONDENSATION over the distribution fused with an affine snake (mode condensation), or the
-// elliptical head tracker alone (mode ellipse).
+// CONDENSATION over the target's box weighted by its colour distribution against the
+// surroundings and a correlation filter (mode box, the default: the tracker that holds real
+// video, tracking/box_condensation_tracker.h), the paper's CONDENSATION over the distribution
+// fused with an affine snake (mode condensation), or the elliptical head tracker alone (ellipse).
 //
 // Parameters (private; config/condensation_tracker.yaml documents defaults and ranges):
-//   ~mode (condensation | ellipse), ~samples (100), ~color_space (opponent | rgb), ~bins (16),
+//   ~mode (box | condensation | ellipse), ~box_samples (300), ~box_filter_gain (60),
+//   ~box_peak_fraction (0.2), ~box_lost_score (0.05) (mode box);
+//   ~samples (100), ~color_space (opponent | rgb), ~bins (16),
 //   ~contour_points (48), ~sigma (0.35), ~lost_weight (0.1), ~roi_margin (0.75),
 //   ~dynamics (YAML from learn_tracking_dynamics; empty = the default model), ~initial_roi
 //   ([x, y, w, h] pixels of the first image; empty = wait for a target), ~ellipse_search_radius_px
@@ -12,11 +16,13 @@
 //   (0.35), ~max_rate_hz (30), ~publish_overlay (true), ~seed (1).
 //   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
 //   this (or the clock jumping back) restarts (ros/stamp_order.h).
-// Subscribed: camera/image_raw (bgr8, rgb8, mono8, yuv422), condensation_tracker/target
+// Subscribed: camera/image_raw (bgr8, rgb8, mono8, yuv422; any size), condensation_tracker/target
 //   (geometry_msgs/PolygonStamped: the box of its points becomes the target on the next image).
-// Published: tracked_object (TrackedObject), condensation_tracker/segmentation (mono8, the best
-//   sample's target-coloured pixels), condensation_tracker/overlay (bgr8: contour green, red when
-//   lost; the region the samples searched magenta; confidence), /diagnostics (rate, confidence,
+// Published: tracked_object (TrackedObject; in mode box the contour is the box's corners and the
+//   ellipse the box's inscribed one), condensation_tracker/segmentation (mono8, the best
+//   sample's target-coloured pixels; not in mode box), condensation_tracker/overlay (bgr8: contour
+//   green, red when lost; the region the samples searched magenta; the samples cyan, brighter
+//   with weight; confidence), /diagnostics (rate, confidence,
 //   lost frames). A lost target is reported (lost flag + throttled warning) and searched for, first
 //   around its last place, then over the whole image. On shutdown one line `condensation_tracker:
 //   frames=.. lost=.. reacquired=..` on stdout.
@@ -32,6 +38,7 @@
 
 #include "adaptive_perception/SetTarget.h"
 #include "adaptive_perception/ros/image_gate.h"
+#include "adaptive_perception/tracking/box_condensation_tracker.h"
 #include "adaptive_perception/tracking/condensation_tracker.h"
 #include "adaptive_perception/tracking/ellipse_tracker.h"
 
@@ -49,7 +56,10 @@ class CondensationTrackerNode {
   bool requestTarget(const cv::Rect2d& roi, std::string* why);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
-  bool ellipse_mode_ = false;
+  enum class Mode { kBox, kCondensation, kEllipse };
+  Mode mode_ = Mode::kBox;
+  tracking::BoxTrackerConfig box_config_;
+  std::unique_ptr<tracking::BoxCondensationTracker> box_;
   tracking::CondensationConfig config_;
   tracking::EllipseTrackerConfig ellipse_config_;
   std::uint64_t seed_ = 1;

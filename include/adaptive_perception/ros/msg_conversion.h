@@ -36,8 +36,8 @@ class ImageFormatError : public std::runtime_error {
 /// (UYVY), `bgr8` and `rgb8`; throws ImageFormatError naming any other encoding or a malformed
 /// buffer.
 cv::Mat imageToYuv(const sensor_msgs::Image& msg);
-/// The image as bgr8 (CV_8UC3, its own memory). Accepts `bgr8`, `rgb8` and `yuv422` (UYVY,
-/// BT.601 full range); throws ImageFormatError naming any other encoding or a malformed buffer.
+/// The image as bgr8 (CV_8UC3, its own memory). Accepts `bgr8`, `rgb8`, `mono8` (the three
+/// channels equal) and `yuv422` (UYVY, BT.601 full range); throws ImageFormatError naming any other encoding or a malformed buffer.
 cv::Mat imageToBgr8(const sensor_msgs::Image& msg);
 /// UYVY (CV_8UC2) as a `yuv422` image message.
 sensor_msgs::Image uyvyToImage(const cv::Mat& uyvy, const std_msgs::Header& header);

@@ -6,7 +6,13 @@
 //                         brightness and shading follow its angle to the light, and it turns in
 //                         the image as it goes round (experiment 2, Fig 8);
 //   distractor            a circle whose colour drifts slowly, and a square of the same colour
-//                         (another shape) crossing its path.
+//                         (another shape) crossing its path;
+//   handheld              what real video does to a tracker, for tests that may not use the
+//                         benchmarks' frames: a patterned card (its colours also in the
+//                         background) wandering and growing and shrinking by a third, seen by a
+//                         panning, shaking camera over a textured scene, in light that ramps from
+//                         dim to bright and back (its colour warming as it dims), with motion blur
+//                         along the camera's motion.
 // All scenes have a cluttered static background (boxes and blobs of muted colours) and camera
 // noise. The ground truth is the target's axis-aligned bounding box. The same seed gives the same
 // frames.
@@ -18,8 +24,8 @@
 
 namespace adaptive_perception::sim {
 
-enum class TrackingScenario { kCircles, kLambertianRectangle, kDistractor };
-/// "circles" | "lambertian_rectangle" | "distractor"; throws std::invalid_argument naming them.
+enum class TrackingScenario { kCircles, kLambertianRectangle, kDistractor, kHandheld };
+/// "circles" | "lambertian_rectangle" | "distractor" | "handheld"; throws std::invalid_argument naming them.
 TrackingScenario parseTrackingScenario(const std::string& name);
 std::string trackingScenarioName(TrackingScenario s);
 std::vector<std::string> trackingScenarioNames();
@@ -63,6 +69,10 @@ class TrackingScene {
   std::vector<cv::Scalar> other_colors_;
   cv::Vec3d target_rgb_;
   Mover distractor_;
+  // handheld: the scene the camera pans over (larger than a frame), the card, the camera.
+  cv::Mat world_, card_;
+  cv::Point2d pan_, pan_vel_, shake_;
+  SceneFrame handheld(int k);
 };
 
 }  // namespace adaptive_perception::sim

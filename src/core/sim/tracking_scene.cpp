@@ -11,8 +11,9 @@ TrackingScenario parseTrackingScenario(const std::string& name) {
   if (name == "circles") return TrackingScenario::kCircles;
   if (name == "lambertian_rectangle") return TrackingScenario::kLambertianRectangle;
   if (name == "distractor") return TrackingScenario::kDistractor;
+  if (name == "handheld") return TrackingScenario::kHandheld;
   throw std::invalid_argument("unknown scenario '" + name +
-                              "' (circles | lambertian_rectangle | distractor)");
+                              "' (circles | lambertian_rectangle | distractor | handheld)");
 }
 
 std::string trackingScenarioName(TrackingScenario s) {
@@ -23,12 +24,14 @@ std::string trackingScenarioName(TrackingScenario s) {
       return "lambertian_rectangle";
     case TrackingScenario::kDistractor:
       return "distractor";
+    case TrackingScenario::kHandheld:
+      return "handheld";
   }
   return "?";
 }
 
 std::vector<std::string> trackingScenarioNames() {
-  return {"circles", "lambertian_rectangle", "distractor"};
+  return {"circles", "lambertian_rectangle", "distractor", "handheld"};
 }
 
 void TrackingSceneConfig::validate() const {
@@ -79,6 +82,99 @@ TrackingScene::TrackingScene(TrackingSceneConfig config, std::uint64_t seed)
     const double speed = (w + 4 * r) / (0.5 * config_.frames);
     distractor_ = {{w + 2 * r - speed * (-0.25 * config_.frames), h * 0.5}, {-speed, 0.0}, r * 0.9};
   }
+  if (config_.scenario == TrackingScenario::kHandheld) {
+    // A textured scene twice the frame: fine blurred noise under blobs of a small palette that
+    // the card shares, so that its colours alone do not single it out.
+    const cv::Scalar palette[4] = {{60, 70, 170}, {150, 120, 60}, {90, 160, 150}, {200, 200, 190}};
+    world_.create(2 * h, 2 * w, CV_8UC3);
+    cv::Mat noise(world_.size(), CV_8UC3);
+    cv::RNG cv_rng(rng_.split());
+    cv_rng.fill(noise, cv::RNG::UNIFORM, 40, 200);
+    cv::GaussianBlur(noise, world_, cv::Size(), 1.5 * s);
+    for (int i = 0; i < 160; ++i) {
+      const cv::Point p(rng_.uniformInt(0, 2 * w - 1), rng_.uniformInt(0, 2 * h - 1));
+      const cv::Size a(static_cast<int>(rng_.uniform(4, 26) * s),
+                       static_cast<int>(rng_.uniform(4, 26) * s));
+      cv::ellipse(world_, p, a, rng_.uniform(0, 180), 0, 360, palette[rng_.uniformInt(0, 3)],
+                  cv::FILLED, cv::LINE_AA);
+    }
+    // The card: two of the palette's colours in stripes and spots, with a dark border.
+    card_.create(static_cast<int>(44 * s), static_cast<int>(60 * s), CV_8UC3);
+    card_.setTo(palette[0]);
+    for (int x = 0; x < card_.cols; x += std::max(1, static_cast<int>(12 * s)))
+      cv::rectangle(card_, cv::Rect(x, 0, std::max(1, static_cast<int>(5 * s)), card_.rows),
+                    palette[3], cv::FILLED);
+    for (int i = 0; i < 6; ++i)
+      cv::circle(card_, {rng_.uniformInt(0, card_.cols - 1), rng_.uniformInt(0, card_.rows - 1)},
+                 static_cast<int>(5 * s), palette[1], cv::FILLED, cv::LINE_AA);
+    cv::rectangle(card_, cv::Rect(0, 0, card_.cols, card_.rows), cv::Scalar(30, 30, 30),
+                  std::max(1, static_cast<int>(2 * s)));
+    // Its radius keeps the largest card (4/3 of 60 px wide) and the shake inside the image.
+    target_ = {{w * 0.5, h * 0.5}, {rng_.uniform(-1, 1) * s, rng_.uniform(-1, 1) * s}, 46 * s};
+    pan_ = {0.5 * w, 0.5 * h};
+    pan_vel_ = {0, 0};
+    shake_ = {0, 0};
+  }
+}
+
+SceneFrame TrackingScene::handheld(int k) {
+  const int w = config_.width, h = config_.height;
+  const double s = std::min(w, h) / 240.0;
+  // The camera: a slow wandering pan and a hand's shake (a stiff random walk about 0).
+  const cv::Point2d before = pan_ + shake_;
+  pan_vel_ += cv::Point2d(rng_.gaussian(0, 0.25 * s), rng_.gaussian(0, 0.25 * s));
+  pan_vel_ *= std::min(1.0, 3.0 * s / std::max(1e-9, std::hypot(pan_vel_.x, pan_vel_.y)));
+  pan_ += pan_vel_;
+  if (pan_.x < 0 || pan_.x > w) pan_vel_.x = -pan_vel_.x;
+  if (pan_.y < 0 || pan_.y > h) pan_vel_.y = -pan_vel_.y;
+  pan_.x = std::clamp(pan_.x, 0.0, static_cast<double>(w));
+  pan_.y = std::clamp(pan_.y, 0.0, static_cast<double>(h));
+  shake_ = 0.6 * shake_ + cv::Point2d(rng_.gaussian(0, 2.0 * s), rng_.gaussian(0, 2.0 * s));
+  const cv::Point2d view = pan_ + shake_;
+  const cv::Point2d camera_motion = view - before;
+  SceneFrame f;
+  const cv::Matx23d m(1, 0, -view.x, 0, 1, -view.y);
+  cv::warpAffine(world_, f.bgr, cv::Mat(m), cv::Size(w, h), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  // The card wanders in the image (its own motion and the shake), its size swinging by a third.
+  move(&target_, 3.0 * s);
+  const double size = 1.0 + 0.33 * std::sin(2 * M_PI * k / 200.0);
+  const cv::Size card(std::max(4, static_cast<int>(card_.cols * size)),
+                      std::max(4, static_cast<int>(card_.rows * size)));
+  const cv::Point2d centre = target_.pos + shake_;
+  const cv::Rect at(static_cast<int>(std::lround(centre.x - card.width / 2.0)),
+                    static_cast<int>(std::lround(centre.y - card.height / 2.0)), card.width,
+                    card.height);
+  cv::Mat scaled;
+  cv::resize(card_, scaled, card, 0, 0, cv::INTER_AREA);
+  const cv::Rect inside = at & cv::Rect(0, 0, w, h);
+  if (!inside.empty()) scaled(inside - at.tl()).copyTo(f.bgr(inside));
+  f.truth = cv::Rect2d(at);
+  // Motion blur along the camera's motion this frame (the exposure's share of it).
+  const double length = 0.8 * std::hypot(camera_motion.x, camera_motion.y);
+  if (length > 1.5) {
+    const int n = static_cast<int>(std::ceil(length)) | 1;
+    cv::Mat kernel = cv::Mat::zeros(n, n, CV_32F);
+    const double a = std::atan2(camera_motion.y, camera_motion.x);
+    cv::line(kernel,
+             cv::Point(static_cast<int>(n / 2 - std::cos(a) * n / 2),
+                       static_cast<int>(n / 2 - std::sin(a) * n / 2)),
+             cv::Point(static_cast<int>(n / 2 + std::cos(a) * n / 2),
+                       static_cast<int>(n / 2 + std::sin(a) * n / 2)),
+             cv::Scalar(1.0));
+    kernel /= std::max(1e-9, cv::sum(kernel)[0]);
+    cv::filter2D(f.bgr, f.bgr, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_REFLECT);
+  }
+  // The light: from 0.4 of full up to 1.15 and back over the run, warmer (less blue) when dim.
+  const double light = 0.4 + 0.75 * (0.5 - 0.5 * std::cos(2 * M_PI * k / config_.frames));
+  const double warm = 1.0 - light;
+  f.bgr.convertTo(f.bgr, CV_8UC3);
+  std::vector<cv::Mat> ch;
+  cv::split(f.bgr, ch);
+  ch[0].convertTo(ch[0], CV_8U, light * (1.0 - 0.35 * warm));  // blue
+  ch[1].convertTo(ch[1], CV_8U, light * (1.0 - 0.1 * warm));
+  ch[2].convertTo(ch[2], CV_8U, light);
+  cv::merge(ch, f.bgr);
+  return f;
 }
 
 void TrackingScene::move(Mover* m, double max_speed) {
@@ -105,6 +201,9 @@ SceneFrame TrackingScene::next() {
     return cv::Point(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
   };
   switch (config_.scenario) {
+    case TrackingScenario::kHandheld:
+      f = handheld(k);
+      break;
     case TrackingScenario::kCircles: {
       for (size_t i = 0; i < others_.size(); ++i) {
         move(&others_[i], 3.0 * s);

@@ -56,3 +56,19 @@ TEST(TrackingScene, TheTargetIsReddishAtTheStartAndTheRectangleDimsAwayFromTheLi
   const double away = meanRed(rect.next());  // half an orbit later: turned away
   EXPECT_GT(facing, 2.5 * away);
 }
+
+TEST(TrackingScene, HandheldRampsTheLightAndSwingsTheCardsSize) {
+  TrackingSceneConfig c;
+  c.scenario = TrackingScenario::kHandheld;
+  c.frames = 200;
+  TrackingScene scene(c, 1);
+  std::vector<SceneFrame> f;
+  while (!scene.done()) f.push_back(scene.next());
+  // Light 0.4 of full at the start, 1.15 at the middle (clipped to 255 in places).
+  const double dim = cv::mean(f[0].bgr)[2], bright = cv::mean(f[100].bgr)[2];
+  EXPECT_GT(bright, 2.0 * dim);
+  // Size 1 + sin(2 pi k / 200) / 3: 4/3 at frame 50, 2/3 at frame 150.
+  EXPECT_NEAR(f[50].truth.width / f[150].truth.width, 2.0, 0.1);
+  // The camera moves: the background at a fixed pixel changes between frames.
+  EXPECT_GT(cv::norm(f[10].bgr(cv::Rect(0, 0, 20, 20)), f[11].bgr(cv::Rect(0, 0, 20, 20))), 0.0);
+}
