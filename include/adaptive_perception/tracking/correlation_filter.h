@@ -29,6 +29,10 @@ struct CorrelationFilterConfig {
   int window_cells = 32;       // the window's grid, cells a side if it were square, 8..128
   int cell_px = 4;             // pixels of the resampled window a cell, 2..16
   double padding = 2.5;        // window side / target side, 1.5..5
+  // A small target's window is widened (up to max_padding) until its side (geometric mean) is
+  // this many pixels: how far a target moves between frames does not shrink with its size.
+  double min_window_px = 0.0;  // >= 0
+  double max_padding = 5.0;    // >= padding
   int orientations = 9;        // unsigned gradient-orientation bins over 0..pi, 2..18
   double label_sigma = 0.1;    // sd of the Gaussian label, as a share of the target's side, > 0
   double lambda = 1e-2;        // ridge regularisation, > 0

@@ -16,6 +16,10 @@ void CorrelationFilterConfig::validate() const {
     fail("cell_px = " + std::to_string(cell_px) + " (allowed: 2..16)");
   if (!(padding >= 1.5 && padding <= 5.0))
     fail("padding = " + std::to_string(padding) + " (allowed: 1.5..5)");
+  if (!(min_window_px >= 0.0 && std::isfinite(min_window_px)))
+    fail("min_window_px = " + std::to_string(min_window_px) + " (allowed: >= 0)");
+  if (!(max_padding >= padding && max_padding <= 10.0))
+    fail("max_padding = " + std::to_string(max_padding) + " (allowed: padding..10)");
   if (orientations < 2 || orientations > 18)
     fail("orientations = " + std::to_string(orientations) + " (allowed: 2..18)");
   if (!(label_sigma > 0.0 && label_sigma < 1.0))
@@ -136,8 +140,11 @@ void CorrelationFilter::init(const cv::Mat& image, const cv::Rect2d& box) {
   auto even = [](double v) { return std::clamp(2 * static_cast<int>(std::lround(v / 2)), 8, 512); };
   cols_ = even(config_.window_cells * std::sqrt(aspect));
   rows_ = even(config_.window_cells / std::sqrt(aspect));
-  window_w0_px_ = box.width * config_.padding;
-  window_h0_px_ = box.height * config_.padding;
+  const double padding =
+      std::clamp(config_.min_window_px / std::sqrt(box.width * box.height), config_.padding,
+                 config_.max_padding);
+  window_w0_px_ = box.width * padding;
+  window_h0_px_ = box.height * padding;
   cell_scale_px_ = std::sqrt(window_w0_px_ / cols_ * window_h0_px_ / rows_);
   cv::createHanningWindow(hann_, cv::Size(cols_, rows_), CV_32F);
   // The Gaussian label, its peak at cell (0, 0) (zero displacement), wrapped around.

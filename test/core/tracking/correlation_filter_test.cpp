@@ -173,3 +173,23 @@ TEST(CorrelationFilter, AWindowOutsideTheImageIsAnswered) {
   EXPECT_TRUE(cv::checkRange(r));
   EXPECT_THROW(filter.init(image, cv::Rect2d(0, 0, 0, 10)), std::invalid_argument);
 }
+
+TEST(CorrelationFilter, ASmallTargetsWindowIsWidenedToMinWindowPx) {
+  const cv::Mat image = texture(320, 240, 7);
+  const cv::Rect2d small(150, 110, 20, 20);
+  tr::CorrelationFilter plain;
+  plain.init(image, small);
+  tr::CorrelationFilterConfig c;
+  c.min_window_px = 80.0;  // 4 times the side: within max_padding (5)
+  tr::CorrelationFilter widened(c);
+  widened.init(image, small);
+  // Same grid of cells, each spanning 80 / 50 = 1.6 times the pixels.
+  EXPECT_EQ(widened.cols(), plain.cols());
+  EXPECT_NEAR(widened.cellPx(1.0).width / plain.cellPx(1.0).width, 4.0 / 2.5, 1e-9);
+  c.min_window_px = 1000.0;  // capped at max_padding
+  tr::CorrelationFilter capped(c);
+  capped.init(image, small);
+  EXPECT_NEAR(capped.cellPx(1.0).width * capped.cols(), 20.0 * c.max_padding, 1e-9);
+  c.max_padding = 2.0;  // below padding
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+}
