@@ -188,6 +188,10 @@ void CondensationTrackerNode::onImage(const ros::MessageEvent<const sensor_msgs:
     const cv::Rect2d& q = r.box;
     contour = {{q.x, q.y}, {q.x + q.width, q.y}, {q.x + q.width, q.y + q.height}, {q.x, q.y + q.height}};
     search = r.search;
+    if (!r.likelihood.empty() && segmentation_pub_.getNumSubscribers() > 0) {
+      segmentation = cv::Mat::zeros(bgr.size(), CV_8UC1);
+      r.likelihood.convertTo(segmentation(r.search), CV_8U, 255.0);
+    }
     sample_boxes = r.samples;
     sample_weights = r.weights;
     out.samples = static_cast<std::uint32_t>(r.samples.size());

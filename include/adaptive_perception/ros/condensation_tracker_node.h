@@ -20,7 +20,8 @@
 //   (geometry_msgs/PolygonStamped: the box of its points becomes the target on the next image).
 // Published: tracked_object (TrackedObject; in mode box the contour is the box's corners and the
 //   ellipse the box's inscribed one), condensation_tracker/segmentation (mono8, the best
-//   sample's target-coloured pixels; not in mode box), condensation_tracker/overlay (bgr8: contour
+//   sample's target-coloured pixels; in mode box the object likelihood P(O | c) x 255 over the
+//   region searched), condensation_tracker/overlay (bgr8: contour
 //   green, red when lost; the region the samples searched magenta; the samples cyan, brighter
 //   with weight; confidence), /diagnostics (rate, confidence,
 //   lost frames). A lost target is reported (lost flag + throttled warning) and searched for, first

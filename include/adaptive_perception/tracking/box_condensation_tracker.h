@@ -81,6 +81,12 @@ struct BoxTrackerConfig {
   int filter_scales = 2;            // 0..5
   double filter_scale_step = 0.03;  // > 0
   double peak_fraction = 0.2;       // [0, 1)
+  // The estimate's log scale moves this share of the way from the samples' towards the filter's
+  // best scale at the estimate's centre. All the way by default: over three seeds of the
+  // development sequences started at a third of their length, mean success 0.711 -> 0.848 and
+  // AUC 0.534 -> 0.635 (the colours' preference for a box that takes in the neighbouring pixels
+  // of the target's colours no longer sets its size); from the first frame 0.827 -> 0.840.
+  double filter_scale_share = 1.0;  // [0, 1]
   void validate() const;       // throws std::invalid_argument naming the field
 };
 
@@ -89,6 +95,7 @@ struct BoxTrackResult {
   double confidence = 0.0;  // score of the estimate: mean P inside minus mean P in the ring
   bool lost = false;
   cv::Rect search;  // region the samples spanned (clipped to the image)
+  cv::Mat likelihood;  // P(O | c) over `search` (CV_32F, 0..1): the target's colours against the surroundings
   std::vector<cv::Rect2d> samples;
   std::vector<double> weights;  // normalised
 };

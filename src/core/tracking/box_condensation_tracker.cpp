@@ -63,6 +63,8 @@ void BoxTrackerConfig::validate() const {
     fail("filter_scales = " + std::to_string(filter_scales) + " (allowed: 0..5)");
   if (!(filter_scale_step > 0.0 && filter_scale_step < 0.5))
     fail("filter_scale_step = " + std::to_string(filter_scale_step) + " (allowed: 0 < x < 0.5)");
+  if (!(filter_scale_share >= 0.0 && filter_scale_share <= 1.0))
+    fail("filter_scale_share = " + std::to_string(filter_scale_share) + " (allowed: 0..1)");
   if (!(peak_fraction >= 0.0 && peak_fraction < 1.0))
     fail("peak_fraction = " + std::to_string(peak_fraction) + " (allowed: 0 <= x < 1)");
   try {
@@ -368,6 +370,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   }
   cv::Mat sat;
   cv::integral(likelihood, sat, CV_64F);
+  out.likelihood = likelihood;
   const cv::Rect local(0, 0, out.search.width, out.search.height);
   auto score = [&](const cv::Rect2d& box) {
     const cv::Rect2d shifted(box.x - out.search.x, box.y - out.search.y, box.width, box.height);
@@ -419,6 +422,19 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
     mean.log_aspect += weights_[i] * s.log_aspect;
   }
   mean = sw > 0 ? Sample{mean.x / sw, mean.y / sw, mean.log_scale / sw, mean.log_aspect / sw} : b;
+  if (use_filter && config_.filter_scale_share > 0.0) {
+    // The scale whose map answers best at the estimate's centre, blended into the samples'.
+    double best_response = -1e300, best_log = mean.log_scale;
+    for (int k = -config_.filter_scales; k <= config_.filter_scales; ++k) {
+      const double log_scale = filter_maps.log_scale + k * config_.filter_scale_step;
+      const double r = filter_maps.at(filter_, config_.filter_scale_step, mean.x, mean.y, log_scale);
+      if (r > best_response) {
+        best_response = r;
+        best_log = log_scale;
+      }
+    }
+    mean.log_scale += config_.filter_scale_share * (best_log - mean.log_scale);
+  }
   if (use_template && config_.scale_search_steps > 0) {
     double best_ncc = -2.0, best_log = mean.log_scale;
     for (int k = -config_.scale_search_steps; k <= config_.scale_search_steps; ++k) {

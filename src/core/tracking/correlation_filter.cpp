@@ -105,7 +105,7 @@ cv::Mat resampledWindow(const cv::Mat& grey, const cv::Point2d& centre, const cv
   cv::copyMakeBorder(grey(inside), source, inside.y - need.y, need.br().y - inside.br().y,
                      inside.x - need.x, need.br().x - inside.br().x, cv::BORDER_REPLICATE);
   const double shrink = std::max(sx, sy);
-  if (shrink > 1.5) {
+  if (shrink > 1.05) {  // continuous in the scale: no step in the features between scales
     const double sigma = 0.5 * std::sqrt(shrink * shrink - 1.0);
     cv::GaussianBlur(source, source, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
   }

@@ -101,3 +101,30 @@ TEST(BoxCondensationTracker, TheSameSeedGivesTheSameTrack) {
   }
   EXPECT_EQ(runs[0], runs[1]);
 }
+
+TEST(BoxCondensationTracker, FollowsACameraComingCloserAndTheHandheldScene) {
+  // A textured scene zoomed about its centre by 1% a frame for 60 frames (the camera comes
+  // closer): the box must grow with it, 1.01^60 = 1.82 times, and stay on the same texture.
+  cv::Mat noise(240, 320, CV_8UC3);
+  cv::RNG rng(3);
+  rng.fill(noise, cv::RNG::UNIFORM, 0, 255);
+  cv::Mat scene;
+  cv::GaussianBlur(noise, scene, cv::Size(), 2.0);
+  const cv::Rect2d first(140, 100, 40, 40);
+  tr::BoxCondensationTracker tracker(tr::BoxTrackerConfig{}, 1);
+  tracker.init(scene, first);
+  tr::BoxTrackResult r;
+  double zoom = 1.0;
+  for (int k = 1; k <= 60; ++k) {
+    zoom *= 1.01;
+    const cv::Matx23d m(zoom, 0, 160 * (1 - zoom), 0, zoom, 120 * (1 - zoom));
+    cv::Mat frame;
+    cv::warpAffine(scene, frame, cv::Mat(m), scene.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+    r = tracker.track(frame);
+  }
+  const cv::Rect2d truth(160 - 20 * zoom, 120 - 20 * zoom, 40 * zoom, 40 * zoom);
+  EXPECT_GT(tr::boxIou(r.box, truth), 0.8) << r.box;
+  EXPECT_NEAR(r.box.width / truth.width, 1.0, 0.1);
+  // The real-video-like simulated scene (textured background, shake, blur, light ramp).
+  EXPECT_GE(successOn(sim::TrackingScenario::kHandheld, 1), 0.9);
+}
