@@ -17,14 +17,19 @@
 //     its box minus the mean in the ring around it (the box grown by `ring_scale`): the target's
 //     own box scores highest, a box inside the target or one spilling over the background lower,
 //     so position and scale are both measured. Summed-area tables make a sample O(1).
-//     Its weight is exp(score_gain * score).
-//  3. Estimate: the weighted mean of the samples within half a box side of the best one.
-//     Confidence = the estimate's log-weight / score_gain (colour score + template share); below
-//     `lost_score` the target is lost, and the next frames' samples spread over a region growing by
-//     `lost_growth` a frame (re-detection).
+//     Its weight is exp(score_gain * score + template_gain * NCC of a grey template + filter_gain *
+//     the correlation filter's response at its centre and scale; see `filter` below).
+//  3. Estimate: the weighted mean of the samples within half a box side of the best one, its
+//     scale then set by the filter (`filter_scale_share`).
+//     Confidence = the estimate's log-weight / score_gain (colour score + the appearance cues'
+//     share); below `lost_score` the target is lost, and the next frames' samples spread over a
+//     region growing by `lost_growth` a frame (re-detection).
 //  4. Model update (eq. 29): while confident (score >= update_min_score), H_O and H_S move towards
-//     the histograms of the estimated box and its surroundings by `learning_rate`, so the model
-//     follows the light but does not learn the background when the target is doubtful.
+//     the histograms of the estimated box and its surroundings by `learning_rate` (and the template
+//     and the filter by theirs), so the model follows the light but does not learn the background
+//     when the target is doubtful.
+// On the development sequences (docs/tracking_real_video.md) the filter, the samples drawn at its
+// peak and its scale carry most of the gain: mean success 0.52 without them, 0.84 with.
 #include <array>
 #include <opencv2/core.hpp>
 #include <vector>
