@@ -175,7 +175,7 @@ struct RbpfConfig {
   // colours under the particles' labels, after a kidnap those of the wrong place, and it favours
   // their hypothesis (with the draw, 12 of 20 kidnaps instead of 15, and correct tracks moved away
   // on 2 of 5 global starts of one bag). Cost: bench_rbpf --particles 100 --threads 1 gives about
-  // half the frame rate without the check (see the README). 0 turns it off.
+  // half the frame rate without the check (see docs/nodes/rbpf_localizer.md). 0 turns it off.
   double relocalization_interval_s = 1.0;
   int relocalization_pool_size = 2000;
   double relocalization_margin = 2.0;
