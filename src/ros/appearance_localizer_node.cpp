@@ -1,3 +1,4 @@
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/appearance_localizer_node.h"
 
 #include <geometry_msgs/PoseArray.h>
@@ -77,6 +78,7 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
   diagnostics_.add(*freq_);
   diagnostics_.add("localization", this, &AppearanceLocalizerNode::diagnose);
+  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
   ROS_INFO("appearance_localizer: %zu training frames in %zu rooms from %s, %d particles",
            classifier_->frames().size(), classifier_->rooms().size(), path.c_str(), m.particles);
 }

@@ -1,3 +1,4 @@
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/color_estimator_node.h"
 
 #include <tf2/exceptions.h>
@@ -71,6 +72,7 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
   diagnostics_.add(*freq_);
   diagnostics_.add("estimator", this, &ColorEstimatorNode::diagnose);
+  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_, &mutex_);
 
   reconfigure_ =
       std::make_unique<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>(

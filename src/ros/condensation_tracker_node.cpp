@@ -1,3 +1,4 @@
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/condensation_tracker_node.h"
 
 #include <algorithm>
@@ -74,6 +75,7 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
   diagnostics_.add(*freq_);
   diagnostics_.add("tracking", this, &CondensationTrackerNode::diagnose);
+  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
   ROS_INFO("condensation_tracker: mode %s, %d samples, colour space %s, %s", mode.c_str(),
            mode_ == Mode::kBox ? b.samples : c.samples, tracking::colorSpaceName(c.quantizer.space).c_str(),
            pending_target_ ? "target from ~initial_roi" : "waiting for a target");

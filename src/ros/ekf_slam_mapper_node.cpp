@@ -1,3 +1,4 @@
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/ekf_slam_mapper_node.h"
 
 #include <chrono>
@@ -80,6 +81,7 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
   diagnostics_.add(*freq_);
   diagnostics_.add("slam", this, &EkfSlamMapperNode::diagnose);
+  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_, &mutex_);
   ROS_INFO("ekf_slam_mapper: variant %s, association %s, retirement %s",
            slam::variantName(config_.variant).c_str(),
            config_.association == slam::Association::kJcbb ? "jcbb" : "nn",

@@ -1,3 +1,4 @@
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/ground_truth_tf_node.h"
 
 #include "adaptive_perception/ros/msg_conversion.h"
@@ -25,6 +26,7 @@ GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
   diagnostics_.add(*freq_);
+  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
 }
 
 void GroundTruthTfNode::callback(const geometry_msgs::PoseStampedConstPtr& truth,

@@ -1,3 +1,4 @@
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/histogram_place_recognizer_node.h"
 
 #include <algorithm>
@@ -90,6 +91,7 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
   diagnostics_.add(*freq_);
   diagnostics_.add("place database", this, &HistogramPlaceRecognizerNode::diagnose);
+  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
   ROS_INFO("histogram_place_recognizer: %s mode, database %s: %zu places, %ld images",
            train_mode_ ? "train" : "recognise", path.c_str(), db_->places().size(),
            db_->imageCount());

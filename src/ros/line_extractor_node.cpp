@@ -1,3 +1,4 @@
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/line_extractor_node.h"
 
 #include <cmath>
@@ -77,6 +78,7 @@ LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
   diagnostics_.add(*freq_);
+  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
   reconfigure_ =
       std::make_unique<dynamic_reconfigure::Server<adaptive_perception::LineExtractorConfig>>(
           reconfigure_mutex_, pnh);

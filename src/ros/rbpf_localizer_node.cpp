@@ -1,3 +1,4 @@
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/rbpf_localizer_node.h"
 
 #include <geometry_msgs/PoseArray.h>
@@ -164,6 +165,7 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
   diagnostics_.add(*freq_);
   diagnostics_.add("localizer", this, &RbpfLocalizerNode::diagnose);
+  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_, &mutex_);
   ROS_INFO("rbpf_localizer: %d particles on %d thread(s), %s filter with %zu prior(s), %s start",
            c.particles, c.threads, filter.c_str(), priors_.size(),
            pending_pose_ ? "tracking" : "global");

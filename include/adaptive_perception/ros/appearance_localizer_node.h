@@ -64,6 +64,7 @@ class AppearanceLocalizerNode {
   ros::ServiceServer global_srv_;
   tf2_ros::TransformBroadcaster tf_;
   diagnostic_updater::Updater diagnostics_;
+  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
   double min_freq_ = 0.1, max_freq_ = 100.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   long frames_ = 0, classified_ = 0, reinits_ = 0;

@@ -83,6 +83,7 @@ class ColorEstimatorNode {
   std::unique_ptr<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>
       reconfigure_;
   diagnostic_updater::Updater diagnostics_;
+  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
   double min_freq_ = 0.5, max_freq_ = 100.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   long frames_ = 0, skipped_no_tf_ = 0, skipped_bad_image_ = 0;

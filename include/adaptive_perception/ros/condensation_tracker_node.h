@@ -75,6 +75,7 @@ class CondensationTrackerNode {
   ros::Publisher object_pub_, segmentation_pub_, overlay_pub_;
   ros::ServiceServer target_srv_;
   diagnostic_updater::Updater diagnostics_;
+  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
   double min_freq_ = 1.0, max_freq_ = 1000.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   long frames_ = 0, lost_frames_ = 0, reacquired_ = 0;

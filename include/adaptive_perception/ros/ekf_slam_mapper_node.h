@@ -93,6 +93,7 @@ class EkfSlamMapperNode {
   ros_conv::ServiceQueue service_queue_;  // save_map answers while a scan waits for tf
   ros::ServiceServer save_srv_;
   diagnostic_updater::Updater diagnostics_;
+  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
 };
 

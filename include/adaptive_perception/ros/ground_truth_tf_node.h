@@ -52,6 +52,7 @@ class GroundTruthTfNode {
   nav_msgs::Path path_;
   ros::Time last_stamp_;
   diagnostic_updater::Updater diagnostics_;
+  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
   double min_freq_ = 1.0, max_freq_ = 1000.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
 };

@@ -96,6 +96,7 @@ class HistogramPlaceRecognizerNode {
   ros::Publisher place_pub_, overlay_pub_;
   ros::ServiceServer add_srv_, remove_srv_, adjacency_srv_, save_srv_;
   diagnostic_updater::Updater diagnostics_;
+  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
   double min_freq_ = 0.1, max_freq_ = 100.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   long images_ = 0, bad_images_ = 0, results_ = 0;

@@ -56,6 +56,7 @@ class LineExtractorNode {
   std::unique_ptr<dynamic_reconfigure::Server<adaptive_perception::LineExtractorConfig>>
       reconfigure_;
   diagnostic_updater::Updater diagnostics_;
+  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
   double min_freq_ = 1.0, max_freq_ = 1000.0;
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   ros_conv::StampOrder stamp_order_{"line_extractor", "scan"};
