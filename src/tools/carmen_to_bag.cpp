@@ -11,8 +11,10 @@
 // -> laser (tf_static when the mounting never changes, else tf at each scan), ground_truth/pose
 // (PoseStamped in map) from TRUEPOS. Every stamp is the line's ipc_timestamp, so published relation
 // files for these logs line up with the bag. Malformed / truncated / unknown / out-of-order lines
-// are reported with their line numbers; out-of-order messages are written in time order. Last line:
-//   carmen_to_bag: output=FILE scans=N odom=M truepos=K issues=I out_of_order=O
+// are reported with their line numbers; out-of-order messages are written in time order. A reading
+// at the laser's maximum range is its "no return" and is written as +inf (io/carmen_log.h). Last
+// line:
+//   carmen_to_bag: output=FILE scans=N odom=M truepos=K issues=I out_of_order=O no_returns=R
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
@@ -135,10 +137,11 @@ int main(int argc, char** argv) {
     }
     bag.close();
     std::printf(
-        "carmen_to_bag: output=%s scans=%zu odom=%zu truepos=%zu issues=%zu out_of_order=%ld\n",
+        "carmen_to_bag: output=%s scans=%zu odom=%zu truepos=%zu issues=%zu out_of_order=%ld "
+        "no_returns=%ld\n",
         output.c_str(), log.lasers.size(),
         from_lines ? log.odometry.size() : log.lasers.size(), log.true_poses.size(),
-        log.issues.size(), log.out_of_order);
+        log.issues.size(), log.out_of_order, log.no_returns);
   } catch (const std::exception& e) {
     std::cerr << "carmen_to_bag: error: " << e.what() << "\n";
     return 1;

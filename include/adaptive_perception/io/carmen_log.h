@@ -12,6 +12,10 @@
 // (n - 1) for an odd n such as 181 or 361, pi / n for an even n such as 180 or 360, which then
 // stops one step short of +90), with the maximum range from the log's PARAM robot_front_laser_max /
 // robot_rear_laser_max when present, else `default_max_range_m`.
+//
+// A reading within `no_return_margin_m` of the laser's maximum range (or beyond it) is the laser's
+// "no return" (a SICK LMS writes 81.83 m, or 81.91 m, when nothing reflects): it is stored as +inf,
+// as REP 117 has it, and counted in `no_returns`, so that no consumer takes it for a wall.
 #include <string>
 #include <vector>
 
@@ -54,6 +58,7 @@ struct CarmenLog {
   std::vector<CarmenIssue> issues;  // malformed / truncated / out-of-order lines, with line numbers
   long lines = 0, comments = 0, unknown = 0, skipped_known = 0;  // skipped_known: PARAM, SYNC, ...
   long out_of_order = 0;
+  long no_returns = 0;  // readings at the maximum range, stored as +inf
 
   /// Stable sort of every message list by timestamp.
   void sortByTime();
@@ -61,6 +66,7 @@ struct CarmenLog {
 
 struct CarmenReadOptions {
   double default_max_range_m = 81.9;  // SICK LMS maximum when the log has no PARAM
+  double no_return_margin_m = 0.1;    // readings >= max - this are no returns, >= 0
   size_t max_issues_kept = 1000;      // later issues are counted, not stored
 };
 

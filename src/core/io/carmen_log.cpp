@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -85,6 +86,15 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
   auto issue = [&](long line, const std::string& what) {
     if (log.issues.size() < options.max_issues_kept) log.issues.push_back({line, what});
   };
+  // A reading at the laser's maximum (within no_return_margin_m) is its "no return" value: +inf.
+  auto markNoReturns = [&](CarmenLaser* l) {
+    const double at = l->max_range_m - options.no_return_margin_m;
+    for (float& r : l->ranges_m)
+      if (r >= at) {
+        r = std::numeric_limits<float>::infinity();
+        ++log.no_returns;
+      }
+  };
   std::istringstream in(text);
   std::string raw;
   long line_no = 0;
@@ -158,6 +168,7 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
       l.angle_min_rad = name == "FLASER" ? -kPi / 2 : kPi / 2;
       l.max_range_m = name == "FLASER" ? front_max : rear_max;
       for (size_t i = 0; i < n; ++i) l.ranges_m.push_back(static_cast<float>(v[1 + i]));
+      markNoReturns(&l);
       l.laser_pose = math::SE2(v[1 + n], v[2 + n], v[3 + n]);
       l.robot_pose = math::SE2(v[4 + n], v[5 + n], v[6 + n]);
       l.timestamp_s = v[7 + n];
@@ -194,6 +205,7 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
       l.angle_increment_rad = v[3];
       l.max_range_m = v[4];
       for (size_t i = 0; i < n; ++i) l.ranges_m.push_back(static_cast<float>(v[8 + i]));
+      markNoReturns(&l);
       const size_t p = 8 + n + 1 + nr;
       l.laser_pose = math::SE2(v[p], v[p + 1], v[p + 2]);
       l.robot_pose = math::SE2(v[p + 3], v[p + 4], v[p + 5]);

@@ -46,6 +46,25 @@ TEST(CarmenLog, ParsesEachMessageType) {
   EXPECT_EQ(log.comments, 1);
 }
 
+TEST(CarmenLog, ReadingsAtTheMaximumRangeAreNoReturns) {
+  // Intel's log has no PARAM: the 81.9 m default, and its laser writes 81.83 for no return.
+  const std::string text =
+      "FLASER 4 1.0 81.83 81.95 2.0 0 0 0 0 0 0 100.0 host 0.1\n"
+      "PARAM robot_front_laser_max 50.0 nohost 0\n"
+      "FLASER 3 49.89 49.91 3.0 0 0 0 0 0 0 100.1 host 0.2\n";
+  const CarmenLog log = parseCarmenLog(text);
+  ASSERT_EQ(log.lasers.size(), 2u);
+  const auto& a = log.lasers[0].ranges_m;
+  EXPECT_FLOAT_EQ(a[0], 1.0f);
+  EXPECT_TRUE(std::isinf(a[1]) && a[1] > 0);  // 81.83 >= 81.9 - 0.1
+  EXPECT_TRUE(std::isinf(a[2]) && a[2] > 0);  // beyond the maximum
+  EXPECT_FLOAT_EQ(a[3], 2.0f);
+  const auto& b = log.lasers[1].ranges_m;
+  EXPECT_FLOAT_EQ(b[0], 49.89f);  // just short of 50 - 0.1: a wall
+  EXPECT_TRUE(std::isinf(b[1]));
+  EXPECT_EQ(log.no_returns, 3);
+}
+
 TEST(CarmenLog, ReportsBadLinesWithNumbersAndKeepsGoing) {
   const std::string text =
       "ODOM 1.0 2.0 0.5 0.3 0.1 0.0 10.0 host 0.2\n"
