@@ -55,6 +55,10 @@ class CorrelationFilter {
   /// The response map (CV_32F, rows() x cols()) of a window centred at `centre` whose target
   /// would be `scale` times the first box's size.
   cv::Mat response(const cv::Mat& image, const cv::Point2d& centre, double scale) const;
+  /// The value of `map` (a response() about `centre` at `scale`) for the target centred at image
+  /// point (x, y), bilinear between cells; 0 outside the map.
+  double responseAt(const cv::Mat& map, const cv::Point2d& centre, double scale, double x,
+                    double y) const;
   /// Blends the model towards the window centred at `centre` at `scale` (as above).
   void update(const cv::Mat& image, const cv::Point2d& centre, double scale);
 

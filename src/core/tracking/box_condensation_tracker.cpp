@@ -114,15 +114,7 @@ double BoxCondensationTracker::FilterMaps::at(const CorrelationFilter& f, double
   const int k_max = static_cast<int>(maps.size() / 2);
   const int k = std::clamp(static_cast<int>(std::lround((sample_log_scale - log_scale) / step)),
                            -k_max, k_max);
-  const cv::Mat& m = maps[k + k_max];
-  const cv::Size2d cell = f.cellPx(std::exp(log_scale + k * step));
-  const double u = m.cols / 2 + (x - centre.x) / cell.width;
-  const double v = m.rows / 2 + (y - centre.y) / cell.height;
-  if (!(u >= 0.0 && v >= 0.0 && u <= m.cols - 1 && v <= m.rows - 1)) return 0.0;
-  const int u0 = std::min(static_cast<int>(u), m.cols - 2), v0 = std::min(static_cast<int>(v), m.rows - 2);
-  const double fu = u - u0, fv = v - v0;
-  return (1 - fv) * ((1 - fu) * m.at<float>(v0, u0) + fu * m.at<float>(v0, u0 + 1)) +
-         fv * ((1 - fu) * m.at<float>(v0 + 1, u0) + fu * m.at<float>(v0 + 1, u0 + 1));
+  return f.responseAt(maps[k + k_max], centre, std::exp(log_scale + k * step), x, y);
 }
 
 cv::Rect2d BoxCondensationTracker::boxOf(const Sample& s) const {

@@ -224,6 +224,19 @@ cv::Mat CorrelationFilter::response(const cv::Mat& image, const cv::Point2d& cen
   return out;
 }
 
+double CorrelationFilter::responseAt(const cv::Mat& map, const cv::Point2d& centre, double scale,
+                                     double x, double y) const {
+  const cv::Size2d cell = cellPx(scale);
+  const double u = map.cols / 2 + (x - centre.x) / cell.width;
+  const double v = map.rows / 2 + (y - centre.y) / cell.height;
+  if (!(u >= 0.0 && v >= 0.0 && u <= map.cols - 1 && v <= map.rows - 1)) return 0.0;
+  const int u0 = std::min(static_cast<int>(u), map.cols - 2);
+  const int v0 = std::min(static_cast<int>(v), map.rows - 2);
+  const double fu = u - u0, fv = v - v0;
+  return (1 - fv) * ((1 - fu) * map.at<float>(v0, u0) + fu * map.at<float>(v0, u0 + 1)) +
+         fv * ((1 - fu) * map.at<float>(v0 + 1, u0) + fu * map.at<float>(v0 + 1, u0 + 1));
+}
+
 void CorrelationFilter::update(const cv::Mat& image, const cv::Point2d& centre, double scale) {
   if (!initialized()) throw std::logic_error("CorrelationFilter::update before init");
   train(spectra(image, centre, scale), config_.learning_rate);

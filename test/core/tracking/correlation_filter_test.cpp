@@ -193,3 +193,19 @@ TEST(CorrelationFilter, ASmallTargetsWindowIsWidenedToMinWindowPx) {
   c.max_padding = 2.0;  // below padding
   EXPECT_THROW(c.validate(), std::invalid_argument);
 }
+
+TEST(CorrelationFilter, ResponseAtReadsTheMapByImagePosition) {
+  const cv::Mat image = texture(320, 240, 8);
+  tr::CorrelationFilter filter;
+  filter.init(image, cv::Rect2d(140, 100, 40, 40));
+  const cv::Point2d centre(160, 120);
+  const cv::Mat r = filter.response(image, centre, 1.0);
+  const cv::Size2d cell = filter.cellPx(1.0);
+  const int c = filter.cols() / 2 + 2, row = filter.rows() / 2 - 1;
+  const double x = centre.x + 2 * cell.width, y = centre.y - cell.height;
+  // On a cell: the map's value; half a cell to the right: the mean of the two neighbours.
+  EXPECT_NEAR(filter.responseAt(r, centre, 1.0, x, y), r.at<float>(row, c), 1e-6);
+  EXPECT_NEAR(filter.responseAt(r, centre, 1.0, x + 0.5 * cell.width, y),
+              0.5 * (r.at<float>(row, c) + r.at<float>(row, c + 1)), 1e-6);
+  EXPECT_EQ(filter.responseAt(r, centre, 1.0, centre.x + 1000, y), 0.0);  // outside the map
+}
