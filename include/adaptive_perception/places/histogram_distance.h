@@ -36,4 +36,31 @@ double bandDistance(Distance d, const float* h, const float* k, int bins);
 /// The mean over the three bands of 3 * bins floats (the band average, "3" in eq. 5).
 double histogramDistance(Distance d, const float* h, const float* k, int bins);
 
+/// histogramDistance of one test histogram H against many training rows K, the fast way: single
+/// precision, four bins at a time (OpenCV's universal intrinsics), with the terms that depend on
+/// H alone computed once. It agrees with histogramDistance to about 1e-6 of the distance's range
+/// (the unit test checks 1e-5 on random histograms, with empty bins).
+///   Jeffrey      rewritten as m + h log2 h + k log2 k - m log2 m per bin (m = h + k): one
+///                logarithm per bin (a four-lane series, exact to float precision), with the
+///                training row's terms given by storedTerms() (computed once when it is stored);
+///   ks_cumulative  the running sums of H once, those of K four bins at a time.
+/// H (3 * bins floats) must outlive the object.
+class HistogramQuery {
+ public:
+  HistogramQuery(Distance d, const float* h, int bins);
+  /// The terms of a training row that Jeffrey needs (sum of k + k log2 k over the row; 0 for the
+  /// other distances' use): store it beside the row.
+  static double storedTerms(const float* k, int bins);
+  /// d(H, K) / 3 summed over the bands, as histogramDistance; `k_terms` is storedTerms(k) (read by
+  /// Jeffrey only).
+  double operator()(const float* k, double k_terms) const;
+
+ private:
+  Distance d_;
+  const float* h_;
+  int bins_;
+  double h_terms_ = 0.0;             // Jeffrey: storedTerms(h)
+  std::vector<float> h_cumulative_;  // ks_cumulative: running sums per band
+};
+
 }  // namespace adaptive_perception::places

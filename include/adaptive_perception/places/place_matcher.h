@@ -36,17 +36,15 @@ class PlaceIndex {
 
   /// eq. (5): for each place x, D_x = (1/n) sum over its n training images of d(H, K) / 3 (the
   /// band-averaged distance of histogramDistance). +inf for a place with no training image in
-  /// `space`. Throws std::invalid_argument when `test` lacks `space`. Jeffrey runs on a rewritten
-  /// form with one float logarithm per bin, h log2(2h/m) + k log2(2k/m) = m + h log2 h + k log2 k -
-  /// m log2 m (m = h + k), with the training side's terms precomputed; it agrees with
-  /// histogramDistance to about 1e-6.
+  /// `space`. Throws std::invalid_argument when `test` lacks `space`. Computed by HistogramQuery
+  /// (single precision, SIMD), which agrees with histogramDistance to about 1e-6.
   std::vector<double> nodeDistances(int space, Distance d, const ImageHistograms& test) const;
 
  private:
   struct Rows {
     std::vector<float> data;  // totalImages x 3 * bins
     std::vector<int> place;
-    std::vector<double> k_log_k;  // per row: sum k log2 k + sum k (Jeffrey fast path)
+    std::vector<double> k_terms;  // per row: HistogramQuery::storedTerms
   };
   int bins_;
   std::vector<std::string> names_;

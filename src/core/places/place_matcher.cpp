@@ -32,10 +32,7 @@ void PlaceIndex::addImage(int place, const ImageHistograms& h) {
       throw std::invalid_argument("PlaceIndex::addImage: histogram of " + spaceName(s) +
                                   " has the wrong length");
     rows_[s].data.insert(rows_[s].data.end(), h.spaces[s].begin(), h.spaces[s].end());
-    double klk = 0.0;
-    for (float k : h.spaces[s])
-      if (k > 0.0f) klk += k + static_cast<double>(k) * std::log2(static_cast<double>(k));
-    rows_[s].k_log_k.push_back(klk);
+    rows_[s].k_terms.push_back(HistogramQuery::storedTerms(h.spaces[s].data(), bins_));
     rows_[s].place.push_back(place);
     ++counts_[s][place];
   }
@@ -54,25 +51,9 @@ std::vector<double> PlaceIndex::nodeDistances(int space, Distance d,
   std::vector<double> sum(names_.size(), 0.0);
   const Rows& rows = rows_[space];
   const int len = 3 * bins_;
-  const float* h = test.spaces[space].data();
-  if (d == Distance::kJeffrey) {
-    double hlh = 0.0;
-    for (int i = 0; i < len; ++i)
-      if (h[i] > 0.0f)
-        hlh += h[i] + static_cast<double>(h[i]) * std::log2(static_cast<double>(h[i]));
-    for (size_t r = 0; r < rows.place.size(); ++r) {
-      const float* k = rows.data.data() + r * len;
-      float mlm = 0.0f;
-      for (int i = 0; i < len; ++i) {
-        const float m = h[i] + k[i];
-        if (m > 0.0f) mlm += m * std::log2(m);
-      }
-      sum[rows.place[r]] += (hlh + rows.k_log_k[r] - mlm) / 3.0;
-    }
-  } else {
-    for (size_t r = 0; r < rows.place.size(); ++r)
-      sum[rows.place[r]] += histogramDistance(d, h, rows.data.data() + r * len, bins_);
-  }
+  const HistogramQuery query(d, test.spaces[space].data(), bins_);
+  for (size_t r = 0; r < rows.place.size(); ++r)
+    sum[rows.place[r]] += query(rows.data.data() + r * len, rows.k_terms[r]);
   std::vector<double> out(names_.size(), std::numeric_limits<double>::infinity());
   for (size_t p = 0; p < names_.size(); ++p)
     if (counts_[space][p] > 0) out[p] = sum[p] / counts_[space][p];
