@@ -3,18 +3,24 @@
 // traversals of one route (places/traversal_matcher.h, places/traversal_metrics.h).
 //
 //   evaluate_places --reference A --query B [--tolerance_frames 1] [--ground_truth CSV]
-//                   [--method sequence] [--sequence_frames 10] [--output DIR]
+//                   [--method sequence] [--sequence_frames 10] [--database F] [--output DIR]
 //
 // A and B are folders of images (name order) or CSV lists of image paths (io/image_folder.h).
+// --database F keeps the reference traversal in a place database (places/place_database.h): when F
+// does not exist, A's images are described and stored there (each frame a place named frame_N,
+// N from 1, joined to the next; HSV histograms and the whole-image descriptors), written to a
+// temporary file and renamed when complete; when F exists, its images are the references, in the
+// order stored, and A may be left out (given, it must list the same images). F is never changed.
 // Query i's true references are i - N .. i + N (N = --tolerance_frames) unless --ground_truth
 // (`query_index,reference_index,tolerance`, from 1) says otherwise; a query it does not list has
-// no true reference and counts as wrong. Every method runs on the same frames; the table lists each,
-// the summary line gives --method's. Writes DIR/results.yaml, DIR/queries.csv (per query and
+// no true reference and counts as wrong. Every method runs on the same frames; the table lists
+// each, the summary line gives --method's. Writes DIR/results.yaml, DIR/queries.csv (per query and
 // method: truth, best reference, confidence, right) and DIR/pr_curves.csv (one row per point and
 // method); scripts/plot_places.py DIR draws DIR/pr_curve.png from them.
 // Last line: `evaluate_places: mode=traversal method=.. recall_at_1=.. recall_at_5=.. pr_auc=..
 // recall_at_full_precision=.. queries=.. queries_per_s=.. match_ms=.. references=..`
 // (queries_per_s: descriptors and matching of one query, one core; match_ms: the matching alone).
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <chrono>
@@ -23,10 +29,12 @@
 #include <fstream>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "adaptive_perception/io/image_folder.h"
+#include "adaptive_perception/places/place_database.h"
 #include "adaptive_perception/places/traversal_matcher.h"
 #include "adaptive_perception/places/traversal_metrics.h"
 #include "tool_args.h"
@@ -37,8 +45,87 @@ namespace traversal_detail {
 inline cv::Mat readImage(const std::string& path, const std::string& which) {
   cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
   if (img.empty())
-    throw std::runtime_error(which + " image '" + path + "' cannot be read (missing or not an image)");
+    throw std::runtime_error(which + " image '" + path +
+                             "' cannot be read (missing or not an image)");
   return img;
+}
+// The references from an existing database; with A's list too, both must name the same images.
+inline places::ReferenceTraversal loadReferences(const std::string& db_path,
+                                                 const std::vector<std::string>& ref_files,
+                                                 const places::GlobalDescriptorConfig& config) {
+  const places::PlaceDatabase db = places::PlaceDatabase::open(db_path, /*read_only=*/true);
+  std::vector<std::string> sources;
+  places::ReferenceTraversal refs = db.loadTraversal(config, &sources);
+  if (refs.size() == 0)
+    throw std::runtime_error(
+        db_path + ": holds no image with whole-image descriptors (" +
+        std::to_string(db.imageCount()) +
+        " images): it is not a reference traversal; name a new file to build one");
+  if (!ref_files.empty()) {
+    if (ref_files.size() != sources.size())
+      throw std::runtime_error(db_path + " holds " + std::to_string(sources.size()) +
+                               " reference images, --reference lists " +
+                               std::to_string(ref_files.size()) +
+                               ": leave --reference out to use the stored ones");
+    for (size_t i = 0; i < sources.size(); ++i)
+      if (sources[i] != ref_files[i])
+        throw std::runtime_error(db_path + ": reference " + std::to_string(i + 1) + " is '" +
+                                 sources[i] + "', --reference lists '" + ref_files[i] + "'");
+  }
+  return refs;
+}
+
+// Describes A's images; with a database path, stores them in a new database there (temporary
+// file, renamed when complete, so that a failure leaves nothing behind).
+inline places::ReferenceTraversal describeReferences(const std::vector<std::string>& ref_files,
+                                                     const places::GlobalDescriptorConfig& config,
+                                                     const std::string& db_path) {
+  namespace fs = std::filesystem;
+  places::ReferenceTraversal refs(config);
+  std::optional<places::PlaceDatabase> db;
+  const std::string tmp = db_path.empty() ? "" : db_path + ".partial-" + std::to_string(::getpid());
+  struct RemoveOnFailure {
+    const std::string& path;
+    bool keep = false;
+    ~RemoveOnFailure() {
+      std::error_code ec;
+      if (keep || path.empty()) return;
+      fs::remove(path, ec);
+      fs::remove(path + "-journal", ec);
+    }
+  } cleanup{tmp};
+  places::DatabaseSettings settings;
+  settings.spaces = {places::spaceIndex("hsv")};
+  if (!tmp.empty()) {
+    db.emplace(places::PlaceDatabase::create(tmp, settings));
+    db->useDescriptors(config);
+    db->beginBatch();
+  }
+  std::string previous;
+  for (size_t i = 0; i < ref_files.size(); ++i) {
+    const cv::Mat img = readImage(ref_files[i], "reference");
+    places::TrainingImage ti;
+    ti.source = ref_files[i];
+    ti.descriptors = places::computeDescriptors(img, config);
+    refs.add(ti.descriptors);
+    if (!db) continue;
+    ti.histograms = places::computeHistograms(img, settings.histogramConfig());
+    const std::string place = "frame_" + std::to_string(i + 1);
+    db->addImages(place, {ti});
+    if (!previous.empty()) db->setAdjacent(previous, place);
+    previous = place;
+  }
+  if (db) {
+    db->commitBatch();
+    db.reset();  // closed before it is renamed
+    if (fs::exists(db_path))
+      throw std::runtime_error(db_path +
+                               " appeared while the references were being described; "
+                               "it was left as it is");
+    fs::rename(tmp, db_path);
+    cleanup.keep = true;
+  }
+  return refs;
 }
 }  // namespace traversal_detail
 
@@ -57,29 +144,41 @@ inline int runTraversalEvaluation(Args& args) {
   cfg.fusion.gradient = args.getDouble("gradient_weight", cfg.fusion.gradient);
   cfg.fusion.chromaticity = args.getDouble("chromaticity_weight", cfg.fusion.chromaticity);
   const std::string output = args.get("output", "results/evaluate_places");
+  const std::string db_path = args.get("database", "");
   args.finish();
-  if (ref_path.empty() || query_path.empty())
-    args.fail("traversal mode needs both --reference A and --query B");
+  const bool stored = !db_path.empty() && std::filesystem::exists(db_path);
+  if (query_path.empty() || (ref_path.empty() && !stored))
+    args.fail(
+        "traversal mode needs --query B and --reference A (or --database F naming an "
+        "existing reference traversal)");
   if (tolerance < 0) args.fail("--tolerance_frames must be >= 0");
   try {
     cfg.validate();
-    const std::vector<std::string> ref_files = io::readTraversal(ref_path);
+    const std::vector<std::string> listed =
+        ref_path.empty() ? std::vector<std::string>() : io::readTraversal(ref_path);
     const std::vector<std::string> query_files = io::readTraversal(query_path);
+    const auto t_ref = std::chrono::steady_clock::now();
+    const places::ReferenceTraversal refs =
+        stored ? traversal_detail::loadReferences(db_path, listed, cfg.descriptor)
+               : traversal_detail::describeReferences(listed, cfg.descriptor, db_path);
+    const double ref_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_ref).count();
+    const size_t n_refs = static_cast<size_t>(refs.size());
     std::vector<io::FrameCorrespondence> truth(query_files.size(),
                                                {0, -1, static_cast<int>(tolerance)});
     for (size_t i = 0; i < truth.size(); ++i) {
       truth[i].query = static_cast<int>(i);
-      truth[i].reference = i < ref_files.size() ? static_cast<int>(i) : -1;
+      truth[i].reference = i < n_refs ? static_cast<int>(i) : -1;
     }
     if (!gt_path.empty()) {
       for (auto& t : truth) t.reference = -1;
       for (const io::FrameCorrespondence& c : io::readFrameCorrespondences(gt_path)) {
         if (c.query >= static_cast<int>(query_files.size()) ||
-            c.reference >= static_cast<int>(ref_files.size()))
+            c.reference >= static_cast<int>(n_refs))
           throw std::runtime_error(gt_path + ": query " + std::to_string(c.query + 1) +
                                    " / reference " + std::to_string(c.reference + 1) +
                                    " beyond the traversals (" + std::to_string(query_files.size()) +
-                                   " queries, " + std::to_string(ref_files.size()) + " references)");
+                                   " queries, " + std::to_string(n_refs) + " references)");
         truth[c.query] = c;
       }
     }
@@ -89,15 +188,9 @@ inline int runTraversalEvaluation(Args& args) {
       std::cerr << "evaluate_places: " << without_truth
                 << " queries have no true reference (they count as wrong)\n";
 
-    places::ReferenceTraversal refs(cfg.descriptor);
-    const auto t_ref = std::chrono::steady_clock::now();
-    for (const std::string& f : ref_files)
-      refs.add(places::computeDescriptors(traversal_detail::readImage(f, "reference"),
-                                          cfg.descriptor));
-    const double ref_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_ref).count();
     std::printf("evaluate_places: %d reference images (%s) in %.1f s, %zu queries (%s)\n",
-                refs.size(), ref_path.c_str(), ref_s, query_files.size(), query_path.c_str());
+                refs.size(), stored ? db_path.c_str() : ref_path.c_str(), ref_s, query_files.size(),
+                query_path.c_str());
 
     const std::vector<std::string> methods = {"thumbnail", "gradient", "chromaticity", "fused",
                                               "sequence"};
@@ -112,9 +205,8 @@ inline int runTraversalEvaluation(Args& args) {
     double describe_s = 0.0;
     for (size_t i = 0; i < query_files.size(); ++i) {
       const auto t0 = std::chrono::steady_clock::now();
-      const places::ImageDescriptors d =
-          places::computeDescriptors(traversal_detail::readImage(query_files[i], "query"),
-                                     cfg.descriptor);
+      const places::ImageDescriptors d = places::computeDescriptors(
+          traversal_detail::readImage(query_files[i], "query"), cfg.descriptor);
       describe_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       for (size_t m = 0; m < methods.size(); ++m) {
         const auto t1 = std::chrono::steady_clock::now();
@@ -135,7 +227,7 @@ inline int runTraversalEvaluation(Args& args) {
     std::ofstream pcsv(fs::path(output) / "pr_curves.csv");
     pcsv << "method,threshold,precision,recall\n";
     YAML::Emitter y;
-    y << YAML::BeginMap << YAML::Key << "reference" << YAML::Value << ref_path;
+    y << YAML::BeginMap << YAML::Key << "reference" << YAML::Value << (stored ? db_path : ref_path);
     y << YAML::Key << "query" << YAML::Value << query_path;
     y << YAML::Key << "tolerance_frames" << YAML::Value << tolerance;
     y << YAML::Key << "ground_truth" << YAML::Value << (gt_path.empty() ? "same index" : gt_path);

@@ -21,6 +21,7 @@
 // made with. The last four are optional per image (room classification, papers/002; the
 // whole-image cues) and are added to an older file when it is opened for writing.
 #include <array>
+#include <functional>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -31,6 +32,7 @@
 #include "adaptive_perception/places/histogram.h"
 #include "adaptive_perception/places/place_descriptor_index.h"
 #include "adaptive_perception/places/place_matcher.h"
+#include "adaptive_perception/places/traversal_matcher.h"
 
 struct sqlite3;
 
@@ -55,9 +57,9 @@ struct DatabaseSettings {
 struct TrainingImage {
   std::string source;  // where it came from: a file path or "bag.bag@12.5"
   double stamp_s = 0.0;
-  ImageHistograms histograms;  // must have every space of the settings
-  cv::Mat features;            // optional: N x 128 CV_32F SIFT descriptors (stored as uint8)
-  cv::Mat structure;           // optional: 1 x D CV_32F line-structure descriptor
+  ImageHistograms histograms;    // must have every space of the settings
+  cv::Mat features;              // optional: N x 128 CV_32F SIFT descriptors (stored as uint8)
+  cv::Mat structure;             // optional: 1 x D CV_32F line-structure descriptor
   ImageDescriptors descriptors;  // optional: every whole-image descriptor (see useDescriptors)
   std::optional<std::array<double, 3>> pose;  // optional: x_m, y_m, yaw_rad in map
 };
@@ -138,6 +140,12 @@ class PlaceDatabase {
   /// with settings other than `config`, or when a stored row is damaged.
   PlaceDescriptorIndex loadDescriptorIndex(const PlaceIndex& index,
                                            const GlobalDescriptorConfig& config) const;
+  /// A reference traversal kept in the database (evaluate_places --reference A --database F):
+  /// the whole-image descriptors of every image that has them, in the order stored, and in
+  /// `sources` (when given) each one's source. Empty when none are stored; throws as
+  /// loadDescriptorIndex does.
+  ReferenceTraversal loadTraversal(const GlobalDescriptorConfig& config,
+                                   std::vector<std::string>* sources = nullptr) const;
   /// Every image that has SIFT features, in the order stored, with its place and pose.
   std::vector<TrainingFrame> loadFrames() const;
   /// Adjacency lists in the index's place order (for PlaceFilter).
@@ -148,6 +156,10 @@ class PlaceDatabase {
   void exec(const std::string& sql) const;
   void readSettings();
   int placeId(const std::string& name, bool create);
+  // Every stored image's whole-image descriptors in the order stored, with its place and source.
+  void readDescriptors(const GlobalDescriptorConfig& config,
+                       const std::function<void(const std::string& place, const std::string& source,
+                                                const ImageDescriptors& d)>& visit) const;
 
   sqlite3* db_ = nullptr;
   std::string path_;
