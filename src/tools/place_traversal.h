@@ -8,7 +8,7 @@
 // A and B are folders of images (name order) or CSV lists of image paths (io/image_folder.h).
 // --database F keeps the reference traversal in a place database (places/place_database.h): when F
 // does not exist, A's images are described and stored there (each frame a place named frame_N,
-// N from 1, joined to the next; HSV histograms and the whole-image descriptors), written to a
+// N from 1, joined to the next; HSV histograms, the whole-image descriptors and SIFT), written to a
 // temporary file and renamed when complete; when F exists, its images are the references, in the
 // order stored, and A may be left out (given, it must list the same images). F is never changed.
 // Query i's true references are i - N .. i + N (N = --tolerance_frames) unless --ground_truth
@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "adaptive_perception/io/image_folder.h"
+#include "adaptive_perception/places/feature_index.h"
 #include "adaptive_perception/places/place_database.h"
 #include "adaptive_perception/places/traversal_matcher.h"
 #include "adaptive_perception/places/traversal_metrics.h"
@@ -49,6 +50,14 @@ inline cv::Mat readImage(const std::string& path, const std::string& which) {
                              "' cannot be read (missing or not an image)");
   return img;
 }
+// Every cue of one image: the whole-image descriptors and the SIFT descriptors of the words.
+inline places::ImageDescriptors describe(const cv::Mat& img,
+                                         const places::GlobalDescriptorConfig& config) {
+  places::ImageDescriptors d = places::computeDescriptors(img, config);
+  d.sift = places::extractSift(img, places::SiftConfig());
+  return d;
+}
+
 // The references from an existing database; with A's list too, both must name the same images.
 inline places::ReferenceTraversal loadReferences(const std::string& db_path,
                                                  const std::vector<std::string>& ref_files,
@@ -61,6 +70,13 @@ inline places::ReferenceTraversal loadReferences(const std::string& db_path,
         db_path + ": holds no image with whole-image descriptors (" +
         std::to_string(db.imageCount()) +
         " images): it is not a reference traversal; name a new file to build one");
+  std::vector<cv::Mat> sift;
+  for (const places::TrainingFrame& f : db.loadFrames()) sift.push_back(f.features);
+  if (sift.size() != sources.size())
+    throw std::runtime_error(db_path + ": " + std::to_string(sift.size()) + " of its " +
+                             std::to_string(sources.size()) +
+                             " reference images have SIFT descriptors; build it again");
+  refs.learnWords(sift);
   if (!ref_files.empty()) {
     if (ref_files.size() != sources.size())
       throw std::runtime_error(db_path + " holds " + std::to_string(sources.size()) +
@@ -102,12 +118,15 @@ inline places::ReferenceTraversal describeReferences(const std::vector<std::stri
     db->beginBatch();
   }
   std::string previous;
+  std::vector<cv::Mat> sift;
   for (size_t i = 0; i < ref_files.size(); ++i) {
     const cv::Mat img = readImage(ref_files[i], "reference");
     places::TrainingImage ti;
     ti.source = ref_files[i];
-    ti.descriptors = places::computeDescriptors(img, config);
+    ti.descriptors = describe(img, config);
     refs.add(ti.descriptors);
+    sift.push_back(ti.descriptors.sift);
+    ti.features = ti.descriptors.sift;
     if (!db) continue;
     ti.histograms = places::computeHistograms(img, settings.histogramConfig());
     const std::string place = "frame_" + std::to_string(i + 1);
@@ -115,6 +134,7 @@ inline places::ReferenceTraversal describeReferences(const std::vector<std::stri
     if (!previous.empty()) db->setAdjacent(previous, place);
     previous = place;
   }
+  refs.learnWords(sift);
   if (db) {
     db->commitBatch();
     db.reset();  // closed before it is renamed
@@ -143,6 +163,7 @@ inline int runTraversalEvaluation(Args& args) {
   cfg.fusion.thumbnail = args.getDouble("thumbnail_weight", cfg.fusion.thumbnail);
   cfg.fusion.gradient = args.getDouble("gradient_weight", cfg.fusion.gradient);
   cfg.fusion.chromaticity = args.getDouble("chromaticity_weight", cfg.fusion.chromaticity);
+  cfg.fusion.words = args.getDouble("words_weight", cfg.fusion.words);
   const std::string output = args.get("output", "results/evaluate_places");
   const std::string db_path = args.get("database", "");
   args.finish();
@@ -192,8 +213,8 @@ inline int runTraversalEvaluation(Args& args) {
                 refs.size(), stored ? db_path.c_str() : ref_path.c_str(), ref_s, query_files.size(),
                 query_path.c_str());
 
-    const std::vector<std::string> methods = {"thumbnail", "gradient", "chromaticity", "fused",
-                                              "sequence"};
+    const std::vector<std::string> methods = {"thumbnail", "gradient", "chromaticity",
+                                              "words",     "fused",    "sequence"};
     std::vector<places::TraversalMatcher> matchers;
     for (const std::string& m : methods) {
       TraversalMatcherConfig c = cfg;
@@ -202,12 +223,16 @@ inline int runTraversalEvaluation(Args& args) {
     }
     std::vector<std::vector<places::QueryOutcome>> outcomes(methods.size());
     std::vector<double> match_s(methods.size(), 0.0);
-    double describe_s = 0.0;
+    double describe_s = 0.0, sift_s = 0.0;  // the whole-image descriptors; SIFT (words only)
     for (size_t i = 0; i < query_files.size(); ++i) {
       const auto t0 = std::chrono::steady_clock::now();
-      const places::ImageDescriptors d = places::computeDescriptors(
-          traversal_detail::readImage(query_files[i], "query"), cfg.descriptor);
-      describe_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const cv::Mat img = traversal_detail::readImage(query_files[i], "query");
+      places::ImageDescriptors d = places::computeDescriptors(img, cfg.descriptor);
+      const auto t_sift = std::chrono::steady_clock::now();
+      d.sift = places::extractSift(img, places::SiftConfig());
+      const auto t_end = std::chrono::steady_clock::now();
+      describe_s += std::chrono::duration<double>(t_sift - t0).count();
+      sift_s += std::chrono::duration<double>(t_end - t_sift).count();
       for (size_t m = 0; m < methods.size(); ++m) {
         const auto t1 = std::chrono::steady_clock::now();
         const std::vector<float>& s = matchers[m].add(d);
@@ -263,7 +288,11 @@ inline int runTraversalEvaluation(Args& args) {
       }
     }
     y << YAML::EndMap;
-    const double qps = nq / (describe_s + chosen_match_ms * nq / 1000.0);
+    const bool uses_words =
+        cfg.method == "words" ||
+        ((cfg.method == "fused" || cfg.method == "sequence") && cfg.fusion.words > 0);
+    const double qps =
+        nq / (describe_s + (uses_words ? sift_s : 0.0) + chosen_match_ms * nq / 1000.0);
     y << YAML::Key << "queries" << YAML::Value << query_files.size();
     y << YAML::Key << "references" << YAML::Value << refs.size();
     y << YAML::Key << "queries_per_s" << YAML::Value << qps << YAML::EndMap;

@@ -37,16 +37,16 @@ std::string descriptorName(DescriptorKind k);  // thumbnail, gradient, chromatic
 DescriptorKind descriptorFromName(const std::string& name);
 
 struct GlobalDescriptorConfig {
-  int thumbnail_width_px = 64;   // SeqSLAM's 64 x 32 (Nordland ships at that size)
+  int thumbnail_width_px = 64;  // SeqSLAM's 64 x 32 (Nordland ships at that size)
   int thumbnail_height_px = 32;
-  int patch_px = 8;              // patch normalisation; must divide both thumbnail sides
+  int patch_px = 8;  // patch normalisation; must divide both thumbnail sides
   // Gradients of a 256 x 128 image in 32-px cells (8 x 4 cells, 756 bytes): at 128 x 64 the
   // gradients of a night image are mostly noise, and cells of an eighth of the width tolerate a
   // small sideways shift of the viewpoint (docs/places_across_light.md has the measurements).
-  int hog_width_px = 256;        // multiples of hog_cell_px, at least 2 cells
+  int hog_width_px = 256;  // multiples of hog_cell_px, at least 2 cells
   int hog_height_px = 128;
   int hog_cell_px = 32;
-  int chroma_bins = 8;           // per chromaticity axis, 2..64
+  int chroma_bins = 8;  // per chromaticity axis, 2..64
 
   void validate() const;  // throws std::invalid_argument naming the bad field
   /// Bytes of one descriptor of `kind` with these settings.
@@ -62,6 +62,9 @@ struct FusionWeights {
   double thumbnail = 1.0;  // each >= 0, not all 0
   double gradient = 1.0;
   double chromaticity = 0.0;
+  // The bag of SIFT words (traversal matching only, bag_of_words.h): 0, because across light it
+  // adds nothing the other cues miss (docs/places_across_light.md).
+  double words = 0.0;
 
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
@@ -81,6 +84,7 @@ cv::Mat computeDescriptor(const cv::Mat& image, DescriptorKind kind,
 /// The descriptors of every kind of one image (rows indexed by DescriptorKind).
 struct ImageDescriptors {
   std::vector<cv::Mat> rows;  // kNumDescriptorKinds rows
+  cv::Mat sift;               // optional: N x 128 CV_32F SIFT descriptors (bag_of_words.h)
 };
 ImageDescriptors computeDescriptors(const cv::Mat& image, const GlobalDescriptorConfig& config);
 

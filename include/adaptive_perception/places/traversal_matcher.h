@@ -5,18 +5,21 @@
 //
 // Methods (TraversalMatcherConfig::method):
 //   thumbnail, gradient, chromaticity   one whole-image cue (global_descriptor.h) alone;
+//   words      the bag of SIFT words (bag_of_words.h; the references' vocabulary, learnWords);
 //   fused      the single-image cues combined: each cue's distances to the references turned into
 //              z-scores over the references (so that cues of different scales add), then the
-//              weighted mean with `fusion`'s weights;
+//              weighted mean with `fusion`'s weights (the words among them when fusion.words > 0);
 //   sequence   (default) SeqSLAM trajectory search (sequence_matcher.h) over the fused distances
 //              of the last sequence.sequence_frames queries.
 // The fusion weights are settings chosen once on development data (docs/places_across_light.md
 // gives the measurements), never from the images being recognised. Every method's scores are
 // z-scores over the references (lower = better).
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/places/bag_of_words.h"
 #include "adaptive_perception/places/global_descriptor.h"
 #include "adaptive_perception/places/sequence_matcher.h"
 
@@ -25,7 +28,7 @@ namespace adaptive_perception::places {
 struct TraversalMatcherConfig {
   GlobalDescriptorConfig descriptor;
   SequenceMatcherConfig sequence;
-  std::string method = "sequence";  // thumbnail, gradient, chromaticity, fused, sequence
+  std::string method = "sequence";  // thumbnail, gradient, chromaticity, words, fused, sequence
   FusionWeights fusion;
 
   void validate() const;  // throws std::invalid_argument naming the bad field
@@ -40,6 +43,12 @@ class ReferenceTraversal {
   /// Appends one image's descriptors (from computeDescriptors with the same config). Throws
   /// std::invalid_argument on rows of the wrong length.
   void add(const ImageDescriptors& d);
+  /// Learns the bag of words from every reference's SIFT descriptors (one matrix per reference,
+  /// in order; ImageDescriptors::sift). Throws std::invalid_argument on a count other than
+  /// size() and as BagOfWords does.
+  void learnWords(const std::vector<cv::Mat>& sift, const BagOfWordsConfig& config = {});
+  /// The bag of words (null before learnWords).
+  const BagOfWords* words() const { return words_.get(); }
   int size() const { return rows_[0].rows; }
   const cv::Mat& rows(DescriptorKind k) const { return rows_[static_cast<int>(k)]; }
   const GlobalDescriptorConfig& config() const { return config_; }
@@ -47,6 +56,7 @@ class ReferenceTraversal {
  private:
   GlobalDescriptorConfig config_;
   std::array<cv::Mat, kNumDescriptorKinds> rows_;
+  std::shared_ptr<const BagOfWords> words_;
 };
 
 /// One query's distances to every stored image for a cue (cueWeights): each weighted
@@ -61,7 +71,8 @@ class TraversalMatcher {
   TraversalMatcher(const ReferenceTraversal& references, TraversalMatcherConfig config = {});
 
   /// The next query image: its score against every reference (lower = better). Throws
-  /// std::invalid_argument when the reference traversal is empty.
+  /// std::invalid_argument when the reference traversal is empty, or when the method uses the
+  /// words and the references have none or the query no `sift` matrix.
   const std::vector<float>& add(const ImageDescriptors& query);
   /// Forgets the query history (sequence), e.g. when time jumped back.
   void reset();

@@ -158,7 +158,7 @@ std::string GlobalDescriptorConfig::toString() const {
 }
 
 void FusionWeights::validate() const {
-  for (double w : {thumbnail, gradient, chromaticity})
+  for (double w : {thumbnail, gradient, chromaticity, words})
     if (!(std::isfinite(w) && w >= 0.0 && w <= 1000.0))
       throw std::invalid_argument("FusionWeights: each weight must be in [0, 1000]");
   if (!(thumbnail + gradient + chromaticity > 0.0))

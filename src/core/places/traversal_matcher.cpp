@@ -24,14 +24,14 @@ void zScore(std::vector<float>& v) {
 }  // namespace
 
 const char* TraversalMatcherConfig::methodNames() {
-  return "thumbnail, gradient, chromaticity, fused, sequence";
+  return "thumbnail, gradient, chromaticity, words, fused, sequence";
 }
 
 void TraversalMatcherConfig::validate() const {
   descriptor.validate();
   sequence.validate();
   fusion.validate();
-  need(isCueName(method) || method == "sequence",
+  need(isCueName(method) || method == "sequence" || method == "words",
        "method '" + method + "' is not one of " + methodNames());
 }
 
@@ -50,6 +50,14 @@ void ReferenceTraversal::add(const ImageDescriptors& d) {
                                   descriptorName(static_cast<DescriptorKind>(k)) +
                                   " row does not match the traversal's settings");
   for (int k = 0; k < kNumDescriptorKinds; ++k) rows_[k].push_back(d.rows[k]);
+}
+
+void ReferenceTraversal::learnWords(const std::vector<cv::Mat>& sift,
+                                    const BagOfWordsConfig& config) {
+  if (static_cast<int>(sift.size()) != size())
+    throw std::invalid_argument("ReferenceTraversal::learnWords: " + std::to_string(sift.size()) +
+                                " SIFT matrices for " + std::to_string(size()) + " references");
+  words_ = std::make_shared<const BagOfWords>(sift, config);
 }
 
 TraversalMatcher::TraversalMatcher(const ReferenceTraversal& references,
@@ -76,11 +84,32 @@ std::vector<float> cueDistances(const ReferenceTraversal& stored, const ImageDes
   return fused;
 }
 
+namespace {
+// The bag of words' distances of the query as z-scores over the references.
+std::vector<float> wordDistances(const ReferenceTraversal& refs, const ImageDescriptors& query) {
+  if (!refs.words())
+    throw std::invalid_argument("TraversalMatcher: the references have no bag of words");
+  if (query.sift.cols != 128)
+    throw std::invalid_argument("TraversalMatcher: the query has no SIFT descriptors");
+  std::vector<float> d = refs.words()->distances(query.sift);
+  zScore(d);
+  return d;
+}
+}  // namespace
+
 const std::vector<float>& TraversalMatcher::add(const ImageDescriptors& query) {
   if (refs_.size() == 0) throw std::invalid_argument("TraversalMatcher: no reference image");
+  if (config_.method == "words") return scores_ = wordDistances(refs_, query);
   const bool sequence = config_.method == "sequence";
-  scores_ = cueDistances(refs_, query, cueWeights(sequence ? "fused" : config_.method,
-                                                  config_.fusion));
+  const bool fused = sequence || config_.method == "fused";
+  const FusionWeights& f = config_.fusion;
+  scores_ = cueDistances(refs_, query, cueWeights(fused ? "fused" : config_.method, f));
+  if (fused && f.words > 0.0) {
+    const double rest = f.thumbnail + f.gradient + f.chromaticity;
+    const std::vector<float> w = wordDistances(refs_, query);
+    for (size_t j = 0; j < scores_.size(); ++j)
+      scores_[j] = static_cast<float>((rest * scores_[j] + f.words * w[j]) / (rest + f.words));
+  }
   return sequence ? sequence_.add(scores_) : scores_;
 }
 
