@@ -48,6 +48,9 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
       P::getInRange(pnh, "teleport_probability", rc.filter.teleport_probability, 0.0, 1.0);
   rc.filter.likelihood_sharpness =
       P::getInRange(pnh, "likelihood_sharpness", rc.filter.likelihood_sharpness, 1e-3, 1e3);
+  rc.use_sequence = P::get<bool>(pnh, "use_sequence", rc.use_sequence);
+  rc.sequence.sequence_frames =
+      P::getInRange(pnh, "sequence_frames", rc.sequence.sequence_frames, 1, 1000);
   gate_ = ros_conv::ImageGate("histogram_place_recognizer",
                               P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0),
                               P::loadStampOrder(pnh));
@@ -242,6 +245,8 @@ void HistogramPlaceRecognizerNode::onImage(
   out.distances = r.recognition.total_distances;
   out.belief = r.belief;
   out.filtered_place = r.filtered_place >= 0 ? names[r.filtered_place] : "";
+  out.filtered_confidence = r.filtered_confidence;
+  out.sequence_place = r.sequence_place >= 0 ? names[r.sequence_place] : "";
   place_pub_.publish(out);
   ++results_;
   if (!label_.empty() && label_ != "none") {
@@ -275,7 +280,8 @@ void HistogramPlaceRecognizerNode::publishOverlay(const cv::Mat& bgr,
   std::snprintf(line, sizeof(line), "%s %.0f%%", r.place.c_str(), 100.0 * r.confidence);
   text(0, cv::Scalar(80, 255, 80));
   if (!r.filtered_place.empty()) {
-    std::snprintf(line, sizeof(line), "filter: %s", r.filtered_place.c_str());
+    std::snprintf(line, sizeof(line), "fused: %s %.0f%%", r.filtered_place.c_str(),
+                  100.0 * r.filtered_confidence);
     text(1, cv::Scalar(255, 200, 80));
   }
   std::snprintf(line, sizeof(line), "%s %s, %u img", r.color_space.c_str(), r.method.c_str(),

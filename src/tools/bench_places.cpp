@@ -8,9 +8,11 @@
 //    places; histograms of rendered views of the building, perturbed per stored image) in one
 //    colour space, for each distance (ms per query; the target is under 10 ms for 10,000 images).
 // 3. Traversals (places/traversal_matcher.h): each whole-image descriptor of the 640 x 480 image
-//    (ms), and one query against a reference traversal of --images images (rendered views along
-//    the building's route) with each method, the sequence search included (ms per query, after
-//    sequence_frames queries so the search runs over its whole history).
+//    and its SIFT descriptors (ms), and one query against a reference traversal of --images images
+//    (rendered views along the building's route; the bag of words with its default 500-word
+//    vocabulary) with each method, the sequence search included (ms per query, after
+//    sequence_frames queries so the search runs over its whole history; the words' time is the
+//    word assignment and the cosines, the SIFT extraction is describe_ms_sift).
 // Last line: `bench_places: extract_ms_<space>=... extract_ms_all=... query_ms_<method>=...
 // describe_ms_<descriptor>=... traversal_ms_<method>=... images=N space=S`.
 #include <chrono>
@@ -18,6 +20,7 @@
 #include <cstdio>
 #include <string>
 
+#include "adaptive_perception/places/feature_index.h"
 #include "adaptive_perception/places/histogram.h"
 #include "adaptive_perception/places/place_matcher.h"
 #include "adaptive_perception/places/traversal_matcher.h"
@@ -136,17 +139,32 @@ int main(int argc, char** argv) {
                     ms);
       line += buf;
     }
+    {
+      const double ms = msPerCall(seconds / 4, [&] {
+        sink += places::extractSift(kitchen, places::SiftConfig()).rows;
+      });
+      std::snprintf(buf, sizeof(buf), " describe_ms_sift=%.2f", ms);
+      line += buf;
+    }
     std::vector<places::ImageDescriptors> route_views;
     for (int v = 0; v < 40; ++v) {
       const auto& stop = world.route[v * world.route.size() / 40];
-      route_views.push_back(places::computeDescriptors(
-          small_renderer.render(math::SE2(stop.xy_m.x(), stop.xy_m.y(), 0.0), light, rng),
-          tcfg.descriptor));
+      const cv::Mat view =
+          small_renderer.render(math::SE2(stop.xy_m.x(), stop.xy_m.y(), 0.0), light, rng);
+      route_views.push_back(places::computeDescriptors(view, tcfg.descriptor));
+      route_views.back().sift = places::extractSift(view, places::SiftConfig());
     }
     places::ReferenceTraversal refs(tcfg.descriptor);
-    for (long i = 0; i < images; ++i) refs.add(route_views[i % route_views.size()]);
-    const places::ImageDescriptors tquery = places::computeDescriptors(kitchen, tcfg.descriptor);
-    for (const char* method : {"thumbnail", "gradient", "chromaticity", "fused", "sequence"}) {
+    std::vector<cv::Mat> ref_sift;
+    for (long i = 0; i < images; ++i) {
+      refs.add(route_views[i % route_views.size()]);
+      ref_sift.push_back(route_views[i % route_views.size()].sift);
+    }
+    refs.learnWords(ref_sift);  // the default vocabulary (500 words)
+    places::ImageDescriptors tquery = places::computeDescriptors(kitchen, tcfg.descriptor);
+    tquery.sift = places::extractSift(kitchen, places::SiftConfig());
+    for (const char* method :
+         {"thumbnail", "gradient", "chromaticity", "words", "fused", "sequence"}) {
       places::TraversalMatcherConfig c = tcfg;
       c.method = method;
       places::TraversalMatcher matcher(refs, c);

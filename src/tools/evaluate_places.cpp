@@ -4,7 +4,8 @@
 //
 //   evaluate_places --database DB.sqlite (--bag FILE | --list CSV) [--images_per_place 15]
 //                   [--window 5] [--spaces all] [--methods paper|all|chi_square,...]
-//                   [--stay_probability 0.8] [--likelihood_sharpness 4] [--output DIR]
+//                   [--stay_probability 0.8] [--likelihood_sharpness 4] [--use_sequence 0]
+//                   [--output DIR]
 //
 // 1. The paper's protocol: for each test place, --images_per_place of its images (spread evenly)
 //    form one test set; every colour space and method gives a place and a confidence (eqs. 5-7),
@@ -19,7 +20,9 @@
 //    (`histogram_single_image_accuracy`), `single_image_accuracy` is --cue's.
 // 3. Sequences, with --cue (histogram: the best space and method): a sliding window of --window
 //    successive images (eqs. 6-7, `window_accuracy`) and the Bayes filter over the database's
-//    adjacency (`filter_accuracy`), scored against each window's last image.
+//    adjacency (`filter_accuracy`; with a whole-image cue it also takes the sequence matcher's
+//    view of the last images over the training images in stored order with --use_sequence 1),
+//    scored against each window's last image.
 // A database stored without whole-image descriptors (before they existed) is evaluated with the
 // histograms alone, with a warning.
 // `queries_per_s`: single-image queries (eq. 5 over the whole database) per second, best space
@@ -61,11 +64,13 @@ int main(int argc, char** argv) {
                    "[--images_per_place N] [--window M] [--spaces all|rgb,...] "
                    "[--methods paper|all|chi_square,jeffrey,ks,ks_cumulative,intersection] "
                    "[--cue fused|thumbnail|gradient|chromaticity|histogram] "
-                   "[--stay_probability P] [--likelihood_sharpness K] [--output DIR]\n"
+                   "[--stay_probability P] [--likelihood_sharpness K] [--use_sequence 0|1] "
+                   "[--output DIR]\n"
                    "   or: evaluate_places --reference A --query B [--tolerance_frames N] "
-                   "[--ground_truth CSV] [--method thumbnail|gradient|chromaticity|fused|sequence] "
+                   "[--ground_truth CSV] "
+                   "[--method thumbnail|gradient|chromaticity|words|fused|sequence] "
                    "[--sequence_frames L] [--thumbnail_weight W] [--gradient_weight W] "
-                   "[--chromaticity_weight W] [--output DIR]");
+                   "[--chromaticity_weight W] [--words_weight W] [--database F] [--output DIR]");
   if (args.has("reference") || args.has("query")) return tools::runTraversalEvaluation(args);
   const std::string db_path = args.get("database", "");
   const std::string bag = args.get("bag", "");
@@ -79,6 +84,7 @@ int main(int argc, char** argv) {
   places::PlaceFilterConfig& fc = rc.filter;
   fc.stay_probability = args.getDouble("stay_probability", fc.stay_probability);
   fc.likelihood_sharpness = args.getDouble("likelihood_sharpness", fc.likelihood_sharpness);
+  rc.use_sequence = args.getInt("use_sequence", rc.use_sequence ? 1 : 0) != 0;
   const std::string output = args.get("output", "results/evaluate_places");
   args.finish();
   if (db_path.empty()) args.fail("--database DB.sqlite is required");

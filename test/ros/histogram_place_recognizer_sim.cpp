@@ -7,6 +7,7 @@
 #include <std_msgs/String.h>
 #include <std_srvs/Trigger.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <mutex>
@@ -28,6 +29,8 @@ TEST(HistogramPlaceRecognizerSim, TrainsThroughTheServiceAndRecognisesAnotherRun
   const double min_window = p.param("min_window_accuracy", 0.6);
   const double min_filter = p.param("min_filter_accuracy", 0.6);
   const int min_results = p.param("min_results", 450);
+  // The fused cue's filter also observes the sequence matcher; the histogram cue has none.
+  const bool expect_sequence = p.param("expect_sequence", false);
   const ap::sim::IndoorWorld world = ap::sim::IndoorWorld::loadYaml(
       ap::ros_params::resolvePackagePath("config/worlds/indoor_building.yaml"));
 
@@ -95,7 +98,7 @@ TEST(HistogramPlaceRecognizerSim, TrainsThroughTheServiceAndRecognisesAnotherRun
   std::lock_guard<std::mutex> l(mutex);
   EXPECT_GE(requested.size(), 10u) << "places trained through add_images";
   ASSERT_GE(static_cast<int>(results.size()), min_results);
-  int scored = 0, window_right = 0, filter_right = 0;
+  int scored = 0, window_right = 0, filter_right = 0, with_sequence = 0;
   std::map<std::string, std::pair<int, int>> by_place;
   for (const auto& r : results) {
     const auto it = truth.find(r.header.stamp);
@@ -109,7 +112,16 @@ TEST(HistogramPlaceRecognizerSim, TrainsThroughTheServiceAndRecognisesAnotherRun
     EXPECT_EQ(r.places.size(), r.belief.size());
     EXPECT_GE(r.confidence, 0.0);
     EXPECT_LE(r.confidence, 1.0);
+    // The fused answer's confidence is the filter's belief in it.
+    const auto f = std::find(r.places.begin(), r.places.end(), r.filtered_place);
+    ASSERT_NE(f, r.places.end()) << "filtered_place '" << r.filtered_place << "'";
+    EXPECT_DOUBLE_EQ(r.filtered_confidence, r.belief[f - r.places.begin()]);
+    with_sequence += !r.sequence_place.empty();
   }
+  if (expect_sequence)
+    EXPECT_EQ(with_sequence, scored) << "every result carries the sequence matcher's place";
+  else
+    EXPECT_EQ(with_sequence, 0);
   for (const auto& [place, c] : by_place)
     std::printf("  %-20s window %d / %d\n", place.c_str(), c.first, c.second);
   ASSERT_GT(scored, min_results * 0.9);

@@ -33,6 +33,12 @@ class PlaceDescriptorIndex {
   /// stored.
   std::vector<double> nodeDistances(const std::array<double, kNumDescriptorKinds>& weights,
                                     const ImageDescriptors& query) const;
+  /// The cue's distance of `query` to every training image, in the order stored (cueDistances).
+  std::vector<float> imageDistances(const std::array<double, kNumDescriptorKinds>& weights,
+                                    const ImageDescriptors& query) const;
+  /// Node distances from per-image scores (totalImages() values, lower = better; e.g. a
+  /// sequence matcher's): per place its best image's score minus the best of all.
+  std::vector<double> nodeDistancesOf(const std::vector<float>& image_scores) const;
 
  private:
   std::vector<std::string> names_;

@@ -8,7 +8,9 @@
 // "chromaticity", the whole-image cues of global_descriptor.h against each place's nearest
 // training image (place_descriptor_index.h), which hold across a change of light; or "histogram",
 // the paper's colour histograms (eq. 5) in color_space / method, with the most confident space /
-// method when those are "auto" (papers/004 section 6).
+// method when those are "auto" (papers/004 section 6). With the whole-image cues the filter also
+// takes the sequence matcher's view of the last images (use_sequence); its answer is the fused
+// one.
 #include <deque>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "adaptive_perception/places/place_descriptor_index.h"
 #include "adaptive_perception/places/place_filter.h"
 #include "adaptive_perception/places/place_matcher.h"
+#include "adaptive_perception/places/sequence_matcher.h"
 
 namespace adaptive_perception::places {
 
@@ -28,16 +31,26 @@ struct PlaceRecognizerConfig {
   int window = 5;                    // images combined by eqs. (6)-(7), 1..1000
   bool use_filter = true;            // run the Bayes filter
   PlaceFilterConfig filter;
+  // Whole-image cues with the filter on: SeqSLAM (sequence_matcher.h) over the training images in
+  // the order they were stored, each place scored by its best image, as a second observation of
+  // the filter beside the single image's. Off: it needs training images that are one continuous
+  // drive at about the query's pace (a reference traversal); over the paper's sparse training
+  // images (15 per place) it made the filter worse on every simulated train / test lighting pair
+  // (omni: 0.84-0.96 -> 0.54-0.76; docs/places_across_light.md).
+  bool use_sequence = false;
+  SequenceMatcherConfig sequence;
 
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
 struct PlaceResult {
-  std::string cue;             // the configured cue
-  Recognition recognition;     // of the window (histogram cue: in the chosen space / method)
-  int images = 0;              // in the window
-  std::vector<double> belief;  // the filter's, per place (empty without filter)
-  int filtered_place = -1;
+  std::string cue;                   // the configured cue
+  Recognition recognition;           // of the window (histogram cue: in the chosen space / method)
+  int images = 0;                    // in the window
+  std::vector<double> belief;        // the filter's, per place (empty without filter)
+  int filtered_place = -1;           // the fused answer: the filter's most probable place
+  double filtered_confidence = 0.0;  // its belief
+  int sequence_place = -1;           // the sequence matcher's best place (-1 when it does not run)
 };
 
 class PlaceRecognizer {
@@ -71,8 +84,9 @@ class PlaceRecognizer {
   std::vector<Distance> methods_;
   std::deque<std::vector<std::vector<double>>> window_;  // [image][combo][place]
   std::vector<std::vector<int>> adjacency_;
-  std::vector<PlaceFilter> filter_;  // zero or one
-  long seen_ = 0;                    // images since reset()
+  std::vector<PlaceFilter> filter_;        // zero or one
+  std::vector<SequenceMatcher> sequence_;  // zero or one
+  long seen_ = 0;                          // images since reset()
 };
 
 }  // namespace adaptive_perception::places

@@ -18,14 +18,28 @@ void PlaceDescriptorIndex::addImage(int place, const ImageDescriptors& d) {
   place_.push_back(place);
 }
 
+std::vector<float> PlaceDescriptorIndex::imageDistances(
+    const std::array<double, kNumDescriptorKinds>& weights, const ImageDescriptors& query) const {
+  return cueDistances(rows_, query, weights);
+}
+
+std::vector<double> PlaceDescriptorIndex::nodeDistancesOf(
+    const std::vector<float>& image_scores) const {
+  if (image_scores.size() != place_.size())
+    throw std::invalid_argument(
+        "PlaceDescriptorIndex::nodeDistancesOf: " + std::to_string(image_scores.size()) +
+        " scores for " + std::to_string(place_.size()) + " images");
+  std::vector<double> out(names_.size(), std::numeric_limits<double>::infinity());
+  if (image_scores.empty()) return out;
+  const double lowest = *std::min_element(image_scores.begin(), image_scores.end());
+  for (size_t r = 0; r < image_scores.size(); ++r)
+    out[place_[r]] = std::min<double>(out[place_[r]], image_scores[r] - lowest);
+  return out;
+}
+
 std::vector<double> PlaceDescriptorIndex::nodeDistances(
     const std::array<double, kNumDescriptorKinds>& weights, const ImageDescriptors& query) const {
-  const std::vector<float> d = cueDistances(rows_, query, weights);
-  std::vector<double> out(names_.size(), std::numeric_limits<double>::infinity());
-  const double lowest = *std::min_element(d.begin(), d.end());
-  for (size_t r = 0; r < d.size(); ++r)
-    out[place_[r]] = std::min<double>(out[place_[r]], d[r] - lowest);
-  return out;
+  return nodeDistancesOf(imageDistances(weights, query));
 }
 
 }  // namespace adaptive_perception::places

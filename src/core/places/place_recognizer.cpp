@@ -16,6 +16,7 @@ void PlaceRecognizerConfig::validate() const {
   if (window < 1 || window > 1000)
     throw std::invalid_argument("window must be in 1..1000, got " + std::to_string(window));
   filter.validate();
+  sequence.validate();
 }
 
 PlaceRecognizer::PlaceRecognizer(PlaceRecognizerConfig config) : config_(std::move(config)) {
@@ -35,7 +36,8 @@ void PlaceRecognizer::setDatabase(PlaceIndex index, std::vector<std::vector<int>
     if (descriptors.numPlaces() != index.numPlaces() || descriptors.totalImages() < stored)
       throw std::invalid_argument(
           "the place database holds " + std::to_string(stored) + " training images but " +
-          std::to_string(descriptors.totalImages()) + " with whole-image descriptors (stored "
+          std::to_string(descriptors.totalImages()) +
+          " with whole-image descriptors (stored "
           "before the cues existed?): train it again, or set the cue to histogram");
   }
   descriptors_ = std::move(descriptors);
@@ -60,18 +62,27 @@ void PlaceRecognizer::reset() {
   window_.clear();
   seen_ = 0;
   filter_.clear();
-  if (config_.use_filter && index_.numPlaces() > 0)
+  sequence_.clear();
+  if (config_.use_filter && index_.numPlaces() > 0) {
     filter_.emplace_back(adjacency_, config_.filter);
+    if (config_.use_sequence && usesDescriptors() && descriptors_.totalImages() > 0)
+      sequence_.emplace_back(config_.sequence);
+  }
 }
 
 PlaceResult PlaceRecognizer::add(const ImageHistograms& h, const ImageDescriptors* d) {
   if (index_.numPlaces() == 0 || spaces_.empty())
     throw std::logic_error("the place database has no trained place yet");
   std::vector<std::vector<double>> per_combo;
+  std::vector<double> sequence_nodes;
   if (usesDescriptors()) {
-    if (!d) throw std::invalid_argument("PlaceRecognizer::add: the " + config_.cue +
-                                        " cue needs the image's whole-image descriptors");
-    per_combo.push_back(descriptors_.nodeDistances(cueWeights(config_.cue, config_.fusion), *d));
+    if (!d)
+      throw std::invalid_argument("PlaceRecognizer::add: the " + config_.cue +
+                                  " cue needs the image's whole-image descriptors");
+    const std::vector<float> images =
+        descriptors_.imageDistances(cueWeights(config_.cue, config_.fusion), *d);
+    per_combo.push_back(descriptors_.nodeDistancesOf(images));
+    if (!sequence_.empty()) sequence_nodes = descriptors_.nodeDistancesOf(sequence_[0].add(images));
   } else {
     for (int s : spaces_)
       for (Distance m : methods_) per_combo.push_back(index_.nodeDistances(s, m, h));
@@ -103,8 +114,14 @@ PlaceResult PlaceRecognizer::add(const ImageHistograms& h, const ImageDescriptor
     const size_t chosen = &best - recs.data();
     if (seen_ > 0) filter_[0].predict();
     filter_[0].update(window_.back()[chosen]);
+    if (!sequence_nodes.empty()) {
+      filter_[0].update(sequence_nodes);
+      out.sequence_place = static_cast<int>(
+          std::min_element(sequence_nodes.begin(), sequence_nodes.end()) - sequence_nodes.begin());
+    }
     out.belief = filter_[0].belief();
     out.filtered_place = filter_[0].best();
+    out.filtered_confidence = out.belief[out.filtered_place];
   }
   return out;
 }

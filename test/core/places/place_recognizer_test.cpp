@@ -129,3 +129,43 @@ TEST(PlaceRecognizer, FusedCueFindsThePlaceOfTheNearestTrainingImage) {
   EXPECT_EQ(x.filtered_place, 1);
   EXPECT_THROW(r.add(hist(0.5f, 0.5f)), std::invalid_argument);  // no descriptors given
 }
+
+TEST(PlaceRecognizer, SequenceJoinsTheFilterOverADrive) {
+  // A training drive of 24 views, six per place (a, b, c, d, adjacent in that order), driven
+  // again under half the light. With use_sequence the filter also observes the sequence matcher,
+  // whose best place is reported; without, it is not run.
+  PlaceIndex index(2);
+  for (const char* n : {"a", "b", "c", "d"}) index.addPlace(n);
+  PlaceDescriptorIndex desc(index.placeNames());
+  const GlobalDescriptorConfig dc;
+  for (int v = 0; v < 24; ++v) {
+    index.addImage(v / 6, hist(0.5f, 0.5f));
+    desc.addImage(v / 6, computeDescriptors(texture(50 + v), dc));
+  }
+  const std::vector<std::vector<int>> chain = {{1}, {0, 2}, {1, 3}, {2}};
+  for (bool use : {false, true}) {
+    PlaceRecognizerConfig cfg;
+    cfg.use_sequence = use;
+    PlaceRecognizer r(cfg);
+    r.setDatabase(index, chain, desc);
+    int sequence_right = 0, filter_right = 0;
+    for (int v = 0; v < 24; ++v) {
+      cv::Mat dim;
+      texture(50 + v).convertTo(dim, -1, 0.5, 0.0);
+      const ImageDescriptors q = computeDescriptors(dim, dc);
+      const PlaceResult x = r.add(hist(0.5f, 0.5f), &q);
+      ASSERT_GE(x.filtered_place, 0);
+      EXPECT_DOUBLE_EQ(x.filtered_confidence, x.belief[x.filtered_place]);
+      if (!use) {
+        EXPECT_EQ(x.sequence_place, -1);
+      } else {
+        sequence_right += x.sequence_place == v / 6;
+      }
+      filter_right += x.filtered_place == v / 6;
+    }
+    if (use) {
+      EXPECT_EQ(sequence_right, 24);
+    }
+    EXPECT_GE(filter_right, 22) << (use ? "with" : "without") << " the sequence";
+  }
+}
