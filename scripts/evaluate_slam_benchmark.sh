@@ -57,4 +57,4 @@ md="$OUT/table.md"
   tail -n +2 "$csv" | awk -F, '{printf "| %s |", $1; for (i = 2; i <= NF; ++i) printf " %s |", $i; printf "\n"}'
 } > "$md"
 cat "$md"
-echo "evaluate_slam_benchmark: flags '$FLAGS'; table in $csv and $md, maps in $OUT/<log>/map.png"
+echo "evaluate_slam_benchmark: flags '$FLAGS'; table in $csv and $md, maps in $OUT/<log>/: map.png (line landmarks), map_grid.png and map.yaml + map.pgm (the occupancy grid at the optimised poses, map_server format)"

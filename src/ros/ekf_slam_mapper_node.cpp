@@ -60,8 +60,18 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   stamp_order_ = ros_conv::StampOrder("ekf_slam_mapper", "lines", P::loadStampOrder(pnh));
   map_file_ = P::get<std::string>(pnh, "map_file", "line_map.yaml");
   path_max_poses_ = P::getInRange(pnh, "path_max_poses", path_max_poses_, 1, 10000000);
+  grid_config_.resolution_m =
+      P::getInRange(pnh, "grid_resolution_m", grid_config_.resolution_m, 0.005, 10.0);
+  grid_config_.max_range_m =
+      P::getInRange(pnh, "grid_max_range_m", grid_config_.max_range_m, 0.1, 1000.0);
+  map_update_interval_s_ =
+      P::getInRange(pnh, "map_update_interval_s", map_update_interval_s_, 0.0, 3600.0);
+  keyframes_ = std::make_unique<slam::GridKeyframes>(
+      P::getInRange(pnh, "grid_keyframe_distance_m", 0.1, 0.0, 100.0),
+      P::getInRange(pnh, "grid_keyframe_angle_rad", 0.1, 0.0, M_PI));
   try {
     config_.validate();
+    grid_config_.validate();
   } catch (const std::invalid_argument& e) {
     throw ParamError(std::string("ekf_slam_mapper parameters: ") + e.what());
   }
@@ -76,6 +86,17 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     external_sub_ = nh.subscribe("external_pose", 20, &EkfSlamMapperNode::onExternalPose, this);
   save_srv_ =
       service_queue_.handle(pnh).advertiseService("save_map", &EkfSlamMapperNode::onSaveMap, this);
+  if (map_update_interval_s_ > 0.0) {
+    scan_sub_ = nh.subscribe(ros_topics::kScan, 20, &EkfSlamMapperNode::onScan, this);
+    grid_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
+    grid_meta_pub_ = nh.advertise<nav_msgs::MapMetaData>("map_metadata", 1, true);
+    get_map_srv_ = service_queue_.handle(nh).advertiseService("dynamic_map",
+                                                              &EkfSlamMapperNode::onGetMap, this);
+    map_timer_ = service_queue_.handle(nh).createSteadyTimer(
+        ros::WallDuration(map_update_interval_s_), [this](const ros::SteadyTimerEvent&) {
+          onMapTimer();
+        });
+  }
   diagnostics_.setHardwareID("ekf_slam_mapper");
   freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
@@ -94,6 +115,8 @@ void EkfSlamMapperNode::reset(const char* why) {
   ROS_WARN("ekf_slam_mapper: %s: the map starts again", why);
   slam_ = std::make_unique<slam::LineEkfSlam>(config_, initial_pose_, initial_cov_);
   path_.poses.clear();
+  keyframes_->clear();
+  recent_scans_.clear();
   ++resets_;
 }
 
@@ -149,6 +172,17 @@ void EkfSlamMapperNode::onLines(const ros::MessageEvent<const LineSegmentArray>&
     ++update_failures_;
     return;
   }
+  // The grid keeps the scan these lines came from, at the pose the filter now gives it.
+  if (map_update_interval_s_ > 0.0) {
+    while (!recent_scans_.empty() && recent_scans_.front()->header.stamp < msg->header.stamp)
+      recent_scans_.pop_front();
+    if (!recent_scans_.empty() && recent_scans_.front()->header.stamp == msg->header.stamp) {
+      keyframes_->add(ros_conv::fromLaserScan(*recent_scans_.front()), slam_->pose() * mount);
+      recent_scans_.pop_front();
+    } else {
+      ++scans_without_laser_scan_;
+    }
+  }
   last_update_ms_ =
       1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   max_update_ms_ = std::max(max_update_ms_, last_update_ms_);
@@ -156,6 +190,63 @@ void EkfSlamMapperNode::onLines(const ros::MessageEvent<const LineSegmentArray>&
   freq_->tick();
   publish(msg->header, odom);
   diagnostics_.update();
+}
+
+void EkfSlamMapperNode::onScan(const sensor_msgs::LaserScanConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  recent_scans_.push_back(msg);
+  while (recent_scans_.size() > 100) recent_scans_.pop_front();  // lines that never came
+}
+
+bool EkfSlamMapperNode::renderGrid(nav_msgs::OccupancyGrid* out, slam::OccupancyGrid* grid_out) {
+  std::vector<laser::LaserScan2D> scans;
+  std::vector<math::SE2> poses;
+  ros::Time stamp;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    scans = keyframes_->scans();
+    poses = keyframes_->poses();
+    stamp = last_stamp_;
+  }
+  if (scans.empty()) return false;
+  const auto t0 = std::chrono::steady_clock::now();
+  const slam::OccupancyGrid grid = slam::renderOccupancyGrid(scans, poses, grid_config_);
+  out->header.frame_id = map_frame_;
+  out->header.stamp = stamp;
+  out->info.map_load_time = stamp;
+  out->info.resolution = static_cast<float>(grid.resolution_m);
+  out->info.width = static_cast<std::uint32_t>(grid.width);
+  out->info.height = static_cast<std::uint32_t>(grid.height);
+  out->info.origin.position.x = grid.origin_x_m;
+  out->info.origin.position.y = grid.origin_y_m;
+  out->info.origin.orientation.w = 1.0;
+  out->data.assign(grid.data.begin(), grid.data.end());
+  std::lock_guard<std::mutex> lock(mutex_);
+  last_grid_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++grid_renders_;
+  if (grid_out) *grid_out = grid;
+  return true;
+}
+
+void EkfSlamMapperNode::onMapTimer() {
+  nav_msgs::OccupancyGrid grid;
+  try {
+    if (!renderGrid(&grid)) return;
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(30.0, "ekf_slam_mapper: occupancy grid not rendered: %s", e.what());
+    return;
+  }
+  grid_meta_pub_.publish(grid.info);
+  grid_pub_.publish(grid);
+}
+
+bool EkfSlamMapperNode::onGetMap(nav_msgs::GetMap::Request&, nav_msgs::GetMap::Response& res) {
+  try {
+    return renderGrid(&res.map);  // false (the call fails) before the first scan
+  } catch (const std::exception& e) {
+    ROS_ERROR("ekf_slam_mapper: dynamic_map: %s", e.what());
+    return false;
+  }
 }
 
 void EkfSlamMapperNode::onExternalPose(
@@ -297,11 +388,16 @@ bool EkfSlamMapperNode::onSaveMap(SaveMap::Request& req, SaveMap::Response& res)
   // the node's current directory: $ROS_HOME under roslaunch).
   const std::string path = io::absolutePath(req.path.empty() ? map_file_ : req.path);
   res.success = false;
+  // The occupancy grid goes beside it: NAME_grid.yaml and NAME_grid.pgm.
+  const std::string grid_yaml =
+      (fs::path(path).parent_path() / (fs::path(path).stem().string() + "_grid.yaml")).string();
+  const std::string grid_pgm = fs::path(grid_yaml).replace_extension(".pgm").string();
   std::error_code ec;
-  if (fs::exists(path, ec) && !req.overwrite) {
-    res.message = path + " exists; call again with overwrite: true to replace it";
-    return true;
-  }
+  for (const std::string& f : {path, grid_yaml, grid_pgm})
+    if ((f == path || map_update_interval_s_ > 0.0) && fs::exists(f, ec) && !req.overwrite) {
+      res.message = f + " exists; call again with overwrite: true to replace it";
+      return true;
+    }
   // A copy of the filter is taken under the lock (a few ms even for hundreds of landmarks); the
   // file is written from it on the service thread while scans go on.
   std::unique_ptr<const slam::LineEkfSlam> snapshot;
@@ -316,6 +412,22 @@ bool EkfSlamMapperNode::onSaveMap(SaveMap::Request& req, SaveMap::Response& res)
                   std::to_string(snapshot->numFixedLandmarks()) + " fixed landmarks to " + path;
   } catch (const std::exception& e) {
     res.message = e.what();
+    return true;
+  }
+  if (map_update_interval_s_ <= 0.0) return true;
+  nav_msgs::OccupancyGrid unused;
+  slam::OccupancyGrid grid;
+  try {
+    if (renderGrid(&unused, &grid)) {
+      slam::writeMapServerFiles(grid, grid_yaml);
+      res.message += "; the occupancy grid (" + std::to_string(grid.width) + " x " +
+                     std::to_string(grid.height) + " cells) to " + grid_yaml + " and its .pgm";
+    } else {
+      res.message += "; no occupancy grid yet (no scan matched to its lines)";
+    }
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message += "; but the occupancy grid was not saved: " + std::string(e.what());
   }
   return true;
 }
@@ -341,6 +453,10 @@ void EkfSlamMapperNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   stat.add("external poses used", external_used_);
   stat.add("external poses rejected", external_rejected_);
   stat.add("resets", resets_);
+  stat.add("grid keyframes", static_cast<long>(keyframes_->size()));
+  stat.add("grid renders", grid_renders_);
+  stat.add("grid render time last (s)", last_grid_s_);
+  stat.add("lines without their scan (not in the grid)", scans_without_laser_scan_);
 }
 
 }  // namespace adaptive_perception

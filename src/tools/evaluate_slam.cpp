@@ -37,7 +37,9 @@
 // available. --make_relations writes reference relations from ground_truth/pose (1 s chain + 200
 // random pairs). Writes OUTPUT/estimate.tum, truth.tum, odometry.tum, pose_covariance.csv,
 // nees.csv (per scan with ground truth: NEES and the pose error), nis.csv (per scan: NIS, dof, landmarks merged),
-// landmarks.csv and map.png.
+// landmarks.csv, map.png (the line landmarks) and the occupancy grid of every scan at its final
+// pose (estimate.tum's) in map_server's files, map.yaml + map.pgm (slam/occupancy_grid.h, 0.05 m),
+// and map_grid.png.
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
@@ -64,6 +66,7 @@
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/slam/line_ekf_slam.h"
 #include "adaptive_perception/slam/map_drawing.h"
+#include "adaptive_perception/slam/occupancy_grid.h"
 #include "adaptive_perception/slam/relations.h"
 #include "adaptive_perception/slam/pose_graph.h"
 #include "adaptive_perception/slam/scan_matcher.h"
@@ -270,6 +273,7 @@ int main(int argc, char** argv) {
     slam::LaserOdometry laser_odometry;
     slam::LoopClosingMapper mapper;
     std::vector<double> scan_stamps;
+    std::vector<std::pair<double, laser::LaserScan2D>> kept_scans;  // for the occupancy grid
     std::ofstream front_tum;
     if (front_end == "laser_odometry") front_tum.open(fs::path(output) / "laser_odometry.tum");
     double front_s = 0.0;
@@ -316,6 +320,7 @@ int main(int argc, char** argv) {
       max_update_s = std::max(max_update_s, dt);
       const double t = s->header.stamp.toSec();
       estimate[t] = ekf.pose();
+      kept_scans.emplace_back(t, scan2d);
       tum(ekf_tum, t, ekf.pose());
       if (loop_closing) {
         const auto c1 = std::chrono::steady_clock::now();
@@ -364,6 +369,20 @@ int main(int argc, char** argv) {
       std::ofstream est_tum(fs::path(output) / "estimate.tum");
       for (const auto& [t, p] : estimate) tum(est_tum, t, p);
     }
+    // The occupancy grid of every scan at its final pose: map_server's files and a picture.
+    const auto c_grid = std::chrono::steady_clock::now();
+    std::vector<laser::LaserScan2D> grid_scans;
+    std::vector<math::SE2> grid_poses;
+    grid_scans.reserve(kept_scans.size());
+    for (auto& [t, scan] : kept_scans) {
+      grid_poses.push_back(estimate.at(t) * mount);
+      grid_scans.push_back(std::move(scan));
+    }
+    const slam::OccupancyGrid grid = slam::renderOccupancyGrid(grid_scans, grid_poses);
+    slam::writeMapServerFiles(grid, (fs::path(output) / "map.yaml").string());
+    cv::imwrite((fs::path(output) / "map_grid.png").string(), slam::drawOccupancyGrid(grid));
+    const double grid_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - c_grid).count();
     // NEES, in the anchored frame for the anchor variant (known only once both anchors are fixed;
     // the frame is the same from the moment they are, and before that the map is the start frame).
     const math::SE2 frame = cfg.variant == slam::Variant::kAnchor
@@ -422,7 +441,7 @@ int main(int argc, char** argv) {
         "merged=%ld scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f "
         "front_end=%s front_end_relation_trans_error_m=%.4f front_end_relation_rot_error_deg=%.3f "
         "front_end_matched=%.3f front_end_ms_mean=%.3f loop_closures=%d graph_nodes=%d "
-        "ekf_relation_trans_error_m=%.4f\n",
+        "ekf_relation_trans_error_m=%.4f grid_cells=%dx%d grid_s=%.1f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
         with_truth ? double(below) / with_truth : -1.0,
@@ -435,7 +454,7 @@ int main(int argc, char** argv) {
         has_rel && !front_estimate.empty() ? math::radToDeg(front_rel.rot_mean_rad) : -1.0,
         laser_odometry.scans() ? double(laser_odometry.matched()) / laser_odometry.scans() : -1.0,
         1e3 * front_s / scans.size(), mapper.loopClosures(), mapper.nodes(),
-        has_rel ? ekf_rel.trans_mean_m : -1.0);
+        has_rel ? ekf_rel.trans_mean_m : -1.0, grid.width, grid.height, grid_s);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";
     return 1;

@@ -2,6 +2,8 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
+#include <nav_msgs/GetMap.h>
+#include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
@@ -18,6 +20,7 @@
 #include "adaptive_perception/SaveMap.h"
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/slam/occupancy_grid.h"
 
 namespace ros_conv = adaptive_perception::ros_conv;
 namespace math = adaptive_perception::math;
@@ -33,10 +36,10 @@ TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
   geometry_msgs::PoseWithCovarianceStampedConstPtr last_pose;
   visualization_msgs::MarkerArrayConstPtr last_map;
   nav_msgs::PathConstPtr last_path;
-  int scans = 0, poses = 0;
+  nav_msgs::OccupancyGridConstPtr last_grid;
+  int scans = 0, poses = 0, grids = 0;
   auto a = nh.subscribe<geometry_msgs::PoseWithCovarianceStamped>(
-      "ekf_slam_mapper/pose", 2000,
-      [&](const geometry_msgs::PoseWithCovarianceStampedConstPtr& m) {
+      "ekf_slam_mapper/pose", 2000, [&](const geometry_msgs::PoseWithCovarianceStampedConstPtr& m) {
         std::lock_guard<std::mutex> l(mutex);
         last_pose = m;
         ++poses;
@@ -56,11 +59,17 @@ TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
         std::lock_guard<std::mutex> l(mutex);
         last_map = m;
       });
-  auto e = nh.subscribe<nav_msgs::Path>("ekf_slam_mapper/path", 5,
-                                        [&](const nav_msgs::PathConstPtr& m) {
-                                          std::lock_guard<std::mutex> l(mutex);
-                                          last_path = m;
-                                        });
+  auto e =
+      nh.subscribe<nav_msgs::Path>("ekf_slam_mapper/path", 5, [&](const nav_msgs::PathConstPtr& m) {
+        std::lock_guard<std::mutex> l(mutex);
+        last_path = m;
+      });
+  auto f = nh.subscribe<nav_msgs::OccupancyGrid>("map", 5,
+                                                 [&](const nav_msgs::OccupancyGridConstPtr& m) {
+                                                   std::lock_guard<std::mutex> l(mutex);
+                                                   last_grid = m;
+                                                   ++grids;
+                                                 });
   tf2_ros::Buffer tf_buffer;
   tf2_ros::TransformListener tf_listener(tf_buffer);
   ros::AsyncSpinner spinner(2);
@@ -98,6 +107,45 @@ TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
   }
   EXPECT_TRUE(tf_buffer.canTransform("map", "odom", ros::Time(0), ros::Duration(1.0)));
 
+  // The occupancy grid: published on map while the bag plays; the robot's true path lies on free
+  // cells, the walls' hits make occupied ones, and dynamic_map serves the same grid.
+  ros::WallDuration(3.0).sleep();  // the last render after the bag's end (map_update_interval_s 2)
+  {
+    std::lock_guard<std::mutex> l(mutex);
+    ASSERT_TRUE(last_grid) << "no occupancy grid on map";
+    EXPECT_GE(grids, 3);
+    EXPECT_EQ(last_grid->header.frame_id, "map");
+    EXPECT_FLOAT_EQ(last_grid->info.resolution, 0.05f);
+    ASSERT_EQ(last_grid->data.size(),
+              static_cast<size_t>(last_grid->info.width) * last_grid->info.height);
+    long occupied = 0, free_cells = 0;
+    for (std::int8_t v : last_grid->data) {
+      occupied += v == 100;
+      free_cells += v == 0;
+    }
+    EXPECT_GT(occupied, 500) << "the corridor's walls";
+    EXPECT_GT(free_cells, occupied);
+    long on_path = 0, path_free = 0;
+    const double res = last_grid->info.resolution;
+    for (const auto& [t, g] : truth) {
+      const long cx =
+          static_cast<long>(std::floor((g.x_m - last_grid->info.origin.position.x) / res));
+      const long cy =
+          static_cast<long>(std::floor((g.y_m - last_grid->info.origin.position.y) / res));
+      if (cx < 0 || cy < 0 || cx >= last_grid->info.width || cy >= last_grid->info.height) continue;
+      ++on_path;
+      path_free += last_grid->data[cy * last_grid->info.width + cx] == 0;
+    }
+    EXPECT_GT(on_path, 1000);
+    EXPECT_GE(path_free, 0.95 * on_path) << "the true path crosses free cells";
+  }
+  nav_msgs::GetMap get;
+  ASSERT_TRUE(ros::service::waitForService("dynamic_map", 5000));
+  ASSERT_TRUE(ros::service::call("dynamic_map", get));
+  EXPECT_GT(get.response.map.info.width, 100u);
+  EXPECT_EQ(get.response.map.data.size(),
+            static_cast<size_t>(get.response.map.info.width) * get.response.map.info.height);
+
   // save_map: writes the map; refuses to overwrite without the flag, leaving the file untouched.
   const std::string path = "/tmp/ekf_slam_mapper_loop_test_map.yaml";
   std::remove(path.c_str());
@@ -111,10 +159,23 @@ TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
   EXPECT_GE(n, min_lm);
   EXPECT_LE(n, max_lm);
   EXPECT_EQ(y["state_covariance"]["dim"].as<int>(), 3 + 2 * n);
+  // The grid beside it, in map_server's format, read back by the project's reader.
+  const std::string grid_yaml = "/tmp/ekf_slam_mapper_loop_test_map_grid.yaml";
+  const std::string grid_pgm = "/tmp/ekf_slam_mapper_loop_test_map_grid.pgm";
+  const adaptive_perception::slam::OccupancyGrid saved =
+      adaptive_perception::slam::readMapServerFiles(grid_yaml);
+  EXPECT_EQ(saved.width, static_cast<int>(get.response.map.info.width));
+  EXPECT_EQ(saved.height, static_cast<int>(get.response.map.info.height));
+  EXPECT_NEAR(saved.origin_x_m, get.response.map.info.origin.position.x, 1e-6);
   ASSERT_TRUE(ros::service::call("ekf_slam_mapper/save_map", srv));
   EXPECT_FALSE(srv.response.success);
   EXPECT_NE(srv.response.message.find("exists"), std::string::npos);
+  // Only the grid left from before: still refused, naming it.
   std::remove(path.c_str());
+  ASSERT_TRUE(ros::service::call("ekf_slam_mapper/save_map", srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find(grid_yaml), std::string::npos) << srv.response.message;
+  for (const std::string& f : {path, grid_yaml, grid_pgm}) std::remove(f.c_str());
 }
 
 int main(int argc, char** argv) {

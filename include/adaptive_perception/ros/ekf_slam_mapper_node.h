@@ -15,10 +15,15 @@
 //   rejected (outliers).
 //   ~map_frame, ~odom_frame, ~base_frame, ~publish_tf (bool), ~transform_tolerance_s,
 //   ~tf_timeout_s, ~map_file (save_map's default path), ~path_max_poses.
+//   ~grid_resolution_m (0.05), ~grid_max_range_m (30), ~map_update_interval_s (5; 0: no grid),
+//   ~grid_keyframe_distance_m (0.1), ~grid_keyframe_angle_rad (0.1): the occupancy grid
+//   (slam/occupancy_grid.h), rendered from the scans kept after that much motion, each at the
+//   pose the filter gave it.
 //   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
 //   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed:
 //   lines (adaptive_perception/LineSegmentArray from line_extractor, in the laser frame),
+//   scan (sensor_msgs/LaserScan: the scans the lines came from, matched by stamp, for the grid),
 //   tf odom -> base_link and base_link -> the lines' frame at the scan stamp,
 //   external_pose (geometry_msgs/PoseWithCovarianceStamped in map; variant external only: x, y,
 //   and yaw too when its variance is finite and below 1e3 rad^2).
@@ -27,14 +32,21 @@
 //   ekf_slam_mapper/map (visualization_msgs/MarkerArray: confirmed segments black, anchored /
 //   retired blue, tentative grey; 2-sigma bands of each landmark's offset at its midpoint; the
 //   robot's 2-sigma position ellipse), ekf_slam_mapper/path (nav_msgs/Path),
+//   map (nav_msgs/OccupancyGrid, latched, every ~map_update_interval_s) and map_metadata
+//   (nav_msgs/MapMetaData, latched), as gmapping publishes them,
 //   /diagnostics (landmarks, update time, scans, rejected inputs).
 // Services:
 //   ~save_map (adaptive_perception/SaveMap): the map and its covariance as YAML (slam/map_io.h),
-//   written to a temporary file and renamed.
+//   and beside it the occupancy grid in map_server's format (NAME_grid.yaml + NAME_grid.pgm),
+//   each written to a temporary file and renamed; refused when one exists unless overwrite.
+//   dynamic_map (nav_msgs/GetMap): the occupancy grid rendered now, as gmapping serves it.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <nav_msgs/GetMap.h>
+#include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Path.h>
+#include <sensor_msgs/LaserScan.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -42,6 +54,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <Eigen/Geometry>
+#include <deque>
 #include <memory>
 #include <mutex>
 
@@ -50,6 +63,7 @@
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
 #include "adaptive_perception/slam/line_ekf_slam.h"
+#include "adaptive_perception/slam/occupancy_grid.h"
 
 namespace adaptive_perception {
 
@@ -61,7 +75,13 @@ class EkfSlamMapperNode {
  private:
   void onLines(const ros::MessageEvent<const LineSegmentArray>& event);
   void onExternalPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
+  void onScan(const sensor_msgs::LaserScanConstPtr& msg);
   bool onSaveMap(SaveMap::Request& req, SaveMap::Response& res);
+  bool onGetMap(nav_msgs::GetMap::Request& req, nav_msgs::GetMap::Response& res);
+  // The grid of the keyframes so far (copied under the lock, rendered outside it); false with
+  // no keyframe yet.
+  bool renderGrid(nav_msgs::OccupancyGrid* out, slam::OccupancyGrid* grid = nullptr);
+  void onMapTimer();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
   void reset(const char* why);
   void publish(const std_msgs::Header& header, const Eigen::Isometry3d& odom_to_base);
@@ -79,6 +99,12 @@ class EkfSlamMapperNode {
   ros::Time last_stamp_;
   ros_conv::StampOrder stamp_order_{"ekf_slam_mapper", "lines"};
   nav_msgs::Path path_;
+  slam::OccupancyGridConfig grid_config_;
+  double map_update_interval_s_ = 5.0;
+  std::deque<sensor_msgs::LaserScanConstPtr> recent_scans_;  // awaiting their lines
+  std::unique_ptr<slam::GridKeyframes> keyframes_;
+  long grid_renders_ = 0, scans_without_laser_scan_ = 0;
+  double last_grid_s_ = 0.0;
 
   long scans_ = 0, skipped_no_tf_ = 0, bad_segments_ = 0, resets_ = 0, external_used_ = 0,
        external_rejected_ = 0, update_failures_ = 0;
@@ -88,10 +114,11 @@ class EkfSlamMapperNode {
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
-  ros::Subscriber lines_sub_, external_sub_;
-  ros::Publisher pose_pub_, map_pub_, path_pub_;
-  ros_conv::ServiceQueue service_queue_;  // save_map answers while a scan waits for tf
-  ros::ServiceServer save_srv_;
+  ros::Subscriber lines_sub_, external_sub_, scan_sub_;
+  ros::Publisher pose_pub_, map_pub_, path_pub_, grid_pub_, grid_meta_pub_;
+  ros_conv::ServiceQueue service_queue_;  // save_map, dynamic_map and the grid's timer
+  ros::ServiceServer save_srv_, get_map_srv_;
+  ros::SteadyTimer map_timer_;
   diagnostic_updater::Updater diagnostics_;
   ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
   std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/slam/occupancy_grid.h"
+
 namespace adaptive_perception::slam {
 
 struct MapSegment {
@@ -24,5 +26,9 @@ struct MapTrajectory {
 cv::Mat drawLineMap(const std::vector<MapSegment>& segments,
                     const std::vector<MapTrajectory>& trajectories, const std::string& title,
                     int max_side_px = 1200);
+
+/// The occupancy grid as map_server's image shows it (occupied black, free white, unknown grey;
+/// north up), one pixel per cell.
+cv::Mat drawOccupancyGrid(const OccupancyGrid& grid);
 
 }  // namespace adaptive_perception::slam

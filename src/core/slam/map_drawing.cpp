@@ -58,4 +58,14 @@ cv::Mat drawLineMap(const std::vector<MapSegment>& segments,
   return img;
 }
 
+cv::Mat drawOccupancyGrid(const OccupancyGrid& grid) {
+  cv::Mat img(grid.height, grid.width, CV_8UC1);
+  for (int y = 0; y < grid.height; ++y)
+    for (int x = 0; x < grid.width; ++x) {
+      const std::int8_t v = grid.at(x, y);
+      img.at<uchar>(grid.height - 1 - y, x) = v < 0 ? 205 : v >= 50 ? 0 : 254;
+    }
+  return img;
+}
+
 }  // namespace adaptive_perception::slam
