@@ -86,6 +86,8 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     external_sub_ = nh.subscribe("external_pose", 20, &EkfSlamMapperNode::onExternalPose, this);
   save_srv_ =
       service_queue_.handle(pnh).advertiseService("save_map", &EkfSlamMapperNode::onSaveMap, this);
+  reset_srv_ =
+      service_queue_.handle(pnh).advertiseService("reset", &EkfSlamMapperNode::onReset, this);
   if (map_update_interval_s_ > 0.0) {
     scan_sub_ = nh.subscribe(ros_topics::kScan, 20, &EkfSlamMapperNode::onScan, this);
     grid_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
@@ -238,6 +240,18 @@ void EkfSlamMapperNode::onMapTimer() {
   }
   grid_meta_pub_.publish(grid.info);
   grid_pub_.publish(grid);
+}
+
+bool EkfSlamMapperNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const int landmarks = slam_->numLandmarks() + slam_->numFixedLandmarks();
+  const size_t keyframes = keyframes_->size();
+  reset("reset requested");
+  last_stamp_ = ros::Time();
+  res.success = true;
+  res.message = "forgot " + std::to_string(landmarks) + " landmarks and " +
+                std::to_string(keyframes) + " grid scans; mapping again from ~initial_pose";
+  return true;
 }
 
 bool EkfSlamMapperNode::onGetMap(nav_msgs::GetMap::Request&, nav_msgs::GetMap::Response& res) {

@@ -7,6 +7,7 @@
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
+#include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -176,6 +177,15 @@ TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
   EXPECT_FALSE(srv.response.success);
   EXPECT_NE(srv.response.message.find(grid_yaml), std::string::npos) << srv.response.message;
   for (const std::string& f : {path, grid_yaml, grid_pgm}) std::remove(f.c_str());
+
+  // ~reset forgets the map: the reply says what went, and there is no grid to serve until scans
+  // come again.
+  std_srvs::Trigger reset;
+  ASSERT_TRUE(ros::service::call("ekf_slam_mapper/reset", reset));
+  EXPECT_TRUE(reset.response.success);
+  EXPECT_NE(reset.response.message.find("landmarks"), std::string::npos) << reset.response.message;
+  nav_msgs::GetMap after;
+  EXPECT_FALSE(ros::service::call("dynamic_map", after));
 }
 
 int main(int argc, char** argv) {

@@ -40,6 +40,7 @@
 //   and beside it the occupancy grid in map_server's format (NAME_grid.yaml + NAME_grid.pgm),
 //   each written to a temporary file and renamed; refused when one exists unless overwrite.
 //   dynamic_map (nav_msgs/GetMap): the occupancy grid rendered now, as gmapping serves it.
+//   ~reset (std_srvs/Trigger): forgets the map and starts again from ~initial_pose.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
@@ -47,6 +48,7 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Path.h>
 #include <sensor_msgs/LaserScan.h>
+#include <std_srvs/Trigger.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -78,6 +80,7 @@ class EkfSlamMapperNode {
   void onScan(const sensor_msgs::LaserScanConstPtr& msg);
   bool onSaveMap(SaveMap::Request& req, SaveMap::Response& res);
   bool onGetMap(nav_msgs::GetMap::Request& req, nav_msgs::GetMap::Response& res);
+  bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   // The grid of the keyframes so far (copied under the lock, rendered outside it); false with
   // no keyframe yet.
   bool renderGrid(nav_msgs::OccupancyGrid* out, slam::OccupancyGrid* grid = nullptr);
@@ -117,7 +120,7 @@ class EkfSlamMapperNode {
   ros::Subscriber lines_sub_, external_sub_, scan_sub_;
   ros::Publisher pose_pub_, map_pub_, path_pub_, grid_pub_, grid_meta_pub_;
   ros_conv::ServiceQueue service_queue_;  // save_map, dynamic_map and the grid's timer
-  ros::ServiceServer save_srv_, get_map_srv_;
+  ros::ServiceServer save_srv_, get_map_srv_, reset_srv_;
   ros::SteadyTimer map_timer_;
   diagnostic_updater::Updater diagnostics_;
   ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
