@@ -219,9 +219,6 @@ class LineEkfSlam {
   double gate(int dof) const;
   std::vector<Block> blocks(const std::vector<LineObservation>& obs,
                             const std::vector<Pairing>& pairs) const;
-  /// S = H P H^T + R of stacked line pairings (2 rows each), using only the non-zero columns of H
-  /// (O(m^2)).
-  Eigen::MatrixXd innovationCovariance(const std::vector<Block>& b) const;
   /// The stacked update (eqs. 6-9); returns the squared Mahalanobis distance of the innovation.
   double applyUpdate(const std::vector<Block>& b);
   void normaliseLandmarks();
@@ -236,12 +233,14 @@ class LineEkfSlam {
   /// Moves landmark i out of the state: conditioned on its estimate (anchor) or marginalised.
   void fixLandmark(int i, bool anchor);
   void extendExtent(const Line& l, const LineObservation& obs, Landmark* lm);
-  double jointMahalanobis(const std::vector<LineObservation>& obs,
-                          const std::vector<Pairing>& pairs) const;
+  // JCBB's search state: the pairings on the current branch with their fixed-size blocks, and the
+  // Cholesky factor L of their joint innovation covariance S with w = L^-1 nu, both grown by two
+  // rows per pairing (the joint Mahalanobis distance is |w|^2), so that a node of the search costs
+  // O(m^2) for m pairings instead of rebuilding and factoring S (O(m^3)).
+  struct JcbbBranch;
   void jcbb(const std::vector<LineObservation>& obs,
-            const std::vector<std::vector<int>>& candidates, size_t i,
-            std::vector<Pairing>& current, std::vector<Pairing>& best, double& best_d2,
-            long& nodes) const;
+            const std::vector<std::vector<int>>& candidates, size_t i, JcbbBranch& branch,
+            std::vector<Pairing>& best, double& best_d2, long& nodes) const;
   void addLandmark(const LineObservation& obs, int scan);
   void removeLandmark(int i);
   void extendExtent(int i, const LineObservation& obs);

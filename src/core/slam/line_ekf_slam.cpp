@@ -3,12 +3,10 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "adaptive_perception/math/angles.h"
-#include "adaptive_perception/math/chi_square.h"
 
 namespace adaptive_perception::slam {
 
@@ -161,69 +159,12 @@ LineEkfSlam::Block LineEkfSlam::pairingBlock(const LineObservation& obs, int lm)
   return b;
 }
 
-double LineEkfSlam::individualMahalanobis(const LineObservation& obs, int lm) const {
-  // jointMahalanobis of the single pairing, in fixed-size arithmetic (no allocation): this runs for
-  // every observation against every landmark.
-  Eigen::Matrix<double, 2, 3> hr;
-  Eigen::Matrix2d hl, s;
-  const Eigen::Vector2d nu = linearise(obs, lm, &hr, &hl, &s);
-  s += hr * p_.topLeftCorner<3, 3>() * hr.transpose();
-  if (lm < numLandmarks()) {
-    const int c = landmarkIndex(lm);
-    const Eigen::Matrix2d x = hr * p_.block<3, 2>(0, c) * hl.transpose();
-    s += x + x.transpose() + hl * p_.block<2, 2>(c, c) * hl.transpose();
-  }
-  const Eigen::LDLT<Eigen::Matrix2d> ldlt(s);
-  return nu.dot(ldlt.solve(nu));
-}
-
-double LineEkfSlam::gate(int dof) const {
-  if (static_cast<int>(gate_by_dof_.size()) <= dof) {
-    const size_t from = gate_by_dof_.size();
-    gate_by_dof_.resize(dof + 1);
-    for (size_t k = std::max<size_t>(from, 1); k < gate_by_dof_.size(); ++k)
-      gate_by_dof_[k] = math::chiSquareQuantile(config_.gate_probability, static_cast<int>(k));
-  }
-  return gate_by_dof_[dof];
-}
-
 std::vector<LineEkfSlam::Block> LineEkfSlam::blocks(const std::vector<LineObservation>& obs,
                                                     const std::vector<Pairing>& pairs) const {
   std::vector<Block> out;
   out.reserve(pairs.size());
   for (const auto& p : pairs) out.push_back(pairingBlock(obs[p.obs], p.lm));
   return out;
-}
-
-Eigen::MatrixXd LineEkfSlam::innovationCovariance(const std::vector<Block>& b) const {
-  // Line pairings only (2 rows each, as jointMahalanobis builds them): fixed-size arithmetic, as
-  // JCBB evaluates this at every node of its search.
-  const int m = static_cast<int>(b.size());
-  Eigen::MatrixXd s(2 * m, 2 * m);
-  const Eigen::Matrix3d prr = p_.topLeftCorner<3, 3>();
-  std::vector<Eigen::Matrix<double, 2, 3>> hr(m);
-  std::vector<Eigen::Matrix2d> hl(m);
-  for (int k = 0; k < m; ++k) {
-    hr[k] = b[k].hr;
-    if (b[k].col >= 0) hl[k] = b[k].hl;
-  }
-  for (int a = 0; a < m; ++a) {
-    // Row a of H P: hr_a P_r* + hl_a P_l*, restricted to the columns the other blocks use.
-    const Eigen::Matrix<double, 2, 3> hp = hr[a] * prr;
-    for (int c = a; c < m; ++c) {
-      Eigen::Matrix2d sac = hp * hr[c].transpose();
-      if (b[c].col >= 0) sac += hr[a] * p_.block<3, 2>(0, b[c].col) * hl[c].transpose();
-      if (b[a].col >= 0) {
-        sac += hl[a] * p_.block<2, 3>(b[a].col, 0) * hr[c].transpose();
-        if (b[c].col >= 0)
-          sac += hl[a] * p_.block<2, 2>(b[a].col, b[c].col) * hl[c].transpose();
-      }
-      if (a == c) sac += b[a].r;
-      s.block<2, 2>(2 * a, 2 * c) = sac;
-      s.block<2, 2>(2 * c, 2 * a) = sac.transpose();
-    }
-  }
-  return s;
 }
 
 double LineEkfSlam::applyUpdate(const std::vector<Block>& b) {
@@ -281,16 +222,6 @@ void LineEkfSlam::normaliseLandmarks() {
   }
 }
 
-double LineEkfSlam::jointMahalanobis(const std::vector<LineObservation>& obs,
-                                     const std::vector<Pairing>& pairs) const {
-  if (pairs.empty()) return 0.0;
-  const std::vector<Block> b = blocks(obs, pairs);
-  Eigen::VectorXd nu(2 * b.size());
-  for (size_t k = 0; k < b.size(); ++k) nu.segment<2>(2 * k) = b[k].nu;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(innovationCovariance(b));
-  return nu.dot(ldlt.solve(nu));
-}
-
 double LineEkfSlam::updateExternalPosition(const Eigen::Vector2d& xy_m,
                                            const Eigen::Matrix2d& cov) {
   Block b;  // eqs. 26-27: h = t, H = [I 0]
@@ -306,80 +237,6 @@ double LineEkfSlam::updateExternalPose(const math::SE2& z, const Eigen::Matrix3d
   b.hr = Eigen::Matrix3d::Identity();
   b.r = cov;
   return applyUpdate({b});
-}
-
-void LineEkfSlam::jcbb(const std::vector<LineObservation>& obs,
-                       const std::vector<std::vector<int>>& candidates, size_t i,
-                       std::vector<Pairing>& current, std::vector<Pairing>& best, double& best_d2,
-                       long& nodes) const {
-  ++nodes;
-  if (i == obs.size()) {
-    const double d2 = jointMahalanobis(obs, current);
-    if (current.size() > best.size() || (current.size() == best.size() && d2 < best_d2)) {
-      best = current;
-      best_d2 = d2;
-    }
-    return;
-  }
-  // Bound: even pairing every remaining observation cannot beat the best.
-  if (current.size() + (obs.size() - i) < best.size()) return;
-  // Budget: JCBB is exponential in the worst case (many parallel walls); past the budget the best
-  // hypothesis found so far stands.
-  if (nodes > config_.jcbb_max_nodes) return;
-  for (int lm : candidates[i]) {
-    bool used = false;
-    if (!config_.share_landmarks)
-      for (const auto& p : current) used |= p.lm == lm;
-    if (used) continue;
-    current.push_back({static_cast<int>(i), lm});
-    const int dof = 2 * static_cast<int>(current.size());
-    if (jointMahalanobis(obs, current) <= gate(dof))
-      jcbb(obs, candidates, i + 1, current, best, best_d2, nodes);
-    current.pop_back();
-  }
-  // The null hypothesis for observation i (new or spurious line).
-  if (current.size() + (obs.size() - i - 1) >= best.size())
-    jcbb(obs, candidates, i + 1, current, best, best_d2, nodes);
-}
-
-std::vector<int> LineEkfSlam::associate(const std::vector<LineObservation>& obs) const {
-  const double gate2 = gate(2);
-  std::vector<std::vector<int>> candidates(obs.size());
-  std::vector<std::vector<double>> d2s(obs.size());
-  for (size_t i = 0; i < obs.size(); ++i) {
-    for (int j = 0; j < numLandmarks() + numFixedLandmarks(); ++j) {
-      const double d2 = individualMahalanobis(obs[i], j);
-      if (d2 <= gate2) {
-        candidates[i].push_back(j);
-        d2s[i].push_back(d2);
-      }
-    }
-    // Most compatible first: JCBB then finds good hypotheses early and prunes more.
-    std::vector<size_t> order(candidates[i].size());
-    for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(),
-              [&](size_t a, size_t b) { return d2s[i][a] < d2s[i][b]; });
-    std::vector<int> c;
-    std::vector<double> d;
-    for (size_t k : order) {
-      c.push_back(candidates[i][k]);
-      d.push_back(d2s[i][k]);
-    }
-    candidates[i] = c;
-    d2s[i] = d;
-  }
-  std::vector<int> out(obs.size(), -1);
-  if (config_.association == Association::kNearestNeighbour) {
-    for (size_t i = 0; i < obs.size(); ++i)
-      if (!candidates[i].empty()) out[i] = candidates[i].front();
-    return out;
-  }
-  std::vector<Pairing> current, best;
-  double best_d2 = std::numeric_limits<double>::infinity();
-  long nodes = 0;
-  jcbb(obs, candidates, 0, current, best, best_d2, nodes);
-  for (const auto& p : best) out[p.obs] = p.lm;
-  return out;
 }
 
 void LineEkfSlam::extendExtent(int i, const LineObservation& obs) {
