@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <string>
@@ -58,25 +59,37 @@ inline places::ImageDescriptors describe(const cv::Mat& img,
   return d;
 }
 
+// The bag of words of the references, unless none of them has a SIFT keypoint (then the words
+// method is left out).
+inline void learnWordsIfAny(places::ReferenceTraversal& refs, const std::vector<cv::Mat>& sift) {
+  for (const cv::Mat& f : sift)
+    if (f.rows > 0) return refs.learnWords(sift);
+  std::cerr << "evaluate_places: no reference image has a SIFT keypoint; the words method is "
+               "left out\n";
+}
+
 // The references from an existing database; with A's list too, both must name the same images.
 inline places::ReferenceTraversal loadReferences(const std::string& db_path,
                                                  const std::vector<std::string>& ref_files,
                                                  const places::GlobalDescriptorConfig& config) {
   const places::PlaceDatabase db = places::PlaceDatabase::open(db_path, /*read_only=*/true);
   std::vector<std::string> sources;
-  places::ReferenceTraversal refs = db.loadTraversal(config, &sources);
+  std::vector<long> ids;
+  places::ReferenceTraversal refs = db.loadTraversal(config, &sources, &ids);
   if (refs.size() == 0)
     throw std::runtime_error(
         db_path + ": holds no image with whole-image descriptors (" +
         std::to_string(db.imageCount()) +
         " images): it is not a reference traversal; name a new file to build one");
-  std::vector<cv::Mat> sift;
-  for (const places::TrainingFrame& f : db.loadFrames()) sift.push_back(f.features);
-  if (sift.size() != sources.size())
-    throw std::runtime_error(db_path + ": " + std::to_string(sift.size()) + " of its " +
-                             std::to_string(sources.size()) +
-                             " reference images have SIFT descriptors; build it again");
-  refs.learnWords(sift);
+  // The words' SIFT descriptors, by image id (an image without keypoints has none stored).
+  std::map<long, size_t> row_of;
+  for (size_t i = 0; i < ids.size(); ++i) row_of[ids[i]] = i;
+  std::vector<cv::Mat> sift(ids.size(), cv::Mat(0, 128, CV_32F));
+  for (const places::TrainingFrame& f : db.loadFrames()) {
+    const auto it = row_of.find(f.image_id);
+    if (it != row_of.end()) sift[it->second] = f.features;
+  }
+  learnWordsIfAny(refs, sift);
   if (!ref_files.empty()) {
     if (ref_files.size() != sources.size())
       throw std::runtime_error(db_path + " holds " + std::to_string(sources.size()) +
@@ -134,7 +147,7 @@ inline places::ReferenceTraversal describeReferences(const std::vector<std::stri
     if (!previous.empty()) db->setAdjacent(previous, place);
     previous = place;
   }
-  refs.learnWords(sift);
+  learnWordsIfAny(refs, sift);
   if (db) {
     db->commitBatch();
     db.reset();  // closed before it is renamed
@@ -213,8 +226,13 @@ inline int runTraversalEvaluation(Args& args) {
                 refs.size(), stored ? db_path.c_str() : ref_path.c_str(), ref_s, query_files.size(),
                 query_path.c_str());
 
-    const std::vector<std::string> methods = {"thumbnail", "gradient", "chromaticity",
-                                              "words",     "fused",    "sequence"};
+    std::vector<std::string> methods = {"thumbnail", "gradient", "chromaticity",
+                                        "words",     "fused",    "sequence"};
+    if (!refs.words()) {
+      if (cfg.method == "words")
+        throw std::runtime_error("--method words: no reference image has a SIFT keypoint");
+      methods.erase(methods.begin() + 3);
+    }
     std::vector<places::TraversalMatcher> matchers;
     for (const std::string& m : methods) {
       TraversalMatcherConfig c = cfg;

@@ -142,10 +142,11 @@ class PlaceDatabase {
                                            const GlobalDescriptorConfig& config) const;
   /// A reference traversal kept in the database (evaluate_places --reference A --database F):
   /// the whole-image descriptors of every image that has them, in the order stored, and in
-  /// `sources` (when given) each one's source. Empty when none are stored; throws as
-  /// loadDescriptorIndex does.
+  /// `sources` and `image_ids` (when given) each one's source and image id (TrainingFrame's).
+  /// Empty when none are stored; throws as loadDescriptorIndex does.
   ReferenceTraversal loadTraversal(const GlobalDescriptorConfig& config,
-                                   std::vector<std::string>* sources = nullptr) const;
+                                   std::vector<std::string>* sources = nullptr,
+                                   std::vector<long>* image_ids = nullptr) const;
   /// Every image that has SIFT features, in the order stored, with its place and pose.
   std::vector<TrainingFrame> loadFrames() const;
   /// Adjacency lists in the index's place order (for PlaceFilter).
@@ -157,9 +158,10 @@ class PlaceDatabase {
   void readSettings();
   int placeId(const std::string& name, bool create);
   // Every stored image's whole-image descriptors in the order stored, with its place and source.
-  void readDescriptors(const GlobalDescriptorConfig& config,
-                       const std::function<void(const std::string& place, const std::string& source,
-                                                const ImageDescriptors& d)>& visit) const;
+  void readDescriptors(
+      const GlobalDescriptorConfig& config,
+      const std::function<void(long long image_id, const std::string& place,
+                               const std::string& source, const ImageDescriptors& d)>& visit) const;
 
   sqlite3* db_ = nullptr;
   std::string path_;

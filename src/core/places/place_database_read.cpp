@@ -92,8 +92,8 @@ PlaceIndex PlaceDatabase::loadIndex(const std::vector<int>& spaces_in) const {
 
 void PlaceDatabase::readDescriptors(
     const GlobalDescriptorConfig& config,
-    const std::function<void(const std::string& place, const std::string& source,
-                             const ImageDescriptors& d)>& visit) const {
+    const std::function<void(long long image_id, const std::string& place,
+                             const std::string& source, const ImageDescriptors& d)>& visit) const {
   if (descriptor_settings_.empty()) return;
   if (descriptor_settings_ != config.toString())
     throw std::runtime_error(path_ + ": its whole-image descriptors were made with " +
@@ -112,7 +112,7 @@ void PlaceDatabase::readDescriptors(
     if (d.rows.size() != static_cast<size_t>(kNumDescriptorKinds))
       throw std::runtime_error(path_ + ": image " + std::to_string(current) +
                                " lacks some of its whole-image descriptors");
-    visit(place, source, d);
+    visit(current, place, source, d);
   };
   while (q.step()) {
     const long long iid = q.integer(1);
@@ -143,21 +143,23 @@ PlaceDescriptorIndex PlaceDatabase::loadDescriptorIndex(
     const PlaceIndex& index, const GlobalDescriptorConfig& config) const {
   PlaceDescriptorIndex out(index.placeNames(), config);
   readDescriptors(config,
-                  [&](const std::string& place, const std::string&, const ImageDescriptors& d) {
-                    out.addImage(index.placeIndex(place), d);
-                  });
+                  [&](long long, const std::string& place, const std::string&,
+                      const ImageDescriptors& d) { out.addImage(index.placeIndex(place), d); });
   return out;
 }
 
 ReferenceTraversal PlaceDatabase::loadTraversal(const GlobalDescriptorConfig& config,
-                                                std::vector<std::string>* sources) const {
+                                                std::vector<std::string>* sources,
+                                                std::vector<long>* image_ids) const {
   ReferenceTraversal out(config);
   if (sources) sources->clear();
-  readDescriptors(config,
-                  [&](const std::string&, const std::string& source, const ImageDescriptors& d) {
-                    out.add(d);
-                    if (sources) sources->push_back(source);
-                  });
+  if (image_ids) image_ids->clear();
+  readDescriptors(config, [&](long long id, const std::string&, const std::string& source,
+                              const ImageDescriptors& d) {
+    out.add(d);
+    if (sources) sources->push_back(source);
+    if (image_ids) image_ids->push_back(static_cast<long>(id));
+  });
   return out;
 }
 
