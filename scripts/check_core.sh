@@ -4,16 +4,25 @@
 # of its seed corpus and regression inputs (test/fuzz) run under them. Any sanitizer report fails
 # the test that caused it. Ends with `sanitizers: N passed, M failed`; exits non-zero on a failure.
 # Part of scripts/run_tests.sh. Build in .ws/sanitize (git-ignored).
-# Usage: scripts/check_core.sh   (~15 minutes on two cores from scratch)
+# Usage: scripts/check_core.sh [build|test]   (~15 minutes on two cores from scratch)
+#   build: only build the tree (run_tests.sh builds it at low priority while the catkin tests run);
+#   test: only run the tests of a built tree; no argument: both.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 BUILD="$AP_WS/sanitize"
 JOBS="${AP_JOBS:-$(nproc)}"
+PHASE="${1:-all}"
+case "$PHASE" in all|build|test) ;; *) echo "check_core.sh: unknown phase '$PHASE' (build, test or none)"; exit 2 ;; esac
 mkdir -p "$BUILD"
 log="$BUILD/build.log"
-if ! { cmake -S "$AP_ROOT/test/standalone" -B "$BUILD" -DCMAKE_BUILD_TYPE=None -DAP_SANITIZE=ON &&
+if [ "$PHASE" != test ] && ! { cmake -S "$AP_ROOT/test/standalone" -B "$BUILD" -DCMAKE_BUILD_TYPE=None -DAP_SANITIZE=ON &&
        cmake --build "$BUILD" -j"$JOBS"; } > "$log" 2>&1; then
   tail -n 40 "$log"; echo "check_core: sanitizer build FAILED (log: $log)"
+  echo "sanitizers: 0 passed, 1 failed"; exit 1
+fi
+if [ "$PHASE" = build ]; then echo "check_core: sanitizer tree built in $BUILD"; exit 0; fi
+if [ ! -f "$BUILD/CTestTestfile.cmake" ]; then
+  echo "check_core: no sanitizer tree in $BUILD (run scripts/check_core.sh build first)"
   echo "sanitizers: 0 passed, 1 failed"; exit 1
 fi
 # Leaks count as failures; a report stops the process (halt_on_error) with a stack trace.

@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Sets up (apt + build), builds and runs every gtest and rostest, then the sanitizer build of the core
 # (scripts/check_core.sh), and ends with one line `tests: N passed, M failed` (N: the catkin test
-# cases plus the sanitizer build's test programs). Exits non-zero when any test failed or did not run.
+# cases plus the sanitizer run's gtest cases and fuzz replays). Prints the time of each stage.
+# Exits non-zero when any test failed or did not run.
 # catkin_make run_tests itself exits 0 on failures, so the verdict comes from the result XML files.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+stage() { echo "run_tests: $1 after $(( SECONDS / 60 )) min $(( SECONDS % 60 )) s"; }
 "$AP_ROOT/scripts/setup.sh" || { echo "tests: 0 passed, 1 failed"; exit 1; }
+stage "setup (apt, catkin build) done"
 cd "$AP_WS"
 set +u; source devel/setup.bash; set -u
 export ROS_HOME="$AP_WS/ros_home" ROS_LOG_DIR="$AP_WS/ros_home/log"
@@ -16,15 +19,28 @@ if ! catkin_make -j"$JOBS" tests > "$AP_WS/tests_build.log" 2>&1; then
   tail -n 60 "$AP_WS/tests_build.log"; echo "test build FAILED (log: $AP_WS/tests_build.log)"
   echo "tests: 0 passed, 1 failed"; exit 1
 fi
+stage "test build done"
+# The sanitizer tree (below) builds at the lowest CPU priority while the catkin tests run: their
+# rostests spend most of their time waiting on replayed bags and timers, and a nice-19 compiler
+# gets only the CPU they leave idle.
+nice -n 19 "$AP_ROOT/scripts/check_core.sh" build > "$AP_WS/check_core_build.log" 2>&1 &
+san_build=$!
 catkin_make -j1 run_tests 2>&1 | tee "$AP_WS/run_tests.log" | \
   grep -E '^\[ *(RUN|  +OK|  FAILED|  PASSED) |^\[ROSTEST\]|^ *\[(passed|FAILURE|ERROR)\]|^-- run_tests' || true
+stage "catkin tests done"
 summary="$(python3 "$AP_ROOT/scripts/summarize_test_results.py" "$results")"
 echo "$summary" | sed '$d'
 catkin_line="$(echo "$summary" | tail -n 1)"
 echo "catkin $catkin_line"
 # The core and its unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer, with the
-# fuzz targets' corpus replays (scripts/check_core.sh); each test program counts once.
-"$AP_ROOT/scripts/check_core.sh" | tee "$AP_WS/check_core.log"
+# fuzz targets' corpus replays (scripts/check_core.sh); each gtest case and each replay counts once.
+if wait "$san_build"; then
+  stage "sanitizer build done"
+  "$AP_ROOT/scripts/check_core.sh" test | tee "$AP_WS/check_core.log"
+else
+  cat "$AP_WS/check_core_build.log" | tee "$AP_WS/check_core.log"
+fi
+stage "sanitizer tests done"
 san_line="$(tail -n 1 "$AP_WS/check_core.log")"
 num() { echo "$1" | sed -n "s/.* \([0-9]*\) $2.*/\1/p"; }
 p1=$(num "$catkin_line" passed); f1=$(num "$catkin_line" failed)

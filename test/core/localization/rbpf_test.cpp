@@ -350,30 +350,51 @@ double runFrom(const Scene& s, const sim::FieldSimConfig& sc, const RbpfConfig& 
 // global search when it wins; or half the particles drawn from its poses) they end at the truth or
 // at its point mirror (the field's lines are point-symmetric; which half it is, only the goal and
 // beacon colours tell, and this sequence shows them too briefly: see the localization README
-// section).
-TEST(Rbpf, RelocalizationCheckRecoversFromAWrongStart) {
+// section). Three tests, one run each, so that the sanitizer run spreads them over the cores.
+namespace {
+math::SE2 wrongStart(const Scene& s, const sim::FieldSimConfig& sc) {
+  const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+  return math::SE2(truth.x_m + (truth.x_m > 0 ? -1.0 : 1.0),
+                   truth.y_m + (truth.y_m > 0 ? -1.0 : 1.0), truth.yaw_rad + 1.0);
+}
+
+void expectRecoveryFromAWrongStart(bool restart) {
   Scene s;
   sim::FieldSimConfig sc;
   sc.seed = 1;
-  const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
-  const math::SE2 wrong(truth.x_m + (truth.x_m > 0 ? -1.0 : 1.0),
-                        truth.y_m + (truth.y_m > 0 ? -1.0 : 1.0), truth.yaw_rad + 1.0);
   RbpfConfig cfg;
   cfg.threads = 2;
+  cfg.relocalization_restart = restart;
   int relocalizations = 0;
   double max_score = 0.0;
+  const double found =
+      runFrom(s, sc, cfg, wrongStart(s, sc), 8.0, &relocalizations, &max_score, true);
+  EXPECT_LT(found, 0.3);  // evaluate_localization's convergence bound
+  EXPECT_GE(relocalizations, 1);
+  EXPECT_GT(max_score, cfg.relocalization_margin);
+}
+}  // namespace
+
+TEST(Rbpf, AWrongStartStaysLostWithoutTheRelocalizationCheck) {
+  Scene s;
+  sim::FieldSimConfig sc;
+  sc.seed = 1;
+  RbpfConfig cfg;
+  cfg.threads = 2;
   cfg.relocalization_interval_s = 0.0;
-  const double lost = runFrom(s, sc, cfg, wrong, 8.0, &relocalizations, &max_score);
+  int relocalizations = 0;
+  double max_score = 0.0;
+  const double lost = runFrom(s, sc, cfg, wrongStart(s, sc), 8.0, &relocalizations, &max_score);
   EXPECT_GT(lost, 0.5) << "the wrong start must stay lost without the check";
   EXPECT_EQ(relocalizations, 0);
-  for (const bool restart : {true, false}) {
-    cfg.relocalization_interval_s = RbpfConfig().relocalization_interval_s;
-    cfg.relocalization_restart = restart;
-    const double found = runFrom(s, sc, cfg, wrong, 8.0, &relocalizations, &max_score, true);
-    EXPECT_LT(found, 0.3) << "restart " << restart;  // evaluate_localization's convergence bound
-    EXPECT_GE(relocalizations, 1) << "restart " << restart;
-    EXPECT_GT(max_score, cfg.relocalization_margin) << "restart " << restart;
-  }
+}
+
+TEST(Rbpf, RelocalizationCheckRecoversFromAWrongStartByRestartingTheSearch) {
+  expectRecoveryFromAWrongStart(true);
+}
+
+TEST(Rbpf, RelocalizationCheckRecoversFromAWrongStartByDrawingHalfTheParticles) {
+  expectRecoveryFromAWrongStart(false);
 }
 
 // On a correct track the check finds nothing better than the particles: no relocalization, and the
@@ -457,21 +478,32 @@ TEST(Rbpf, MirrorTestLeavesATrueTrackAlone) {
 // 208 x 160 camera and by 320 x 240 and 640 x 480 cameras of the same field of view is tracked
 // from the true start with the default configuration, within the rostests' bound (0.2 m).
 // (Absolute strides with an exponent tuned for some 2,000 pixels diverged at 640 x 480.)
-TEST(Rbpf, TracksTheSameSceneAtEveryResolution) {
+// One case per resolution, so that the sanitizer run spreads them over the cores.
+class RbpfAtResolution : public ::testing::TestWithParam<std::pair<int, int>> {};
+
+TEST_P(RbpfAtResolution, TracksTheSameScene) {
   const double kHfov = 56.9 * M_PI / 180.0, kVfov = 45.2 * M_PI / 180.0;
-  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{208, 160}, {320, 240}, {640, 480}}) {
-    Scene s;
-    s.cam = world::PinholeCamera::fromFieldOfView(w, h, kHfov, kVfov);
-    sim::FieldSimConfig sc;
-    sc.seed = 2;
-    const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
-    RbpfConfig cfg;
-    cfg.threads = 2;
-    int relocalizations = 0;
-    double max_score = 0.0;
-    const double error = runFrom(s, sc, cfg, truth, 10.0, &relocalizations, &max_score);
-    std::printf("rbpf at %d x %d: final error %.3f m, %d relocalizations\n", w, h, error,
-                relocalizations);
-    EXPECT_LT(error, 0.2) << w << " x " << h;
-  }
+  const auto [w, h] = GetParam();
+  Scene s;
+  s.cam = world::PinholeCamera::fromFieldOfView(w, h, kHfov, kVfov);
+  sim::FieldSimConfig sc;
+  sc.seed = 2;
+  const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+  RbpfConfig cfg;
+  cfg.threads = 2;
+  int relocalizations = 0;
+  double max_score = 0.0;
+  const double error = runFrom(s, sc, cfg, truth, 10.0, &relocalizations, &max_score);
+  std::printf("rbpf at %d x %d: final error %.3f m, %d relocalizations\n", w, h, error,
+              relocalizations);
+  EXPECT_LT(error, 0.2) << w << " x " << h;
 }
+
+INSTANTIATE_TEST_SUITE_P(Rbpf, RbpfAtResolution,
+                         ::testing::Values(std::pair<int, int>{208, 160},
+                                           std::pair<int, int>{320, 240},
+                                           std::pair<int, int>{640, 480}),
+                         [](const ::testing::TestParamInfo<std::pair<int, int>>& info) {
+                           return std::to_string(info.param.first) + "x" +
+                                  std::to_string(info.param.second);
+                         });
