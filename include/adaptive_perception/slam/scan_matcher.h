@@ -82,9 +82,12 @@ Eigen::Matrix3d matchInformation(const LikelihoodField& field,
 /// odometry's increment as the prior. The match and the prior are fused by their information
 /// (matchInformation; the odometry's from odom_std_m + odom_std_per_m * distance and
 /// odom_std_rad + odom_std_per_rad * turn), so that the odometry fills in what the scan cannot
-/// see. A scan becomes a keyframe (and the field is rebuilt) once the robot has moved
+/// see, unless the two disagree beyond odometry_gate_chi2. A scan becomes a keyframe (and the field is rebuilt) once the robot has moved
 /// keyframe_translation_m or turned keyframe_rotation_rad from the last one. A match scoring
-/// below min_score is not trusted: the pose follows the wheel odometry.
+/// below min_score is not trusted: the pose follows the wheel odometry. When the odometry's
+/// increment differs from the last one by more than the matcher's window (a stalled or jumping
+/// odometry), the match is also tried from the last increment and from no motion, and the best
+/// score wins.
 struct LaserOdometryConfig {
   ScanMatcherConfig matcher;
   double max_range_m = 25.0;           // farther points are left out (sparse, and long-range
@@ -99,6 +102,10 @@ struct LaserOdometryConfig {
   double odom_std_per_m = 0.1;         // plus this share of the distance
   double odom_std_rad = 0.01;          // and in rotation
   double odom_std_per_rad = 0.1;
+  // A match that disagrees with the odometry's increment by more than this chi-square (3 dof;
+  // 16.27 is the 99.9% quantile) under both their covariances is taken alone: the odometry slipped,
+  // stalled or jumped.
+  double odometry_gate_chi2 = 16.27;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
@@ -114,6 +121,8 @@ class LaserOdometry {
   double lastScore() const { return last_score_; }
   bool lastMatched() const { return last_matched_; }
   long matched() const { return matched_; }
+  /// Matched scans whose odometry increment was left out (odometry_gate_chi2).
+  long odometryRejected() const { return odometry_rejected_; }
   long scans() const { return scans_; }
 
  private:
@@ -128,9 +137,10 @@ class LaserOdometry {
   std::vector<LikelihoodField> field_;  // zero or one
   bool started_ = false;
   math::SE2 pose_, last_odom_;
+  math::SE2 last_step_;  // the last scan's increment of pose_
   double last_score_ = 0.0;
   bool last_matched_ = false;
-  long matched_ = 0, scans_ = 0;
+  long matched_ = 0, scans_ = 0, odometry_rejected_ = 0;
 };
 
 }  // namespace adaptive_perception::slam

@@ -49,6 +49,8 @@ void LaserOdometryConfig::validate() const {
        "LaserOdometryConfig: connect_gap_m must be >= 0");
   for (double v : {odom_std_m, odom_std_rad})
     need(std::isfinite(v) && v > 0.0, "LaserOdometryConfig: odom_std_m and odom_std_rad must be > 0");
+  need(std::isfinite(odometry_gate_chi2) && odometry_gate_chi2 > 0.0,
+       "LaserOdometryConfig: odometry_gate_chi2 must be > 0");
   for (double v : {odom_std_per_m, odom_std_per_rad})
     need(std::isfinite(v) && v >= 0.0,
          "LaserOdometryConfig: odom_std_per_m and odom_std_per_rad must be >= 0");
@@ -222,7 +224,7 @@ void LaserOdometry::reset() {
   keyframes_.clear();
   field_.clear();
   started_ = false;
-  pose_ = last_odom_ = math::SE2();
+  pose_ = last_odom_ = last_step_ = math::SE2();
   last_score_ = 0.0;
   last_matched_ = false;
 }
@@ -257,12 +259,33 @@ math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
     }
     return pose_;
   }
-  const math::SE2 prior = pose_ * math::between(last_odom_, odom);
+  const math::SE2 odom_step = math::between(last_odom_, odom);
   last_odom_ = odom;
   last_matched_ = false;
   last_score_ = 0.0;
+  // The priors the match starts from: the wheel odometry's increment, and when that differs from
+  // the last increment by more than the search window (odometry that stalls and then jumps: in
+  // the mit-csail log it stands still for 0.8 s while the robot turns, then catches up by 85
+  // degrees at once), also the last increment again (constant velocity) and no motion. The best
+  // match wins; the odometry's on a tie.
+  std::vector<math::SE2> priors{pose_ * odom_step};
+  const math::SE2 change = math::between(last_step_, odom_step);
+  if (std::hypot(change.x_m, change.y_m) > config_.matcher.search_xy_m ||
+      std::fabs(change.yaw_rad) > config_.matcher.search_yaw_rad) {
+    priors.push_back(pose_ * last_step_);
+    priors.push_back(pose_);
+  }
+  math::SE2 prior = priors.front();
   if (static_cast<int>(pts.size()) >= config_.min_points && !field_.empty()) {
-    const ScanMatch m = matchScan(field_.front(), pts, prior, config_.matcher);
+    ScanMatch m;
+    m.score = -1.0;
+    for (const math::SE2& candidate : priors) {
+      const ScanMatch c = matchScan(field_.front(), pts, candidate, config_.matcher);
+      if (c.score > m.score) {
+        m = c;
+        prior = candidate;
+      }
+    }
     last_score_ = m.score;
     if (m.score >= config_.min_score) {
       // Fuse the match with the prior by their information, in the prior's tangent space.
@@ -275,16 +298,25 @@ math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
       const Eigen::Matrix3d H = matchInformation(field_.front(), pts, m.pose);
       const Eigen::Vector3d dm(m.pose.x_m - prior.x_m, m.pose.y_m - prior.y_m,
                                math::angleDiff(m.pose.yaw_rad, prior.yaw_rad));
-      const Eigen::Vector3d d = (P_inv + H).ldlt().solve(H * dm);
-      pose_ = math::SE2(prior.x_m + d.x(), prior.y_m + d.y(), prior.yaw_rad + d.z());
+      const Eigen::LDLT<Eigen::Matrix3d> sum(P_inv + H);
+      // The disagreement's chi-square, dm^T (P + H^-1)^-1 dm = dm^T H (P^-1 + H)^-1 P^-1 dm (finite
+      // where H is singular: along a corridor the scan cannot see, no disagreement counts).
+      const double chi2 = dm.dot(H * sum.solve(P_inv * dm));
+      if (chi2 > config_.odometry_gate_chi2) {
+        prior = m.pose;  // the odometry disagrees beyond its noise: the match alone
+        ++odometry_rejected_;
+      } else {
+        const Eigen::Vector3d d = sum.solve(H * dm);
+        prior = math::SE2(prior.x_m + d.x(), prior.y_m + d.y(), prior.yaw_rad + d.z());
+      }
       last_matched_ = true;
       ++matched_;
     } else {
-      pose_ = prior;
+      prior = priors.front();  // no match to trust: the wheel odometry
     }
-  } else {
-    pose_ = prior;
   }
+  last_step_ = math::between(pose_, prior);
+  pose_ = prior;
   const math::SE2 since = keyframes_.empty() ? math::SE2(1e9, 0, 0)
                                              : math::between(keyframes_.back().pose, pose_);
   if (static_cast<int>(pts.size()) >= config_.min_points &&
