@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "adaptive_perception/math/angles.h"
+#include "adaptive_perception/math/opencv_seed.h"
 
 namespace adaptive_perception::localization {
 
@@ -49,8 +50,13 @@ AppearanceMcl::AppearanceMcl(std::vector<PosedFrame> frames, int num_rooms,
     xy_points_.at<float>(i, 0) = static_cast<float>(p.x_m);
     xy_points_.at<float>(i, 1) = static_cast<float>(p.y_m);
   }
-  pose_index_ = std::make_unique<cv::flann::Index>(pose_points_, cv::flann::KDTreeIndexParams(1));
-  xy_index_ = std::make_unique<cv::flann::Index>(xy_points_, cv::flann::KDTreeIndexParams(1));
+  {
+    // The kd-trees' random split choices seeded: their searches are exact, but which of two
+    // equally near frames a query gets depends on the tree, and so would the run.
+    const math::ScopedOpenCvSeed seed(0x4d434cULL);
+    pose_index_ = std::make_unique<cv::flann::Index>(pose_points_, cv::flann::KDTreeIndexParams(1));
+    xy_index_ = std::make_unique<cv::flann::Index>(xy_points_, cv::flann::KDTreeIndexParams(1));
+  }
   // The training run's average step (consecutive frames closer than 2 m: one run).
   double sx = 0.0, sy = 0.0, st = 0.0;
   int steps = 0;

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "adaptive_perception/math/opencv_seed.h"
+
 namespace adaptive_perception::places {
 namespace {
 
@@ -21,13 +23,10 @@ void checkFeatures(const cv::Mat& f, const char* what) {
 
 // k-means with OpenCV's generator seeded, and the caller's generator state left as it was.
 cv::Mat kmeansCentres(const cv::Mat& sample, int k, int iterations) {
-  cv::RNG& rng = cv::theRNG();
-  const uint64 saved = rng.state;
-  rng.state = 0x5eed5eedULL;
+  const math::ScopedOpenCvSeed seed(0x5eed5eedULL);
   cv::Mat labels, centres;
   cv::kmeans(sample, k, labels, cv::TermCriteria(cv::TermCriteria::MAX_ITER, iterations, 0.0), 1,
              cv::KMEANS_PP_CENTERS, centres);
-  rng.state = saved;
   return centres;
 }
 

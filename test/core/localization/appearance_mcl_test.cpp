@@ -1,11 +1,13 @@
 // Appearance MCL on scripted inputs: the training run's average step, heading-aware nearest frames,
-// convergence and room by summed weight, stability, restricted then full re-initialisation, and
-// unknown-room detection.
+// convergence and room by summed weight, stability, restricted then full re-initialisation,
+// unknown-room detection, and runs that do not depend on OpenCV's generator.
 #include "adaptive_perception/localization/appearance_mcl.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <opencv2/core.hpp>
 
 using namespace adaptive_perception;
 using localization::AppearanceMcl;
@@ -18,6 +20,16 @@ namespace {
 std::vector<PosedFrame> corridor() {
   std::vector<PosedFrame> f;
   for (int i = 0; i <= 40; ++i) f.push_back({math::SE2(0.5 * i, 0.0, 0.0), i * 0.5 < 10.0 ? 0 : 1});
+  return f;
+}
+// The same corridor between two parallel ones 2 m to either side (frames 41-81 at y = -2 m, 82-122
+// at y = +2 m) whose views the test's images never match, so that the images tell the lateral
+// position as well as x (with one corridor alone nothing holds the particles' y, and whether a
+// quarter of them wander past known_radius_m is chance).
+std::vector<PosedFrame> threeCorridors() {
+  std::vector<PosedFrame> f = corridor();
+  for (double y : {-2.0, 2.0})
+    for (int i = 0; i <= 40; ++i) f.push_back({math::SE2(0.5 * i, y, 0.0), i * 0.5 < 10.0 ? 0 : 1});
   return f;
 }
 // What the matcher would say of an image taken at x: the frame there 0.6, its neighbours 0.3.
@@ -44,7 +56,7 @@ TEST(AppearanceMcl, AverageStepAndHeadingAwareNearestFrame) {
 TEST(AppearanceMcl, ConvergesBecomesStableThenReinitialisesWhenLost) {
   AppearanceMclConfig cfg;
   cfg.particles = 500;
-  AppearanceMcl mcl(corridor(), 2, cfg, 3);
+  AppearanceMcl mcl(threeCorridors(), 2, cfg, 3);
   const math::SE2 step(0.5, 0.0, 0.0);
   localization::AppearanceEstimate e;
   double x = 2.0;
@@ -97,6 +109,27 @@ TEST(AppearanceMcl, UnknownRoomWhenAQuarterOfTheParticlesLeaveTheKnownPlaces) {
   for (int i = 0; i < 100; ++i) p.emplace_back(5.0, i < 20 ? 5.0 : 0.0, 0.0);
   mcl.setParticles(p);
   EXPECT_FALSE(mcl.step(math::SE2(0, 0, 0), seenAt(5.0)).unknown_room);
+}
+
+// The same seed gives the same particles whatever OpenCV's generator drew before (its kd-trees
+// are built with their own seed), and building them leaves that generator as it was.
+TEST(AppearanceMcl, TheSameRunWhateverOpenCvsGeneratorDrewBefore) {
+  auto run = [] {
+    AppearanceMcl mcl(corridor(), 2, {}, 3);
+    for (double x = 2.0; x < 12.0; x += 0.5) mcl.step(math::SE2(0.5, 0.0, 0.0), seenAt(x));
+    return mcl.particles();
+  };
+  const std::vector<math::SE2> first = run();
+  cv::theRNG().next();
+  const std::uint64_t before = cv::theRNG().state;
+  const std::vector<math::SE2> second = run();
+  EXPECT_EQ(cv::theRNG().state, before);
+  ASSERT_EQ(first.size(), second.size());
+  for (size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(first[i].x_m, second[i].x_m) << i;
+    EXPECT_EQ(first[i].y_m, second[i].y_m) << i;
+    EXPECT_EQ(first[i].yaw_rad, second[i].yaw_rad) << i;
+  }
 }
 
 TEST(AppearanceMcl, RefusesBadConfiguration) {
