@@ -4,8 +4,8 @@
 // matching", ICRA 2009: an exhaustive search over a window of poses, then a local refinement).
 //
 // The likelihood field: the map points rasterised at resolution_m, each cell's value
-// exp(-d^2 / (2 hit_std_m^2)) with d its distance to the nearest map point (OpenCV's exact
-// Euclidean distance transform), read with bilinear interpolation. A pose's score is the mean
+// exp(-d^2 / (2 hit_std_m^2)) with d its distance to the nearest map point (exact, and 0 beyond
+// 4 hit_std_m, where it would be below 3e-4), read with bilinear interpolation. A pose's score is the mean
 // field value over the scan's points (1: every point on a map point; 0: none near one).
 //
 // The search: yaw over [-search_yaw_rad, +search_yaw_rad] around the prior in steps of

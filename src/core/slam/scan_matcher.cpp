@@ -12,6 +12,9 @@
 namespace adaptive_perception::slam {
 
 namespace {
+// The likelihood field is cut at this many hit_std from the nearest map point (exp(-8) = 3e-4).
+constexpr double kFieldRadiusStd = 4.0;
+
 void need(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
@@ -84,14 +87,26 @@ LikelihoodField::LikelihoodField(const std::vector<Eigen::Vector2d>& points_m, d
     if (i > 0 && (points_m[i] - points_m[i - 1]).squaredNorm() < gap2)
       cv::line(free, cell(points_m[i - 1]), c, cv::Scalar(0), 1, cv::LINE_8);
   }
-  cv::Mat dist;
-  cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  // Each map cell stamps exp(-d^2 / (2 hit_std^2)) over the cells within kFieldRadiusStd
+  // hit_std of it, the largest value kept: what the exact distance transform of the whole box
+  // gives, cut where it falls below exp(-8), at a cost that grows with the map cells rather than
+  // with the box's area (a local map over a hall is a million cells, most of them empty).
+  const int r = std::max(1, static_cast<int>(std::ceil(kFieldRadiusStd * hit_std_m / resolution_m)));
   const double k = -0.5 * (resolution_m * resolution_m) / (hit_std_m * hit_std_m);
-  field_.create(h, w, CV_32F);
-  for (int y = 0; y < h; ++y) {
-    const float* d = dist.ptr<float>(y);
-    float* f = field_.ptr<float>(y);
-    for (int x = 0; x < w; ++x) f[x] = static_cast<float>(std::exp(k * d[x] * d[x]));
+  cv::Mat kernel(2 * r + 1, 2 * r + 1, CV_32F);
+  for (int y = -r; y <= r; ++y)
+    for (int x = -r; x <= r; ++x)
+      kernel.at<float>(y + r, x + r) = static_cast<float>(std::exp(k * (x * x + y * y)));
+  std::vector<cv::Point> occupied;
+  cv::findNonZero(free == 0, occupied);
+  field_ = cv::Mat::zeros(h, w, CV_32F);
+  for (const cv::Point& c : occupied) {
+    const int x_lo = std::max(0, c.x - r), x_hi = std::min(w - 1, c.x + r);
+    for (int y = std::max(0, c.y - r); y <= std::min(h - 1, c.y + r); ++y) {
+      float* f = field_.ptr<float>(y);
+      const float* kr = kernel.ptr<float>(y - c.y + r) + (x_lo - c.x + r);
+      for (int x = x_lo; x <= x_hi; ++x, ++kr) f[x] = std::max(f[x], *kr);
+    }
   }
 }
 
@@ -110,8 +125,10 @@ double LikelihoodField::at(const Eigen::Vector2d& p) const {
 double LikelihoodField::score(const std::vector<Eigen::Vector2d>& points_robot,
                               const math::SE2& pose) const {
   if (points_robot.empty()) return 0.0;
+  const double c = std::cos(pose.yaw_rad), sn = std::sin(pose.yaw_rad);
   double s = 0.0;
-  for (const auto& p : points_robot) s += at(pose.transformPoint(p));
+  for (const auto& p : points_robot)
+    s += at(Eigen::Vector2d(pose.x_m + c * p.x() - sn * p.y(), pose.y_m + sn * p.x() + c * p.y()));
   return s / points_robot.size();
 }
 
@@ -134,7 +151,7 @@ ScanMatch matchScan(const LikelihoodField& field, const std::vector<Eigen::Vecto
   const int side = 2 * k + 1;
   const cv::Mat& f = field.values();
   const int yaw_steps = static_cast<int>(std::floor(c.search_yaw_rad / c.yaw_step_rad));
-  std::vector<double> acc(side * side);
+  std::vector<float> acc(side * side);  // sums of at most a few thousand values in [0, 1]
   const Eigen::Vector2d origin = field.origin();
   const double n = static_cast<double>(points_robot.size());
   for (int yi = -yaw_steps; yi <= yaw_steps; ++yi) {
@@ -153,7 +170,7 @@ ScanMatch matchScan(const LikelihoodField& field, const std::vector<Eigen::Vecto
         const int y = cy + dy;
         if (y < 0 || y >= f.rows) continue;
         const float* row = f.ptr<float>(y);
-        double* a = &acc[(dy + k) * side + (x_lo - cx + k)];
+        float* a = &acc[(dy + k) * side + (x_lo - cx + k)];
         for (int x = x_lo; x <= x_hi; ++x) *a++ += row[x];
       }
     }

@@ -76,6 +76,37 @@ TEST(LikelihoodField, MatchesTheGaussianOfTheDistance) {
   EXPECT_THROW(slam::LikelihoodField({}, 0.05, 0.1, 1.0), std::invalid_argument);
 }
 
+TEST(LikelihoodField, EqualsTheBruteForceFieldOfTheNearestMapCell) {
+  // Random map points; the reference: every cell's distance to the nearest map point's cell, by
+  // brute force, through the Gaussian. Equal within 4 hit_std, below exp(-8) beyond.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  std::vector<Eigen::Vector2d> pts;
+  for (int i = 0; i < 60; ++i) pts.emplace_back(u(rng), 0.5 * u(rng));
+  const double res = 0.05, sd = 0.1;
+  const slam::LikelihoodField f(pts, res, sd, 0.6);
+  const cv::Mat& v = f.values();
+  std::vector<Eigen::Vector2i> cells;
+  for (const auto& p : pts)
+    cells.emplace_back(static_cast<int>(std::lround((p.x() - f.origin().x()) / res)),
+                       static_cast<int>(std::lround((p.y() - f.origin().y()) / res)));
+  int near = 0;
+  for (int y = 0; y < v.rows; ++y)
+    for (int x = 0; x < v.cols; ++x) {
+      double d2 = 1e300;
+      for (const auto& c : cells)
+        d2 = std::min(d2, res * res * ((x - c.x()) * (x - c.x()) + (y - c.y()) * (y - c.y())));
+      const double expected = std::exp(-d2 / (2 * sd * sd));
+      if (d2 <= 16 * sd * sd) {
+        ASSERT_NEAR(v.at<float>(y, x), expected, 1e-6) << x << "," << y;
+        ++near;
+      } else {
+        ASSERT_LE(v.at<float>(y, x), std::exp(-8.0) + 1e-6) << x << "," << y;
+      }
+    }
+  EXPECT_GT(near, 1000);
+}
+
 TEST(ScanMatcher, RecoversAKnownOffset) {
   const slam::LikelihoodField field(mapPoints(), 0.05, 0.1, 1.0);
   const math::SE2 truth(2.3, 1.7, 0.4);
