@@ -91,7 +91,8 @@ LikelihoodField::LikelihoodField(const std::vector<Eigen::Vector2d>& points_m, d
   // hit_std of it, the largest value kept: what the exact distance transform of the whole box
   // gives, cut where it falls below exp(-8), at a cost that grows with the map cells rather than
   // with the box's area (a local map over a hall is a million cells, most of them empty).
-  const int r = std::max(1, static_cast<int>(std::ceil(kFieldRadiusStd * hit_std_m / resolution_m)));
+  const int r =
+      std::max(1, static_cast<int>(std::ceil(kFieldRadiusStd * hit_std_m / resolution_m)));
   const double k = -0.5 * (resolution_m * resolution_m) / (hit_std_m * hit_std_m);
   cv::Mat kernel(2 * r + 1, 2 * r + 1, CV_32F);
   for (int y = -r; y <= r; ++y)

@@ -11,47 +11,14 @@
 #include <stdexcept>
 
 #include "adaptive_perception/math/angles.h"
+#include "synthetic_room.h"
 
 namespace slam = adaptive_perception::slam;
 namespace math = adaptive_perception::math;
+using adaptive_perception::test::room;
+using adaptive_perception::test::scanFrom;
 
 namespace {
-
-// Walls of a 10 x 6 m room with a pillar and a side wall, as segments.
-struct Segment {
-  Eigen::Vector2d a, b;
-};
-std::vector<Segment> room() {
-  return {{{0, 0}, {10, 0}}, {{10, 0}, {10, 6}}, {{10, 6}, {0, 6}}, {{0, 6}, {0, 0}},
-          {{4, 2}, {5, 2}},  {{5, 2}, {5, 3}},   {{5, 3}, {4, 3}},  {{4, 3}, {4, 2}},
-          {{7, 6}, {7, 4}}};
-}
-
-/// Ray-casts 181 beams over 180 degrees from `pose`: the hit points in the robot frame.
-std::vector<Eigen::Vector2d> scanFrom(const math::SE2& pose, std::mt19937* rng = nullptr,
-                                      double noise_m = 0.0) {
-  std::vector<Eigen::Vector2d> out;
-  std::normal_distribution<double> n(0.0, noise_m > 0 ? noise_m : 1.0);
-  for (int i = 0; i <= 180; ++i) {
-    const double b = -M_PI / 2 + i * M_PI / 180;
-    const Eigen::Vector2d o(pose.x_m, pose.y_m);
-    const Eigen::Vector2d d(std::cos(pose.yaw_rad + b), std::sin(pose.yaw_rad + b));
-    double best = 1e9;
-    for (const auto& s : room()) {
-      const Eigen::Vector2d e = s.b - s.a;
-      const double den = d.x() * (-e.y()) - d.y() * (-e.x());
-      if (std::fabs(den) < 1e-12) continue;
-      const Eigen::Vector2d r = s.a - o;
-      const double t = (r.x() * (-e.y()) - r.y() * (-e.x())) / den;
-      const double u = (d.x() * r.y() - d.y() * r.x()) / den;
-      if (t > 0.05 && u >= 0 && u <= 1) best = std::min(best, t);
-    }
-    if (best > 20) continue;
-    if (rng && noise_m > 0) best += n(*rng);
-    out.emplace_back(best * std::cos(b), best * std::sin(b));
-  }
-  return out;
-}
 
 std::vector<Eigen::Vector2d> mapPoints() {
   std::vector<Eigen::Vector2d> pts;
