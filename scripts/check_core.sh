@@ -5,8 +5,7 @@
 # the test that caused it. Ends with `sanitizers: N passed, M failed`; exits non-zero on a failure.
 # Part of scripts/run_tests.sh. Build in .ws/sanitize (git-ignored).
 # Usage: scripts/check_core.sh [build|test]   (~15 minutes on two cores from scratch)
-#   build: only build the tree (run_tests.sh builds it at low priority while the catkin tests run);
-#   test: only run the tests of a built tree; no argument: both.
+#   build: only build the tree; test: only run the tests of a built tree; no argument: both.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 BUILD="$AP_WS/sanitize"

@@ -20,11 +20,6 @@ if ! catkin_make -j"$JOBS" tests > "$AP_WS/tests_build.log" 2>&1; then
   echo "tests: 0 passed, 1 failed"; exit 1
 fi
 stage "test build done"
-# The sanitizer tree (below) builds at the lowest CPU priority while the catkin tests run: their
-# rostests spend most of their time waiting on replayed bags and timers, and a nice-19 compiler
-# gets only the CPU they leave idle.
-nice -n 19 "$AP_ROOT/scripts/check_core.sh" build > "$AP_WS/check_core_build.log" 2>&1 &
-san_build=$!
 catkin_make -j1 run_tests 2>&1 | tee "$AP_WS/run_tests.log" | \
   grep -E '^\[ *(RUN|  +OK|  FAILED|  PASSED) |^\[ROSTEST\]|^ *\[(passed|FAILURE|ERROR)\]|^-- run_tests' || true
 stage "catkin tests done"
@@ -34,13 +29,10 @@ catkin_line="$(echo "$summary" | tail -n 1)"
 echo "catkin $catkin_line"
 # The core and its unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer, with the
 # fuzz targets' corpus replays (scripts/check_core.sh); each gtest case and each replay counts once.
-if wait "$san_build"; then
-  stage "sanitizer build done"
-  "$AP_ROOT/scripts/check_core.sh" test | tee "$AP_WS/check_core.log"
-else
-  cat "$AP_WS/check_core_build.log" | tee "$AP_WS/check_core.log"
-fi
-stage "sanitizer tests done"
+# (Not built beside the catkin tests: a run that did so failed rbpf_localizer_kidnap, whose result
+# depends on how many frames the node keeps up with.)
+"$AP_ROOT/scripts/check_core.sh" | tee "$AP_WS/check_core.log"
+stage "sanitizer build and tests done"
 san_line="$(tail -n 1 "$AP_WS/check_core.log")"
 num() { echo "$1" | sed -n "s/.* \([0-9]*\) $2.*/\1/p"; }
 p1=$(num "$catkin_line" passed); f1=$(num "$catkin_line" failed)
