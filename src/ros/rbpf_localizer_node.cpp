@@ -1,4 +1,3 @@
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/rbpf_localizer_node.h"
 
 #include <geometry_msgs/PoseArray.h>
@@ -12,6 +11,7 @@
 #include <thread>
 
 #include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/tf_lookup.h"
@@ -74,48 +74,41 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       P::getInRange(pnh, "heading_tolerance_rad", c.likelihood.heading_tolerance_rad, 0.0, 0.5);
   c.likelihood.max_neighbourhood_cells =
       P::getInRange(pnh, "max_neighbourhood_cells", c.likelihood.max_neighbourhood_cells, 0, 16);
-  c.min_ess_fraction = P::getInRange(pnh, "min_ess_fraction", c.min_ess_fraction, 0.0, 1.0);
   c.resample_ess_fraction =
       P::getInRange(pnh, "resample_ess_fraction", c.resample_ess_fraction, 1e-3, 1.0);
-  c.global_pool_size = P::getInRange(pnh, "global_pool_size", c.global_pool_size, 0, 10000000);
-  c.global_pixel_stride = P::getInRange(pnh, "global_pixel_stride", c.global_pixel_stride, 1, 64);
-  c.global_search_frames =
-      P::getInRange(pnh, "global_search_frames", c.global_search_frames, 1, 100);
-  c.global_confirm_frames =
-      P::getInRange(pnh, "global_confirm_frames", c.global_confirm_frames, 0, 100);
-  c.global_confirm_fraction =
-      P::getInRange(pnh, "global_confirm_fraction", c.global_confirm_fraction, 0.0, 1.0);
+  c.global.pool_size = P::getInRange(pnh, "global_pool_size", c.global.pool_size, 0, 10000000);
+  c.search.pixel_stride = P::getInRange(pnh, "global_pixel_stride", c.search.pixel_stride, 1, 64);
+  c.global.search_frames =
+      P::getInRange(pnh, "global_search_frames", c.global.search_frames, 1, 100);
+  c.global.confirm_frames =
+      P::getInRange(pnh, "global_confirm_frames", c.global.confirm_frames, 0, 100);
+  c.global.confirm_fraction =
+      P::getInRange(pnh, "global_confirm_fraction", c.global.confirm_fraction, 0.0, 1.0);
   c.mirror_fraction = P::getInRange(pnh, "mirror_fraction", c.mirror_fraction, 0.0, 0.5);
   c.mirror_relative_weight =
       P::getInRange(pnh, "mirror_relative_weight", c.mirror_relative_weight, 1e-6, 1.0);
-  c.mirror_test_margin_nats =
-      P::getInRange(pnh, "mirror_test_margin_nats", c.mirror_test_margin_nats, 0.0, 1e6);
-  c.mirror_test_memory_s =
-      P::getInRange(pnh, "mirror_test_memory_s", c.mirror_test_memory_s, 1e-3, 1e6);
-  c.refine_candidates = P::getInRange(pnh, "refine_candidates", c.refine_candidates, 0, 1000000);
-  c.refine_rounds = P::getInRange(pnh, "refine_rounds", c.refine_rounds, 0, 20);
-  c.refine_tries = P::getInRange(pnh, "refine_tries", c.refine_tries, 0, 1000);
-  c.refine_sigma_m = P::getInRange(pnh, "refine_sigma_m", c.refine_sigma_m, 0.0, 5.0);
-  c.refine_sigma_rad = P::getInRange(pnh, "refine_sigma_rad", c.refine_sigma_rad, 0.0, 3.2);
-  c.relocalization_interval_s =
-      P::getInRange(pnh, "relocalization_interval_s", c.relocalization_interval_s, 0.0, 1e6);
-  c.relocalization_pool_size =
-      P::getInRange(pnh, "relocalization_pool_size", c.relocalization_pool_size, 0, 10000000);
-  c.relocalization_margin =
-      P::getInRange(pnh, "relocalization_margin", c.relocalization_margin, -1e6, 1e6);
-  c.relocalization_fraction =
-      P::getInRange(pnh, "relocalization_fraction", c.relocalization_fraction, 1e-6, 1.0);
-  c.relocalization_restart = P::get<bool>(pnh, "relocalization_restart", c.relocalization_restart);
-  c.relocalization_refine_candidates = P::getInRange(
-      pnh, "relocalization_refine_candidates", c.relocalization_refine_candidates, 0, 1000000);
-  c.recovery_alpha_slow =
-      P::getInRange(pnh, "recovery_alpha_slow", c.recovery_alpha_slow, 0.0, 1.0);
-  c.recovery_alpha_fast =
-      P::getInRange(pnh, "recovery_alpha_fast", c.recovery_alpha_fast, 0.0, 1.0);
-  c.recovery_gain_per_nat =
-      P::getInRange(pnh, "recovery_gain_per_nat", c.recovery_gain_per_nat, 0.0, 100.0);
-  c.recovery_max_fraction =
-      P::getInRange(pnh, "recovery_max_fraction", c.recovery_max_fraction, 0.0, 1.0);
+  c.mirror_test.margin_nats =
+      P::getInRange(pnh, "mirror_test_margin_nats", c.mirror_test.margin_nats, 0.0, 1e6);
+  c.mirror_test.memory_s =
+      P::getInRange(pnh, "mirror_test_memory_s", c.mirror_test.memory_s, 1e-3, 1e6);
+  c.global.refine_candidates =
+      P::getInRange(pnh, "refine_candidates", c.global.refine_candidates, 0, 1000000);
+  c.search.refine_rounds = P::getInRange(pnh, "refine_rounds", c.search.refine_rounds, 0, 20);
+  c.search.refine_tries = P::getInRange(pnh, "refine_tries", c.search.refine_tries, 0, 1000);
+  c.search.refine_sigma_m = P::getInRange(pnh, "refine_sigma_m", c.search.refine_sigma_m, 0.0, 5.0);
+  c.search.refine_sigma_rad =
+      P::getInRange(pnh, "refine_sigma_rad", c.search.refine_sigma_rad, 0.0, 3.2);
+  c.relocalization.interval_s =
+      P::getInRange(pnh, "relocalization_interval_s", c.relocalization.interval_s, 0.0, 1e6);
+  c.relocalization.pool_size =
+      P::getInRange(pnh, "relocalization_pool_size", c.relocalization.pool_size, 0, 10000000);
+  c.relocalization.margin =
+      P::getInRange(pnh, "relocalization_margin", c.relocalization.margin, -1e6, 1e6);
+  c.relocalization.fraction =
+      P::getInRange(pnh, "relocalization_fraction", c.relocalization.fraction, 1e-6, 1.0);
+  c.relocalization.restart = P::get<bool>(pnh, "relocalization_restart", c.relocalization.restart);
+  c.relocalization.refine_candidates = P::getInRange(
+      pnh, "relocalization_refine_candidates", c.relocalization.refine_candidates, 0, 1000000);
   P::loadMotionModel(pnh, &c.motion);
   c.model.drift_std_per_sqrt_s =
       P::getInRange(pnh, "drift_std_per_sqrt_s", c.model.drift_std_per_sqrt_s, 0.0, 100.0);
@@ -258,15 +251,22 @@ void RbpfLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image
   if (!std::isnan(last_.relocalization_score)) last_check_score_ = last_.relocalization_score;
   if (last_.relocalized) {
     ++relocalizations_;
-    if (rbpf_->globalSearchPending())
+    if (last_.global_search_restarted)
       ROS_WARN(
           "rbpf_localizer: the relocalization check found the particles lost (a uniform pose beat "
           "them by %.2f); global search restarted",
           last_.relocalization_score);
     else
-      ROS_INFO("rbpf_localizer: particles redrawn from a search (its best pose minus theirs: %.2f)",
-               last_.relocalization_score);
+      ROS_WARN(
+          "rbpf_localizer: the relocalization check found the particles lost (a uniform pose beat "
+          "them by %.2f); part of them redrawn from its poses",
+          last_.relocalization_score);
   }
+  if (last_.second_draw)
+    ROS_INFO(
+        "rbpf_localizer: the global search's second draw replaced part of the particles (its best "
+        "pose minus theirs: %.2f)",
+        last_.relocalization_score);
   if (last_.mirror_flipped) {
     ++mirror_flips_;
     ROS_WARN(
@@ -370,8 +370,6 @@ void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
     stat.add("spread of all particles (m)", e.spread_m);
     stat.add("position std of the estimate (m)",
              std::sqrt(e.covariance.topLeftCorner<2, 2>().trace()));
-    stat.add("tempering", last_.tempering);
-    stat.add("injected (last resampling)", last_.injected);
     stat.add("relocalizations", relocalizations_);
     stat.add("last relocalization check: best uniform minus best particle", last_check_score_);
     stat.add("mirror flips", mirror_flips_);

@@ -36,9 +36,9 @@ int main(int argc, char** argv) {
   const int stride = static_cast<int>(
       args.getInt("pixel_stride", localization::ImageLikelihoodConfig().pixel_stride));
   const double relocalization = args.getDouble(
-      "relocalization_interval_s", localization::RbpfConfig().relocalization_interval_s);
+      "relocalization_interval_s", localization::RbpfConfig().relocalization.interval_s);
   const int pool = static_cast<int>(
-      args.getInt("relocalization_pool_size", localization::RbpfConfig().relocalization_pool_size));
+      args.getInt("relocalization_pool_size", localization::RbpfConfig().relocalization.pool_size));
   args.finish();
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::vector<std::pair<int, int>> configs;
@@ -79,8 +79,8 @@ int main(int argc, char** argv) {
     cfg.particles = n;
     cfg.threads = t;
     cfg.likelihood.pixel_stride = stride;
-    cfg.relocalization_interval_s = relocalization;
-    cfg.relocalization_pool_size = pool;
+    cfg.relocalization.interval_s = relocalization;
+    cfg.relocalization.pool_size = pool;
     localization::RbpfLocalizer rbpf(map, cam, priors, cfg);
     rbpf.initGaussian(start, Eigen::Vector3d(0.01, 0.01, 0.01).asDiagonal());
     const auto t0 = std::chrono::steady_clock::now();

@@ -4,12 +4,11 @@
 //   evaluate_localization --bag FILE [--particles 500] [--filter switching|single] [--threads 1]
 //       [--seed 1] [--pixel_stride 4] [--exponent E] [--position_tolerance_m M]
 //       [--heading_tolerance_rad R] [--max_neighbourhood_cells C]
-//       [--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W]
+//       [--mirror_fraction F] [--mirror_relative_weight W]
 //       [--mirror_test_margin_nats M] [--mirror_test_memory_s S]
 //       [--global_pool_size N] [--global_search_frames K] [--global_confirm_frames K]
 //       [--global_confirm_fraction F]
-//       [--recovery_max_fraction F] [--recovery_alpha_fast A] [--recovery_alpha_slow A]
-//       [--recovery_gain_per_nat G] [--relocalization_interval_s S]
+//       [--relocalization_interval_s S]
 //       [--relocalization_pool_size N] [--relocalization_margin M] [--refine_candidates K]
 //       [--relocalization_fraction F] [--relocalization_restart 0|1]
 //       [--relocalization_refine_candidates K] [--refine_rounds R] [--refine_tries T]
@@ -65,12 +64,10 @@ int main(int argc, char** argv) {
       "[--threads T] [--seed N] "
       "[--pixel_stride S] [--exponent E] [--position_tolerance_m M] "
       "[--heading_tolerance_rad R] [--max_neighbourhood_cells C] "
-      "[--min_ess_fraction F] [--mirror_fraction F] [--mirror_relative_weight W] "
+      "[--mirror_fraction F] [--mirror_relative_weight W] "
       "[--mirror_test_margin_nats M] [--mirror_test_memory_s S] "
       "[--global_pool_size N] [--global_search_frames K] [--global_confirm_frames K] "
       "[--global_confirm_fraction F] "
-      "[--recovery_max_fraction F] [--recovery_alpha_fast A] "
-      "[--recovery_alpha_slow A] [--recovery_gain_per_nat G] "
       "[--relocalization_interval_s S] [--relocalization_pool_size N] "
       "[--relocalization_margin M] [--relocalization_fraction F] "
       "[--relocalization_restart 0|1] [--relocalization_refine_candidates K] "
@@ -85,41 +82,38 @@ int main(int argc, char** argv) {
   cfg.likelihood.pixel_stride =
       static_cast<int>(args.getInt("pixel_stride", cfg.likelihood.pixel_stride));
   cfg.likelihood.exponent = args.getDouble("exponent", cfg.likelihood.exponent);
-  cfg.recovery_max_fraction = args.getDouble("recovery_max_fraction", cfg.recovery_max_fraction);
-  cfg.recovery_alpha_fast = args.getDouble("recovery_alpha_fast", cfg.recovery_alpha_fast);
-  cfg.recovery_alpha_slow = args.getDouble("recovery_alpha_slow", cfg.recovery_alpha_slow);
-  cfg.recovery_gain_per_nat = args.getDouble("recovery_gain_per_nat", cfg.recovery_gain_per_nat);
-  cfg.relocalization_interval_s =
-      args.getDouble("relocalization_interval_s", cfg.relocalization_interval_s);
-  cfg.relocalization_pool_size =
-      static_cast<int>(args.getInt("relocalization_pool_size", cfg.relocalization_pool_size));
-  cfg.relocalization_margin = args.getDouble("relocalization_margin", cfg.relocalization_margin);
-  cfg.relocalization_fraction =
-      args.getDouble("relocalization_fraction", cfg.relocalization_fraction);
-  cfg.relocalization_refine_candidates = static_cast<int>(
-      args.getInt("relocalization_refine_candidates", cfg.relocalization_refine_candidates));
-  cfg.relocalization_restart =
-      args.getInt("relocalization_restart", cfg.relocalization_restart ? 1 : 0) != 0;
-  cfg.refine_candidates = static_cast<int>(args.getInt("refine_candidates", cfg.refine_candidates));
-  cfg.refine_rounds = static_cast<int>(args.getInt("refine_rounds", cfg.refine_rounds));
-  cfg.refine_tries = static_cast<int>(args.getInt("refine_tries", cfg.refine_tries));
-  cfg.min_ess_fraction = args.getDouble("min_ess_fraction", cfg.min_ess_fraction);
-  cfg.global_pool_size = static_cast<int>(args.getInt("global_pool_size", cfg.global_pool_size));
-  cfg.global_search_frames =
-      static_cast<int>(args.getInt("global_search_frames", cfg.global_search_frames));
-  cfg.global_confirm_frames =
-      static_cast<int>(args.getInt("global_confirm_frames", cfg.global_confirm_frames));
-  cfg.global_confirm_fraction =
-      args.getDouble("global_confirm_fraction", cfg.global_confirm_fraction);
+  cfg.relocalization.interval_s =
+      args.getDouble("relocalization_interval_s", cfg.relocalization.interval_s);
+  cfg.relocalization.pool_size =
+      static_cast<int>(args.getInt("relocalization_pool_size", cfg.relocalization.pool_size));
+  cfg.relocalization.margin = args.getDouble("relocalization_margin", cfg.relocalization.margin);
+  cfg.relocalization.fraction =
+      args.getDouble("relocalization_fraction", cfg.relocalization.fraction);
+  cfg.relocalization.refine_candidates = static_cast<int>(
+      args.getInt("relocalization_refine_candidates", cfg.relocalization.refine_candidates));
+  cfg.relocalization.restart =
+      args.getInt("relocalization_restart", cfg.relocalization.restart ? 1 : 0) != 0;
+  cfg.global.refine_candidates =
+      static_cast<int>(args.getInt("refine_candidates", cfg.global.refine_candidates));
+  cfg.search.refine_rounds =
+      static_cast<int>(args.getInt("refine_rounds", cfg.search.refine_rounds));
+  cfg.search.refine_tries = static_cast<int>(args.getInt("refine_tries", cfg.search.refine_tries));
+  cfg.global.pool_size = static_cast<int>(args.getInt("global_pool_size", cfg.global.pool_size));
+  cfg.global.search_frames =
+      static_cast<int>(args.getInt("global_search_frames", cfg.global.search_frames));
+  cfg.global.confirm_frames =
+      static_cast<int>(args.getInt("global_confirm_frames", cfg.global.confirm_frames));
+  cfg.global.confirm_fraction =
+      args.getDouble("global_confirm_fraction", cfg.global.confirm_fraction);
   const std::string priors_dir = args.get("priors_dir", "config/color_priors");
   const std::string output = args.get("output", "results/evaluate_localization");
   const std::string name = args.get("name", fs::path(bag).stem().string());
   const std::string init = args.get("init", "global");
   cfg.mirror_fraction = args.getDouble("mirror_fraction", cfg.mirror_fraction);
   cfg.mirror_relative_weight = args.getDouble("mirror_relative_weight", cfg.mirror_relative_weight);
-  cfg.mirror_test_margin_nats =
-      args.getDouble("mirror_test_margin_nats", cfg.mirror_test_margin_nats);
-  cfg.mirror_test_memory_s = args.getDouble("mirror_test_memory_s", cfg.mirror_test_memory_s);
+  cfg.mirror_test.margin_nats =
+      args.getDouble("mirror_test_margin_nats", cfg.mirror_test.margin_nats);
+  cfg.mirror_test.memory_s = args.getDouble("mirror_test_memory_s", cfg.mirror_test.memory_s);
   cfg.likelihood.position_tolerance_m =
       args.getDouble("position_tolerance_m", cfg.likelihood.position_tolerance_m);
   cfg.likelihood.heading_tolerance_rad =
@@ -152,9 +146,9 @@ int main(int argc, char** argv) {
     fs::create_directories(output);
     std::ofstream csv(fs::path(output) / "frames.csv"), est_tum(fs::path(output) / "estimate.tum"),
         truth_tum(fs::path(output) / "truth.tum");
-    csv << "t_s,position_error_m,heading_error_deg,ess,tempering,classification_rate,injected,"
-           "mean_pixel_log_likelihood,relocalization_score,relocalized,mirror_evidence,mirror_"
-           "flipped\n";
+    csv << "t_s,position_error_m,heading_error_deg,ess,classification_rate,"
+           "mean_pixel_log_likelihood,relocalization_score,relocalized,second_draw,mirror_evidence,"
+           "mirror_flipped\n";
     const double t0 = frames.front().stamp.toSec();
     bool have_prev = false;
     Eigen::Isometry3d prev_odom = Eigen::Isometry3d::Identity();
@@ -176,37 +170,6 @@ int main(int argc, char** argv) {
       prev_odom = f.odom_to_base;
       prev_t = t;
       const math::SE2 est = rbpf.estimate().pose, truth = world::isometryToPlanar(f.map_to_base);
-      if (std::getenv("AP_DEBUG_RBPF")) {
-        int u1 = 0, u2 = 0;
-        const auto& b = rbpf.best();
-        const double lt =
-            rbpf.imageLogLikelihood(truth, b.lighting, f.base_to_optical, nullptr, &u1);
-        const double lb =
-            rbpf.imageLogLikelihood(b.pose, b.lighting, f.base_to_optical, nullptr, &u2);
-        const color::SwitchingColorFilter fresh(priors, cfg.model, cfg.switching);
-        int u3 = 0;
-        const double lt0 = rbpf.imageLogLikelihood(truth, fresh, f.base_to_optical, nullptr, &u3);
-        const double lm0 =
-            rbpf.imageLogLikelihood(math::SE2(-truth.x_m, -truth.y_m, truth.yaw_rad + M_PI), fresh,
-                                    f.base_to_optical, nullptr, &u3);
-        double near = 0;
-        int nn = 0;
-        for (size_t i = 0; i < rbpf.particles().size(); ++i) {
-          const auto& q = rbpf.particles()[i].pose;
-          if (std::hypot(q.x_m - truth.x_m, q.y_m - truth.y_m) < 0.3 &&
-              std::fabs(math::angleDiff(q.yaw_rad, truth.yaw_rad)) < 0.3) {
-            near += rbpf.weights()[i];
-            ++nn;
-          }
-        }
-        std::fprintf(stderr, "   fresh: truth %.1f mirror %.1f; near truth %d w %.3f temper %.3f\n",
-                     lt0, lm0, nn, near, r.tempering);
-        std::fprintf(stderr,
-                     "t=%.2f truth (%.2f %.2f %.2f) ll %.1f used %d | best (%.2f %.2f %.2f) ll "
-                     "%.1f used %d\n",
-                     t, truth.x_m, truth.y_m, truth.yaw_rad, lt, u1, b.pose.x_m, b.pose.y_m,
-                     b.pose.yaw_rad, lb, u2);
-      }
       const double pe = std::hypot(est.x_m - truth.x_m, est.y_m - truth.y_m);
       const double he = std::fabs(math::radToDeg(math::angleDiff(est.yaw_rad, truth.yaw_rad)));
       double rate = -1.0;
@@ -236,12 +199,12 @@ int main(int argc, char** argv) {
         total += ft;
         rate = ft ? double(fc) / ft : -1.0;
       }
-      csv << t << "," << pe << "," << he << "," << r.effective_sample_size << "," << r.tempering
-          << "," << rate << "," << r.injected << "," << r.mean_pixel_log_likelihood << ","
+      csv << t << "," << pe << "," << he << "," << r.effective_sample_size << "," << rate << ","
+          << r.mean_pixel_log_likelihood << ","
           << (std::isnan(r.relocalization_score) ? std::string()
                                                  : std::to_string(r.relocalization_score))
-          << "," << int(r.relocalized) << "," << r.mirror_evidence << "," << int(r.mirror_flipped)
-          << "\n";
+          << "," << int(r.relocalized) << "," << int(r.second_draw) << "," << r.mirror_evidence
+          << "," << int(r.mirror_flipped) << "\n";
       tum(est_tum, f.stamp.toSec(), est);
       tum(truth_tum, f.stamp.toSec(), truth);
       if (!t_s.empty() && std::hypot(truth.x_m - prev_truth.x_m, truth.y_m - prev_truth.y_m) > 0.5)

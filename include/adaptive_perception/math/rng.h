@@ -32,4 +32,14 @@ class Rng {
   std::normal_distribution<double> normal_{0.0, 1.0};
 };
 
+/// A seed for item b of stream a (a frame's seed and a particle's index, say): a 64-bit mix of
+/// both, so that every item draws from its own stream whatever order the items run in.
+inline std::uint64_t mixSeeds(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t x = a * 0x9E3779B97F4A7C15ull ^ (b + 0x632BE59BD9B4E019ull + (a << 6) + (a >> 2));
+  x ^= x >> 31;
+  x *= 0xBF58476D1CE4E5B9ull;
+  x ^= x >> 29;
+  return x;
+}
+
 }  // namespace adaptive_perception::math

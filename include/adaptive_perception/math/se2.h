@@ -28,4 +28,7 @@ struct SE2 {
 /// frame).
 SE2 between(const SE2& from, const SE2& to);
 
+/// The pose's point mirror through the parent frame's origin: (-x, -y, yaw + pi).
+inline SE2 pointMirror(const SE2& p) { return SE2(-p.x_m, -p.y_m, p.yaw_rad + kPi); }
+
 }  // namespace adaptive_perception::math

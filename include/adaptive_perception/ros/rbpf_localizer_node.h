@@ -7,10 +7,8 @@
 //   ~particles (int), ~threads (int, 0 = all cores), ~seed (int).
 //   ~pixel_stride (int, px of a 208-wide image: scaled with the camera's width),
 //   ~outlier_probability, ~exponent (scaled by the grid's pixel count): the image likelihood (eq.
-//   16). ~min_ess_fraction, ~resample_ess_fraction: adaptive tempering and resampling thresholds.
+//   16). ~resample_ess_fraction: the resampling threshold.
 //   ~global_pool_size, ~global_pixel_stride: the global search from the first image.
-//   ~recovery_alpha_slow, ~recovery_alpha_fast, ~recovery_gain_per_nat, ~recovery_max_fraction:
-//   augmented-MCL injection of uniform particles.
 //   ~odom_alpha1..4, ~odom_min_translation_std_m, ~odom_min_rotation_std_rad: motion model.
 //   ~filter (switching | single), ~priors (list), ~single_prior, ~priors_dir, ~field_file,
 //   ~mode_stay_probability, ~drift_std_per_sqrt_s: the per-particle lighting filters.
@@ -28,7 +26,7 @@
 //   rbpf_localizer/pose (geometry_msgs/PoseWithCovarianceStamped), rbpf_localizer/particles
 //   (geometry_msgs/PoseArray), tf map -> odom, color_model (adaptive_perception/ColorModel of the
 //   best particle), rbpf_localizer/classified (mono8 class ids) and rbpf_localizer/classified_color
-//   (bgr8), /diagnostics (rate, effective sample size, spread, tempering).
+//   (bgr8), /diagnostics (rate, effective sample size, spread, searches).
 // Services:
 //   global_localization (std_srvs/Empty, as amcl): particles uniform again, global search on the
 //   next image.

@@ -101,7 +101,7 @@ TEST(Rbpf, DeterministicAcrossThreadCounts) {
   for (int threads : {1, 3}) {
     RbpfConfig cfg;
     cfg.particles = 40;
-    cfg.global_pool_size = 4000;  // the global search from the first image is covered too
+    cfg.global.pool_size = 4000;  // the global search from the first image is covered too
     cfg.threads = threads;
     cfg.seed = 9;
     RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
@@ -219,8 +219,8 @@ TEST(Rbpf, GlobalSearchSpansTheConfiguredFrames) {
   sim::FieldSimulator sim(s.map, s.cam, s.head, sc);
   RbpfConfig cfg;
   cfg.particles = 100;
-  cfg.global_pool_size = 2000;
-  cfg.global_search_frames = 3;
+  cfg.global.pool_size = 2000;
+  cfg.global.search_frames = 3;
   RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
   const double uniform_spread = rbpf.estimate().spread_m;
   math::SE2 prev_odom = sim.state().odom_pose;
@@ -234,13 +234,13 @@ TEST(Rbpf, GlobalSearchSpansTheConfiguredFrames) {
     EXPECT_EQ(rbpf.particles().size(), 100u);
   }
   EXPECT_LT(rbpf.estimate().spread_m, uniform_spread);
-  cfg.global_search_frames = 0;
+  cfg.global.search_frames = 0;
   EXPECT_THROW(RbpfLocalizer(s.map, s.cam, s.priors, cfg), std::invalid_argument);
 }
 
 // The second draw: the pool goes on after the particles commit, and after global_confirm_frames
-// images global_confirm_fraction of the particles are drawn from it again (reported as a
-// relocalization); with a fraction of 0 it is only scored.
+// images global_confirm_fraction of the particles are drawn from it again (reported as the second
+// draw, not as a relocalization); with a fraction of 0 it is only scored.
 TEST(Rbpf, SecondDrawOfTheGlobalSearch) {
   Scene s;
   sim::FieldSimConfig sc;
@@ -248,10 +248,10 @@ TEST(Rbpf, SecondDrawOfTheGlobalSearch) {
     sim::FieldSimulator sim(s.map, s.cam, s.head, sc);
     RbpfConfig cfg;
     cfg.particles = 100;
-    cfg.global_pool_size = 2000;
-    cfg.global_search_frames = 3;
-    cfg.global_confirm_frames = 5;
-    cfg.global_confirm_fraction = fraction;
+    cfg.global.pool_size = 2000;
+    cfg.global.search_frames = 3;
+    cfg.global.confirm_frames = 5;
+    cfg.global.confirm_fraction = fraction;
     RbpfLocalizer rbpf(s.map, s.cam, s.priors, cfg);
     math::SE2 prev_odom = sim.state().odom_pose;
     for (int k = 1; k <= 7; ++k) {
@@ -262,12 +262,13 @@ TEST(Rbpf, SecondDrawOfTheGlobalSearch) {
                                s.head.baseToOptical(sim.state().pan_rad, sim.state().tilt_rad));
       prev_odom = sim.state().odom_pose;
       EXPECT_EQ(std::isnan(r.relocalization_score), k != 5) << "image " << k;
-      EXPECT_EQ(r.relocalized, k == 5 && fraction > 0.0) << "image " << k;
+      EXPECT_EQ(r.second_draw, k == 5 && fraction > 0.0) << "image " << k;
+      EXPECT_FALSE(r.relocalized) << "image " << k;
       EXPECT_EQ(rbpf.particles().size(), 100u);
     }
   }
   RbpfConfig bad;
-  bad.global_confirm_fraction = 1.5;
+  bad.global.confirm_fraction = 1.5;
   EXPECT_THROW(RbpfLocalizer(s.map, s.cam, s.priors, bad), std::invalid_argument);
 }
 
@@ -364,14 +365,14 @@ void expectRecoveryFromAWrongStart(bool restart) {
   sc.seed = 1;
   RbpfConfig cfg;
   cfg.threads = 2;
-  cfg.relocalization_restart = restart;
+  cfg.relocalization.restart = restart;
   int relocalizations = 0;
   double max_score = 0.0;
   const double found =
       runFrom(s, sc, cfg, wrongStart(s, sc), 8.0, &relocalizations, &max_score, true);
   EXPECT_LT(found, 0.3);  // evaluate_localization's convergence bound
   EXPECT_GE(relocalizations, 1);
-  EXPECT_GT(max_score, cfg.relocalization_margin);
+  EXPECT_GT(max_score, cfg.relocalization.margin);
 }
 }  // namespace
 
@@ -381,7 +382,7 @@ TEST(Rbpf, AWrongStartStaysLostWithoutTheRelocalizationCheck) {
   sc.seed = 1;
   RbpfConfig cfg;
   cfg.threads = 2;
-  cfg.relocalization_interval_s = 0.0;
+  cfg.relocalization.interval_s = 0.0;
   int relocalizations = 0;
   double max_score = 0.0;
   const double lost = runFrom(s, sc, cfg, wrongStart(s, sc), 8.0, &relocalizations, &max_score);
@@ -407,21 +408,17 @@ TEST(Rbpf, RelocalizationCheckLeavesACorrectTrackAlone) {
   RbpfConfig cfg;
   cfg.particles = 200;
   cfg.threads = 2;
-  cfg.relocalization_pool_size = 3000;
-  cfg.relocalization_interval_s = 1.0;
+  cfg.relocalization.pool_size = 3000;
+  cfg.relocalization.interval_s = 1.0;
   int relocalizations = 0;
   double max_score = 0.0;
   const double error = runFrom(s, sc, cfg, truth, 8.0, &relocalizations, &max_score);
   EXPECT_LT(error, 0.15);
   EXPECT_EQ(relocalizations, 0);
-  EXPECT_LT(max_score, cfg.relocalization_margin);
-  cfg.relocalization_fraction = 0.0;
+  EXPECT_LT(max_score, cfg.relocalization.margin);
+  cfg.relocalization.fraction = 0.0;
   EXPECT_THROW(RbpfLocalizer(s.map, s.cam, s.priors, cfg), std::invalid_argument);
 }
-
-namespace {
-math::SE2 pointMirror(const math::SE2& p) { return math::SE2(-p.x_m, -p.y_m, p.yaw_rad + M_PI); }
-}  // namespace
 
 // The mirror test moves a track that started on the point mirror of the truth over to the truth
 // once the goals and beacons have been in view; without it the particles stay on the mirror (the
@@ -437,17 +434,17 @@ TEST(Rbpf, MirrorTestMovesAMirroredTrackToTheTruth) {
   cfg.mirror_fraction = 0.0;  // no mirror copies: only the test can cross over
   // Nor the relocalization check, which also finds the truth from the mirror (the uniform poses
   // are scored under the priors' lighting, not the particles' learnt swapped goal colours).
-  cfg.relocalization_interval_s = 0.0;
+  cfg.relocalization.interval_s = 0.0;
   int relocalizations = 0, flips = 0;
   double max_score = 0.0;
-  cfg.mirror_test_margin_nats = 0.0;
-  const double stays =
-      runFrom(s, sc, cfg, pointMirror(truth), 10.0, &relocalizations, &max_score, false, &flips);
+  cfg.mirror_test.margin_nats = 0.0;
+  const double stays = runFrom(s, sc, cfg, math::pointMirror(truth), 10.0, &relocalizations,
+                               &max_score, false, &flips);
   EXPECT_GT(stays, 0.5) << "without the test the track must stay on the mirror";
   EXPECT_EQ(flips, 0);
-  cfg.mirror_test_margin_nats = 3.0;
-  const double moved =
-      runFrom(s, sc, cfg, pointMirror(truth), 10.0, &relocalizations, &max_score, false, &flips);
+  cfg.mirror_test.margin_nats = 3.0;
+  const double moved = runFrom(s, sc, cfg, math::pointMirror(truth), 10.0, &relocalizations,
+                               &max_score, false, &flips);
   EXPECT_LT(moved, 0.15);
   EXPECT_GE(flips, 1);
 }
@@ -470,7 +467,7 @@ TEST(Rbpf, MirrorTestLeavesATrueTrackAlone) {
     EXPECT_EQ(flips, 0) << "seed " << seed;
   }
   RbpfConfig bad;
-  bad.mirror_test_memory_s = 0.0;
+  bad.mirror_test.memory_s = 0.0;
   EXPECT_THROW(RbpfLocalizer(s.map, s.cam, s.priors, bad), std::invalid_argument);
 }
 

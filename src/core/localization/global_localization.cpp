@@ -1,0 +1,106 @@
+#include "adaptive_perception/localization/global_localization.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "adaptive_perception/math/parallel_for.h"
+
+namespace adaptive_perception::localization {
+
+void GlobalLocalizationConfig::validate() const {
+  if (pool_size < 0 || pool_size > 10000000)
+    throw std::invalid_argument("global_pool_size = " + std::to_string(pool_size) +
+                                " (allowed: 0..10000000)");
+  if (!(confirm_fraction >= 0.0 && confirm_fraction <= 1.0))
+    throw std::invalid_argument("global_confirm_fraction = " + std::to_string(confirm_fraction) +
+                                " (allowed: 0..1)");
+  if (confirm_frames < 0 || confirm_frames > 100)
+    throw std::invalid_argument("global_confirm_frames = " + std::to_string(confirm_frames) +
+                                " (allowed: 0..100, at most global_search_frames turns it off)");
+  if (search_frames < 1 || search_frames > 100)
+    throw std::invalid_argument("global_search_frames = " + std::to_string(search_frames) +
+                                " (allowed: 1..100)");
+  if (refine_candidates < 0 || refine_candidates > 1000000)
+    throw std::invalid_argument("refine_candidates = " + std::to_string(refine_candidates) +
+                                " (allowed: 0..1000000)");
+}
+
+GlobalLocalization::GlobalLocalization(const GlobalLocalizationConfig& config) : config_(config) {
+  config_.validate();
+}
+
+void GlobalLocalization::clearPool() {
+  pool_.clear();
+  pool_.shrink_to_fit();
+  pool_ll_.clear();
+  pool_ll_.shrink_to_fit();
+  frames_ = 0;
+}
+
+void GlobalLocalization::start() {
+  stop();
+  searching_ = config_.pool_size > 0;
+}
+
+void GlobalLocalization::stop() {
+  searching_ = false;
+  confirming_ = false;
+  clearPool();
+}
+
+GlobalLocalization::SearchStep GlobalLocalization::searchImage(
+    PoseSearch* search, const math::SE2& odom_delta, const cv::Mat& yuv,
+    const color::SwitchingColorFilter& lighting, const Eigen::Isometry3d& base_to_optical,
+    std::uint64_t seed, int count, math::Rng& rng) {
+  SampledImage image = search->coarseImage(yuv, base_to_optical);
+  const std::size_t n = static_cast<std::size_t>(config_.pool_size);
+  const bool first = pool_.empty();
+  if (first) {
+    pool_.resize(n);
+    pool_ll_.assign(n, 0.0);
+    search->fillUniform(&pool_, n, seed);
+  }
+  search->score(&pool_, &pool_ll_, 0, !first, odom_delta, image, lighting, base_to_optical);
+  ++frames_;
+  search->pushWindow(odom_delta, std::move(image), lighting, base_to_optical, first);
+  SearchStep step;
+  step.committed = frames_ >= config_.search_frames;
+  if (step.committed) search->refine(&pool_, &pool_ll_, 0, n, config_.refine_candidates, seed);
+  for (std::size_t i : search->draw(pool_ll_, n, count, rng)) step.poses.push_back(pool_[i]);
+  if (!step.committed) return step;
+  searching_ = false;
+  confirming_ = config_.confirm_frames > config_.search_frames;
+  if (!confirming_) {
+    search->clearWindow();
+    clearPool();
+  }
+  return step;
+}
+
+std::optional<PoseContest> GlobalLocalization::confirmImage(
+    PoseSearch* search, const math::SE2& odom_delta, const cv::Mat& yuv,
+    const color::SwitchingColorFilter& lighting, const Eigen::Isometry3d& base_to_optical,
+    const std::vector<math::SE2>& particle_poses) {
+  SampledImage image = search->coarseImage(yuv, base_to_optical);
+  search->score(&pool_, &pool_ll_, 0, true, odom_delta, image, lighting, base_to_optical);
+  search->pushWindow(odom_delta, std::move(image), lighting, base_to_optical, false);
+  if (++frames_ < config_.confirm_frames) return std::nullopt;
+  // The particles' poses are scored over the same images as the pool (each moved back by the
+  // odometry).
+  confirming_ = false;
+  PoseContest contest;
+  contest.candidates = pool_.size();
+  contest.poses = std::move(pool_);
+  contest.log_likelihoods = std::move(pool_ll_);
+  clearPool();
+  contest.poses.resize(contest.candidates + particle_poses.size());
+  contest.log_likelihoods.resize(contest.poses.size());
+  math::parallelFor(particle_poses.size(), search->threads(), [&](std::size_t i) {
+    contest.poses[contest.candidates + i] = particle_poses[i];
+    contest.log_likelihoods[contest.candidates + i] =
+        search->windowLogLikelihood(particle_poses[i]);
+  });
+  return contest;
+}
+
+}  // namespace adaptive_perception::localization

@@ -1,0 +1,244 @@
+#include "adaptive_perception/localization/image_likelihood.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace adaptive_perception::localization {
+
+namespace {
+constexpr double kLogUniformYuv = -16.635532333438686;  // log(1 / 256^3)
+}  // namespace
+
+void ImageLikelihoodConfig::validate() const {
+  if (reference_width_px < 16 || reference_width_px > 10000)
+    throw std::invalid_argument("reference_width_px = " + std::to_string(reference_width_px) +
+                                " (allowed: 16..10000)");
+  if (pixel_stride < 1 || pixel_stride > 256)
+    throw std::invalid_argument("pixel_stride = " + std::to_string(pixel_stride) +
+                                " (allowed: 1..256)");
+  if (!(outlier_probability >= 0.0 && outlier_probability < 1.0))
+    throw std::invalid_argument("outlier_probability = " + std::to_string(outlier_probability) +
+                                " (allowed: 0 <= p < 1)");
+  if (!(exponent > 0.0 && exponent <= 1.0))
+    throw std::invalid_argument("exponent = " + std::to_string(exponent) +
+                                " (allowed: 0 < e <= 1)");
+  if (!(position_tolerance_m >= 0.0 && position_tolerance_m <= 1.0))
+    throw std::invalid_argument("position_tolerance_m = " + std::to_string(position_tolerance_m) +
+                                " (allowed: 0..1)");
+  if (!(heading_tolerance_rad >= 0.0 && heading_tolerance_rad <= 0.5))
+    throw std::invalid_argument("heading_tolerance_rad = " + std::to_string(heading_tolerance_rad) +
+                                " (allowed: 0..0.5)");
+  if (max_neighbourhood_cells < 0 || max_neighbourhood_cells > 16)
+    throw std::invalid_argument("max_neighbourhood_cells = " +
+                                std::to_string(max_neighbourhood_cells) + " (allowed: 0..16)");
+}
+
+double gridPixelCount(int w, int h, int s) {
+  auto along = [s](int n) { return n > s / 2 ? (n - 1 - s / 2) / s + 1 : 0; };
+  return static_cast<double>(along(w)) * along(h);
+}
+
+std::vector<world::PixelCoord> pixelGrid(const world::PinholeCamera& camera, int s, int* cols) {
+  std::vector<world::PixelCoord> pixels;
+  *cols = 0;
+  for (int u = s / 2; u < camera.width_px; u += s) ++*cols;
+  for (int v = s / 2; v < camera.height_px; v += s)
+    for (int u = s / 2; u < camera.width_px; u += s)
+      pixels.push_back({static_cast<std::uint16_t>(u), static_cast<std::uint16_t>(v)});
+  return pixels;
+}
+
+std::vector<NeighbourOffset> neighbourOffsets(const world::PinholeCamera& camera,
+                                              const std::vector<world::PixelCoord>& pixels,
+                                              int stride, const Eigen::Isometry3d& base_to_optical,
+                                              const ImageLikelihoodConfig& config) {
+  std::vector<NeighbourOffset> out(pixels.size());
+  const double tol = config.position_tolerance_m;
+  if (tol <= 0.0 && config.heading_tolerance_rad <= 0.0) return out;
+  const Eigen::Vector3d origin = base_to_optical.translation();
+  const Eigen::Isometry3d optical_from_base = base_to_optical.inverse();
+  // A heading error turns the whole view: about fx * heading_tolerance pixels sideways.
+  const double heading_px = camera.fx_px * config.heading_tolerance_rad;
+  auto cells = [&](double px) {
+    return static_cast<std::uint8_t>(
+        std::min<double>(config.max_neighbourhood_cells, std::floor(px / stride + 0.5)));
+  };
+  for (size_t j = 0; j < pixels.size(); ++j) {
+    const Eigen::Vector3d ray =
+        base_to_optical.linear() * camera.rayThrough(pixels[j].u, pixels[j].v);
+    double du = 0.0, dv = 0.0;
+    if (ray.z() < -1e-9 && origin.z() > 0.0) {
+      // The ground point this pixel sees, and where the ground points tol away along x and y
+      // land in the image.
+      const Eigen::Vector3d ground = origin + (-origin.z() / ray.z()) * ray;
+      Eigen::Vector2d at;
+      if (camera.project(optical_from_base * ground, &at)) {
+        for (const Eigen::Vector3d& step :
+             {Eigen::Vector3d(tol, 0, 0), Eigen::Vector3d(-tol, 0, 0), Eigen::Vector3d(0, tol, 0),
+              Eigen::Vector3d(0, -tol, 0)}) {
+          Eigen::Vector2d moved;
+          if (!camera.project(optical_from_base * (ground + step), &moved)) continue;
+          du = std::max(du, std::fabs(moved.x() - at.x()));
+          dv = std::max(dv, std::fabs(moved.y() - at.y()));
+        }
+      }
+    } else {
+      // Above the horizon (walls, goals, beacons): taken as 2 m away, a sideways shift only.
+      du = camera.fx_px * tol / 2.0;
+    }
+    out[j].du = cells(du + heading_px);
+    out[j].dv = cells(dv);
+  }
+  return out;
+}
+
+ImageLikelihood::ImageLikelihood(const world::FieldMap& map, const world::PinholeCamera& camera,
+                                 const color::ColorModelConfig& model,
+                                 const ImageLikelihoodConfig& config)
+    : renderer_(map, camera), model_(model), config_(config) {
+  config_.validate();
+}
+
+SampledImage ImageLikelihood::grid(int stride) const {
+  SampledImage image;
+  image.stride = stride;
+  image.pixels = pixelGrid(camera(), stride, &image.cols);
+  return image;
+}
+
+void ImageLikelihood::setColours(const cv::Mat& yuv, SampledImage* image) const {
+  const world::PinholeCamera& cam = camera();
+  if (yuv.type() != CV_8UC3 || yuv.cols != cam.width_px || yuv.rows != cam.height_px)
+    throw std::invalid_argument("image likelihood: expected a " + std::to_string(cam.width_px) +
+                                "x" + std::to_string(cam.height_px) + " YUV image (CV_8UC3), got " +
+                                std::to_string(yuv.cols) + "x" + std::to_string(yuv.rows) +
+                                " of type " + std::to_string(yuv.type()));
+  image->values.resize(image->pixels.size());
+  for (size_t j = 0; j < image->pixels.size(); ++j) {
+    const cv::Vec3b c = yuv.at<cv::Vec3b>(image->pixels[j].v, image->pixels[j].u);
+    image->values[j] = Eigen::Vector3d(c[0], c[1], c[2]);
+  }
+}
+
+void ImageLikelihood::setOffsets(const Eigen::Isometry3d& base_to_optical,
+                                 SampledImage* image) const {
+  image->offsets =
+      neighbourOffsets(camera(), image->pixels, image->stride, base_to_optical, config_);
+}
+
+SampledImage ImageLikelihood::sample(const cv::Mat& yuv, int stride,
+                                     const Eigen::Isometry3d& base_to_optical) const {
+  SampledImage image = grid(stride);
+  setColours(yuv, &image);
+  setOffsets(base_to_optical, &image);
+  return image;
+}
+
+double ImageLikelihood::logLikelihood(const SampledImage& image, const math::SE2& pose,
+                                      const color::SwitchingColorFilter& lighting,
+                                      const Eigen::Isometry3d& base_to_optical,
+                                      color::ColorObservation* obs_out, int* used_out) const {
+  const std::vector<world::PixelCoord>& pixels = image.pixels;
+  const std::vector<NeighbourOffset>& offsets = image.offsets;
+  const std::vector<Eigen::Vector3d>& pixel_yuv = image.values;
+  const int grid_cols = image.cols;
+  const Eigen::Isometry3d cam = world::planarToIsometry(pose) * base_to_optical;
+  std::vector<std::uint8_t> labels;
+  renderer_.renderPixels(cam, pixels, &labels);
+  const int cols = grid_cols, rows = static_cast<int>(pixels.size()) / std::max(grid_cols, 1);
+  // Eq. (9) under the predicted lighting, in a mixture with the uniform density; eq. (16) is the
+  // (tempered) product over the pixels. With several lighting modes the image likelihood is the
+  // mixture over the modes with their predicted probabilities (the mode is part of the lighting
+  // state).
+  const color::ColorModelConfig& mc = model_;
+  const double log_in = std::log1p(-config_.outlier_probability);
+  const double log_out = config_.outlier_probability > 0.0
+                             ? std::log(config_.outlier_probability) + kLogUniformYuv
+                             : -std::numeric_limits<double>::infinity();
+  std::int8_t slot[256];
+  std::fill(std::begin(slot), std::end(slot), static_cast<std::int8_t>(-1));
+  for (int k = 0; k < mc.numColors(); ++k) slot[mc.classes[k]] = static_cast<std::int8_t>(k);
+  const std::vector<double> mode_p = lighting.predictedModeProbabilities();
+  std::vector<double> mode_ll(lighting.numModes(), 0.0);
+  std::vector<color::PixelClassifier> cls;
+  for (int j = 0; j < lighting.numModes(); ++j) cls.push_back(lighting.mode(j).classifier());
+  int used = 0;
+  color::ColorObservation obs;
+  obs.counts.assign(mc.numColors(), 0);
+  obs.means.assign(mc.numColors(), Eigen::Vector3d::Zero());
+  obs.variances.assign(mc.numColors(), Eigen::Vector3d::Zero());
+  // A pixel's predicted colour is a distribution: half the colour predicted at it, an eighth each
+  // the colours at the grid pixels its offsets away (a prediction blurred by the pose
+  // tolerance); its likelihood is the mixture over them, background scoring the uniform density.
+  // Being a proper mixture it does not favour poses that predict busier views.
+  std::vector<double> pixel_ll(lighting.numModes());
+  for (size_t j = 0; j < pixels.size(); ++j) {
+    std::uint8_t cand[5];
+    double share[5];
+    int nc = 0;
+    cand[nc] = labels[j];
+    share[nc++] = 1.0;
+    const NeighbourOffset d = offsets[j];
+    if (d.du > 0 || d.dv > 0) {
+      share[0] = 0.5;
+      const int r = static_cast<int>(j) / cols, c = static_cast<int>(j) % cols;
+      const int around[4] = {
+          r * cols + std::max(c - d.du, 0), r * cols + std::min(c + d.du, cols - 1),
+          std::max(r - d.dv, 0) * cols + c, std::min(r + d.dv, rows - 1) * cols + c};
+      for (int n : around) {
+        const int at = static_cast<int>(std::find(cand, cand + nc, labels[n]) - cand);
+        if (at == nc) {
+          cand[nc] = labels[n];
+          share[nc++] = 0.125;
+        } else {
+          share[at] += 0.125;
+        }
+      }
+    }
+    for (int m = 0; m < lighting.numModes(); ++m) {
+      double v[5], top = -std::numeric_limits<double>::infinity();
+      for (int c = 0; c < nc; ++c) {
+        // Background (or an unmodelled colour): the uniform density. Every pixel must contribute,
+        // or poses that see more background would score higher for having fewer terms.
+        const int k = slot[cand[c]];
+        v[c] = kLogUniformYuv;
+        if (k >= 0) {
+          const double a = log_in + cls[m].logLikelihood(pixel_yuv[j], k);
+          v[c] = std::max(a, log_out) + std::log1p(std::exp(-std::fabs(a - log_out)));
+        }
+        if (nc > 1) v[c] += std::log(share[c]);
+        top = std::max(top, v[c]);
+      }
+      if (nc == 1) {  // one colour all around (most pixels): no mixture
+        pixel_ll[m] = v[0];
+        continue;
+      }
+      double sum = 0.0;
+      for (int c = 0; c < nc; ++c) sum += std::exp(v[c] - top);
+      pixel_ll[m] = top + std::log(sum);
+    }
+    for (int m = 0; m < lighting.numModes(); ++m) mode_ll[m] += pixel_ll[m];
+    const int k = slot[labels[j]];
+    if (k < 0) continue;
+    ++used;
+    ++obs.counts[k];
+    obs.means[k] += pixel_yuv[j];
+  }
+  double best = -std::numeric_limits<double>::infinity();
+  for (int m = 0; m < lighting.numModes(); ++m)
+    best = std::max(best, std::log(std::max(mode_p[m], 1e-300)) + mode_ll[m]);
+  double sum = 0.0;
+  for (int m = 0; m < lighting.numModes(); ++m)
+    sum += std::exp(std::log(std::max(mode_p[m], 1e-300)) + mode_ll[m] - best);
+  const double ll = best + std::log(sum);
+  for (int k = 0; k < mc.numColors(); ++k)
+    if (obs.counts[k] > 0) obs.means[k] /= obs.counts[k];
+  if (obs_out) *obs_out = std::move(obs);
+  if (used_out) *used_out = used;
+  return config_.exponent * ll;
+}
+
+}  // namespace adaptive_perception::localization

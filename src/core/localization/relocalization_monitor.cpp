@@ -1,0 +1,65 @@
+#include "adaptive_perception/localization/relocalization_monitor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace adaptive_perception::localization {
+
+void RelocalizationConfig::validate() const {
+  if (!(interval_s >= 0.0 && interval_s <= 1e6))
+    throw std::invalid_argument("relocalization_interval_s = " + std::to_string(interval_s) +
+                                " (allowed: 0..1e6)");
+  if (pool_size < 0 || pool_size > 10000000)
+    throw std::invalid_argument("relocalization_pool_size = " + std::to_string(pool_size) +
+                                " (allowed: 0..10000000)");
+  if (!(fraction > 0.0 && fraction <= 1.0))
+    throw std::invalid_argument("relocalization_fraction = " + std::to_string(fraction) +
+                                " (allowed: 0 < f <= 1)");
+  if (!std::isfinite(margin)) throw std::invalid_argument("relocalization_margin must be finite");
+  if (refine_candidates < 0 || refine_candidates > 1000000)
+    throw std::invalid_argument("relocalization_refine_candidates = " +
+                                std::to_string(refine_candidates) + " (allowed: 0..1000000)");
+}
+
+RelocalizationMonitor::RelocalizationMonitor(const RelocalizationConfig& config) : config_(config) {
+  config_.validate();
+}
+
+void RelocalizationMonitor::reset() {
+  contest_ = PoseContest();
+  frames_ = 0;
+  seconds_since_check_ = 0.0;
+}
+
+std::optional<PoseContest> RelocalizationMonitor::observe(
+    PoseSearch* search, const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv,
+    const color::SwitchingColorFilter& lighting, const Eigen::Isometry3d& base_to_optical,
+    std::uint64_t seed, int frames, const std::vector<math::SE2>& particle_poses) {
+  if (config_.interval_s <= 0.0) return std::nullopt;
+  const bool starting = frames_ == 0;
+  if (starting) {
+    seconds_since_check_ += std::max(dt_s, 0.0);
+    if (seconds_since_check_ < config_.interval_s) return std::nullopt;
+  }
+  SampledImage image = search->coarseImage(yuv, base_to_optical);
+  if (starting) {
+    // The particles have this image's motion already; the uniform poses are drawn for it.
+    contest_.candidates = static_cast<std::size_t>(config_.pool_size);
+    contest_.poses.resize(contest_.candidates + particle_poses.size());
+    contest_.log_likelihoods.assign(contest_.poses.size(), 0.0);
+    search->fillUniform(&contest_.poses, contest_.candidates, seed ^ 0x2545F4914F6CDD1Dull);
+    std::copy(particle_poses.begin(), particle_poses.end(),
+              contest_.poses.begin() + static_cast<std::ptrdiff_t>(contest_.candidates));
+  }
+  search->score(&contest_.poses, &contest_.log_likelihoods, 0, !starting, odom_delta, image,
+                lighting, base_to_optical);
+  search->pushWindow(odom_delta, std::move(image), lighting, base_to_optical, starting);
+  if (++frames_ < frames) return std::nullopt;
+  PoseContest done = std::move(contest_);
+  reset();
+  return done;
+}
+
+}  // namespace adaptive_perception::localization
