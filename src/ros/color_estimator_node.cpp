@@ -1,4 +1,3 @@
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/color_estimator_node.h"
 
 #include <tf2/exceptions.h>
@@ -8,6 +7,7 @@
 #include "adaptive_perception/ColorModel.h"
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/io/atomic_file.h"
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/tf_lookup.h"
@@ -48,7 +48,8 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       P::getInRange(pnh, "lut_rebuild_sigma", config_.lut_rebuild_sigma, 0.0, 5.0);
   map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", tf_timeout_s_, 0.0, 5.0);
-  stamp_order_ = ros_conv::StampOrder("color_estimator", "image", P::loadStampOrder(pnh));
+  gate_ = ros_conv::ImageGate("color_estimator", 0.0, P::loadStampOrder(pnh),
+                              ros_conv::ImageGate::Output::kYuv);
 
   std::string filter, dir;
   priors_ = P::loadLightingPriors(pnh, &filter, &dir);
@@ -157,22 +158,16 @@ bool ColorEstimatorNode::ensureEstimator(int width, int height) {
 
 void ColorEstimatorNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
   const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
+  cv::Mat yuv;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    // An image a little older than the last is dropped; time really going back resets the model
-    // (ColorEstimator::process).
-    if (stamp_order_.check(msg->header.stamp, event.getPublisherName()) ==
-        ros_conv::StampOrder::Verdict::kDrop)
-      return;
-  }
-  cv::Mat yuv;
-  try {
-    yuv = ros_conv::imageToYuv(*msg);
-  } catch (const ros_conv::ImageFormatError& e) {
-    ROS_ERROR_THROTTLE(10.0, "color_estimator: frame dropped: %s", e.what());
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++skipped_bad_image_;
-    return;
+    // An image a little older than the last is dropped (ImageGate); time really going back resets
+    // the model (ColorEstimator::process).
+    bool went_back = false;
+    const ros_conv::ImageGate::Result verdict =
+        gate_.accept(*msg, event.getPublisherName(), &yuv, &went_back);
+    if (verdict == ros_conv::ImageGate::Result::kBadImage) ++skipped_bad_image_;
+    if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   }
   geometry_msgs::TransformStamped pose;
   try {
@@ -266,7 +261,7 @@ void ColorEstimatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& s
   }
   stat.add("frames", frames_);
   stat.add("frames skipped (no tf)", skipped_no_tf_);
-  stat.add("frames dropped (older than the last)", stamp_order_.dropped());
+  stat.add("frames dropped (older than the last)", gate_.outOfOrder());
   stat.add("frames skipped (bad image)", skipped_bad_image_);
   stat.add("last log likelihood", last_log_likelihood_);
 }

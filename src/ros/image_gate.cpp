@@ -7,16 +7,16 @@
 namespace adaptive_perception::ros_conv {
 
 ImageGate::Result ImageGate::accept(const sensor_msgs::Image& msg, const std::string& publisher,
-                                    cv::Mat* bgr, bool* time_went_back) {
+                                    cv::Mat* image, bool* time_went_back) {
   const StampOrder::Verdict order = order_.check(msg.header.stamp, publisher);
   *time_went_back = order == StampOrder::Verdict::kRestart;
   if (order == StampOrder::Verdict::kDrop) return Result::kOutOfOrder;
   if (*time_went_back) last_processed_ = ros::Time();
-  if (!last_processed_.isZero() &&
+  if (max_rate_hz_ > 0.0 && !last_processed_.isZero() &&
       (msg.header.stamp - last_processed_).toSec() < 1.0 / max_rate_hz_)
     return Result::kTooSoon;
   try {
-    *bgr = imageToBgr8(msg);
+    *image = output_ == Output::kYuv ? imageToYuv(msg) : imageToBgr8(msg);
   } catch (const ImageFormatError& e) {
     ROS_ERROR_THROTTLE(10.0, "%s: image dropped: %s", node_.c_str(), e.what());
     ++bad_images_;

@@ -47,9 +47,9 @@ std::vector<color::LightingPrior> loadLightingPriors(const ros::NodeHandle& pnh,
   *filter = get<std::string>(pnh, "filter", "switching");
   std::vector<std::string> names;
   if (*filter == "switching") {
-    names = get<std::vector<std::string>>(pnh, "priors", {"dark", "bright"});
+    names = get<std::vector<std::string>>(pnh, "priors", kDefaultSwitchingPriors);
   } else if (*filter == "single") {
-    names = {get<std::string>(pnh, "single_prior", "all")};
+    names = {get<std::string>(pnh, "single_prior", kDefaultSinglePrior)};
   } else {
     throw ParamError("parameter " + pnh.resolveName("filter") + " = '" + *filter +
                      "' (allowed: switching, single)");
@@ -65,14 +65,7 @@ std::vector<color::LightingPrior> loadLightingPriors(const ros::NodeHandle& pnh,
 }
 
 void loadMotionModel(const ros::NodeHandle& pnh, localization::MotionModelConfig* m) {
-  m->alpha1 = getInRange(pnh, "odom_alpha1", m->alpha1, 0.0, 10.0);
-  m->alpha2 = getInRange(pnh, "odom_alpha2", m->alpha2, 0.0, 10.0);
-  m->alpha3 = getInRange(pnh, "odom_alpha3", m->alpha3, 0.0, 10.0);
-  m->alpha4 = getInRange(pnh, "odom_alpha4", m->alpha4, 0.0, 10.0);
-  m->min_translation_std_m =
-      getInRange(pnh, "odom_min_translation_std_m", m->min_translation_std_m, 0.0, 1.0);
-  m->min_rotation_std_rad =
-      getInRange(pnh, "odom_min_rotation_std_rad", m->min_rotation_std_rad, 0.0, 1.0);
+  loadFields(pnh, localization::MotionModelConfig::fields(), m);
 }
 
 std::vector<double> getNumbers(const ros::NodeHandle& nh, const std::string& name,

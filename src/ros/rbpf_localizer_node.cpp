@@ -56,74 +56,78 @@ void checkParticleMemory(const ros::NodeHandle& pnh,
 
 }  // namespace
 
+namespace {
+// The node's own parameters' defaults (the algorithm's are in localization::RbpfConfig).
+constexpr const char* kFieldFile = "config/field_4legged.yaml";
+const std::vector<double> kInitialPoseStd = {0.2, 0.2, 0.17};
+constexpr double kTransformTolerance_s = 0.1, kTfTimeout_s = 0.1;
+
+std::string list(const std::vector<std::string>& v) {
+  std::string out = "[";
+  for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + v[i];
+  return out + "]";
+}
+
+std::string numbers(const std::vector<double>& v) {
+  std::string out = "[";
+  for (size_t i = 0; i < v.size(); ++i)
+    out += (i ? ", " : "") + config::formatValue(config::Kind::kDouble, v[i]);
+  return out + "]";
+}
+}  // namespace
+
+std::vector<config::ParameterDoc> RbpfLocalizerNode::parameters() {
+  using config::formatValue;
+  using config::Kind;
+  std::vector<config::ParameterDoc> rows =
+      config::describe(localization::RbpfConfig::fields(), localization::RbpfConfig());
+  const std::vector<config::ParameterDoc> node = {
+      {"threads", "int", "0", "[0, 256]", "threads for the particles (0: all cores)"},
+      {"seed", "int", "1", "[0, 1073741824]", "random seed (the same seed replays the same run)"},
+      {"filter", "string", "switching", "switching, single",
+       "each particle's lighting filter: switching between ~priors, or one ~single_prior"},
+      {"priors", "list", list(ros_params::kDefaultSwitchingPriors), "",
+       "the switching filter's lighting priors (names)"},
+      {"single_prior", "string", ros_params::kDefaultSinglePrior, "", "the single filter's prior"},
+      {"priors_dir", "string", "config/color_priors", "", "where prior NAME is NAME.yaml"},
+      {"field_file", "string", kFieldFile, "", "the field map"},
+      {"initial_pose", "list", "[]", "", "[x_m, y_m, yaw_rad]; empty: global localization"},
+      {"initial_pose_std", "list", numbers(kInitialPoseStd), "",
+       "its standard deviations (m, m, rad)"},
+      {"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
+      {"odom_frame", "string", ros_topics::kOdomFrame, "", "the odometry frame"},
+      {"base_frame", "string", ros_topics::kBaseFrame, "", "the robot's frame"},
+      {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
+      {"transform_tolerance_s", "double", formatValue(Kind::kDouble, kTransformTolerance_s),
+       "[0, 10]", "map -> odom is future-dated by this (s), as amcl does"},
+      {"tf_timeout_s", "double", formatValue(Kind::kDouble, kTfTimeout_s), "[0, 5]",
+       "wall-clock wait for the image's tf before the frame is skipped (s)"},
+      {"time_back_restart_s", "double",
+       formatValue(Kind::kDouble, ros_conv::StampOrderConfig().restart_after_back_s),
+       "[0.01, 3600]",
+       "an input this much older than the last (a looped bag) restarts the filter (s)"}};
+  rows.insert(rows.end(), node.begin(), node.end());
+  return rows;
+}
+
 RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
   namespace P = ros_params;
   localization::RbpfConfig& c = config_;
-  c.particles = P::getInRange(pnh, "particles", c.particles, 1, 1000000);
+  P::loadFields(pnh, localization::RbpfConfig::fields(), &c);
   const int threads = P::getInRange(pnh, "threads", 0, 0, 256);
   c.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   c.seed = static_cast<std::uint64_t>(P::getInRange(pnh, "seed", 1, 0, 1 << 30));
-  c.likelihood.pixel_stride = P::getInRange(pnh, "pixel_stride", c.likelihood.pixel_stride, 1, 64);
-  c.likelihood.outlier_probability =
-      P::getInRange(pnh, "outlier_probability", c.likelihood.outlier_probability, 0.0, 0.999);
-  c.likelihood.exponent = P::getInRange(pnh, "exponent", c.likelihood.exponent, 1e-6, 1.0);
-  c.likelihood.position_tolerance_m =
-      P::getInRange(pnh, "position_tolerance_m", c.likelihood.position_tolerance_m, 0.0, 1.0);
-  c.likelihood.heading_tolerance_rad =
-      P::getInRange(pnh, "heading_tolerance_rad", c.likelihood.heading_tolerance_rad, 0.0, 0.5);
-  c.likelihood.max_neighbourhood_cells =
-      P::getInRange(pnh, "max_neighbourhood_cells", c.likelihood.max_neighbourhood_cells, 0, 16);
-  c.resample_ess_fraction =
-      P::getInRange(pnh, "resample_ess_fraction", c.resample_ess_fraction, 1e-3, 1.0);
-  c.global.pool_size = P::getInRange(pnh, "global_pool_size", c.global.pool_size, 0, 10000000);
-  c.search.pixel_stride = P::getInRange(pnh, "global_pixel_stride", c.search.pixel_stride, 1, 64);
-  c.global.search_frames =
-      P::getInRange(pnh, "global_search_frames", c.global.search_frames, 1, 100);
-  c.global.confirm_frames =
-      P::getInRange(pnh, "global_confirm_frames", c.global.confirm_frames, 0, 100);
-  c.global.confirm_fraction =
-      P::getInRange(pnh, "global_confirm_fraction", c.global.confirm_fraction, 0.0, 1.0);
-  c.mirror_fraction = P::getInRange(pnh, "mirror_fraction", c.mirror_fraction, 0.0, 0.5);
-  c.mirror_relative_weight =
-      P::getInRange(pnh, "mirror_relative_weight", c.mirror_relative_weight, 1e-6, 1.0);
-  c.mirror_test.margin_nats =
-      P::getInRange(pnh, "mirror_test_margin_nats", c.mirror_test.margin_nats, 0.0, 1e6);
-  c.mirror_test.memory_s =
-      P::getInRange(pnh, "mirror_test_memory_s", c.mirror_test.memory_s, 1e-3, 1e6);
-  c.global.refine_candidates =
-      P::getInRange(pnh, "refine_candidates", c.global.refine_candidates, 0, 1000000);
-  c.search.refine_rounds = P::getInRange(pnh, "refine_rounds", c.search.refine_rounds, 0, 20);
-  c.search.refine_tries = P::getInRange(pnh, "refine_tries", c.search.refine_tries, 0, 1000);
-  c.search.refine_sigma_m = P::getInRange(pnh, "refine_sigma_m", c.search.refine_sigma_m, 0.0, 5.0);
-  c.search.refine_sigma_rad =
-      P::getInRange(pnh, "refine_sigma_rad", c.search.refine_sigma_rad, 0.0, 3.2);
-  c.relocalization.interval_s =
-      P::getInRange(pnh, "relocalization_interval_s", c.relocalization.interval_s, 0.0, 1e6);
-  c.relocalization.pool_size =
-      P::getInRange(pnh, "relocalization_pool_size", c.relocalization.pool_size, 0, 10000000);
-  c.relocalization.margin =
-      P::getInRange(pnh, "relocalization_margin", c.relocalization.margin, -1e6, 1e6);
-  c.relocalization.fraction =
-      P::getInRange(pnh, "relocalization_fraction", c.relocalization.fraction, 1e-6, 1.0);
-  c.relocalization.restart = P::get<bool>(pnh, "relocalization_restart", c.relocalization.restart);
-  c.relocalization.refine_candidates = P::getInRange(
-      pnh, "relocalization_refine_candidates", c.relocalization.refine_candidates, 0, 1000000);
-  P::loadMotionModel(pnh, &c.motion);
-  c.model.drift_std_per_sqrt_s =
-      P::getInRange(pnh, "drift_std_per_sqrt_s", c.model.drift_std_per_sqrt_s, 0.0, 100.0);
-  c.switching.mode_stay_probability =
-      P::getInRange(pnh, "mode_stay_probability", c.switching.mode_stay_probability, 1e-3, 1.0);
 
   std::string filter, dir;
   priors_ = P::loadLightingPriors(pnh, &filter, &dir);
   checkParticleMemory(pnh, priors_, c);
-  map_ = world::FieldMap::loadYaml(
-      P::resolvePackagePath(P::getName(pnh, "field_file", "config/field_4legged.yaml")));
+  map_ =
+      world::FieldMap::loadYaml(P::resolvePackagePath(P::getName(pnh, "field_file", kFieldFile)));
 
   math::SE2 initial;
   Eigen::Matrix3d initial_cov;
-  if (P::loadInitialPose(pnh, {0.2, 0.2, 0.17}, &initial, &initial_cov))
+  if (P::loadInitialPose(pnh, kInitialPoseStd, &initial, &initial_cov))
     pending_pose_ = configured_pose_ = std::make_pair(initial, initial_cov);
 
   map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
@@ -131,9 +135,10 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   base_frame_ = P::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
   publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
   transform_tolerance_s_ =
-      P::getInRange(pnh, "transform_tolerance_s", transform_tolerance_s_, 0.0, 10.0);
-  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", tf_timeout_s_, 0.0, 5.0);
-  stamp_order_ = ros_conv::StampOrder("rbpf_localizer", "image", P::loadStampOrder(pnh));
+      P::getInRange(pnh, "transform_tolerance_s", kTransformTolerance_s, 0.0, 10.0);
+  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", kTfTimeout_s, 0.0, 5.0);
+  gate_ = ros_conv::ImageGate("rbpf_localizer", 0.0, P::loadStampOrder(pnh),
+                              ros_conv::ImageGate::Output::kYuv);
   try {
     config_.validate();
   } catch (const std::invalid_argument& e) {
@@ -189,21 +194,16 @@ bool RbpfLocalizerNode::ensureLocalizer(int width, int height) {
 
 void RbpfLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
   const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
+  cv::Mat yuv;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    // An image a little older than the last is dropped; time really going back restarts below.
-    if (stamp_order_.check(msg->header.stamp, event.getPublisherName()) ==
-        ros_conv::StampOrder::Verdict::kDrop)
-      return;
-  }
-  cv::Mat yuv;
-  try {
-    yuv = ros_conv::imageToYuv(*msg);
-  } catch (const ros_conv::ImageFormatError& e) {
-    ROS_ERROR_THROTTLE(10.0, "rbpf_localizer: frame dropped: %s", e.what());
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++skipped_bad_image_;
-    return;
+    // An image a little older than the last is dropped (ImageGate); time really going back restarts
+    // below.
+    bool went_back = false;
+    const ros_conv::ImageGate::Result verdict =
+        gate_.accept(*msg, event.getPublisherName(), &yuv, &went_back);
+    if (verdict == ros_conv::ImageGate::Result::kBadImage) ++skipped_bad_image_;
+    if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   }
   ros_conv::OdomAndMount tf;
   try {
@@ -379,7 +379,7 @@ void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   }
   stat.add("frames", frames_);
   stat.add("frames skipped (no tf)", skipped_no_tf_);
-  stat.add("frames dropped (older than the last)", stamp_order_.dropped());
+  stat.add("frames dropped (older than the last)", gate_.outOfOrder());
   stat.add("frames skipped (bad image)", skipped_bad_image_);
   stat.add("re-initialisations", resets_);
 }

@@ -1,20 +1,11 @@
 // evaluate_localization: runs the Rao-Blackwellised localizer offline over a field bag from a
 // uniform (global) start, against ground_truth/pose and the bag's true labels.
 //
-//   evaluate_localization --bag FILE [--particles 500] [--filter switching|single] [--threads 1]
-//       [--seed 1] [--pixel_stride 4] [--exponent E] [--position_tolerance_m M]
-//       [--heading_tolerance_rad R] [--max_neighbourhood_cells C]
-//       [--mirror_fraction F] [--mirror_relative_weight W]
-//       [--mirror_test_margin_nats M] [--mirror_test_memory_s S]
-//       [--global_pool_size N] [--global_search_frames K] [--global_confirm_frames K]
-//       [--global_confirm_fraction F]
-//       [--relocalization_interval_s S]
-//       [--relocalization_pool_size N] [--relocalization_margin M] [--refine_candidates K]
-//       [--relocalization_fraction F] [--relocalization_restart 0|1]
-//       [--relocalization_refine_candidates K] [--refine_rounds R] [--refine_tries T]
-//       [--init global|truth]
-//       [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
-// (defaults: those of localization::RbpfConfig)
+//   evaluate_localization --bag FILE [--filter switching|single] [--threads 1] [--seed 1]
+//       [--init global|truth] [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
+//       [--<parameter> VALUE ...]
+// Every parameter of rbpf_localizer's table (docs/nodes/rbpf_localizer.md) that comes from
+// localization::RbpfConfig is an option of the same name, range and default (--help lists them).
 //
 // Converged: the first frame after which the position error stays below 0.3 m (for the rest of the
 // run, or until a kidnap, a jump of the true pose over 0.5 m between frames, after which
@@ -40,6 +31,7 @@
 #include "adaptive_perception/localization/rbpf_localizer.h"
 #include "adaptive_perception/ros/bag_frames.h"
 #include "adaptive_perception/ros/params.h"
+#include "config_args.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -58,68 +50,22 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(
-      argc, argv,
-      "evaluate_localization --bag FILE [--particles N] [--filter switching|single] "
-      "[--threads T] [--seed N] "
-      "[--pixel_stride S] [--exponent E] [--position_tolerance_m M] "
-      "[--heading_tolerance_rad R] [--max_neighbourhood_cells C] "
-      "[--mirror_fraction F] [--mirror_relative_weight W] "
-      "[--mirror_test_margin_nats M] [--mirror_test_memory_s S] "
-      "[--global_pool_size N] [--global_search_frames K] [--global_confirm_frames K] "
-      "[--global_confirm_fraction F] "
-      "[--relocalization_interval_s S] [--relocalization_pool_size N] "
-      "[--relocalization_margin M] [--relocalization_fraction F] "
-      "[--relocalization_restart 0|1] [--relocalization_refine_candidates K] "
-      "[--refine_candidates K] [--refine_rounds R] "
-      "[--refine_tries T] [--priors_dir DIR] [--init global|truth] [--output DIR] [--name LABEL]");
-  const std::string bag = args.get("bag", "");
   localization::RbpfConfig cfg;
-  cfg.particles = static_cast<int>(args.getInt("particles", cfg.particles));
+  tools::Args args(argc, argv,
+                   "evaluate_localization --bag FILE [--filter switching|single] [--threads T] "
+                   "[--seed N] [--init global|truth] [--priors_dir DIR] [--output DIR] "
+                   "[--name LABEL] [--<parameter> VALUE ...]",
+                   "parameters (default, allowed):\n" +
+                       tools::fieldsHelp(localization::RbpfConfig::fields(), cfg));
+  const std::string bag = args.get("bag", "");
+  tools::applyFields(args, localization::RbpfConfig::fields(), &cfg);
   const std::string filter = args.get("filter", "switching");
   cfg.threads = static_cast<int>(args.getInt("threads", 1));
   cfg.seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  cfg.likelihood.pixel_stride =
-      static_cast<int>(args.getInt("pixel_stride", cfg.likelihood.pixel_stride));
-  cfg.likelihood.exponent = args.getDouble("exponent", cfg.likelihood.exponent);
-  cfg.relocalization.interval_s =
-      args.getDouble("relocalization_interval_s", cfg.relocalization.interval_s);
-  cfg.relocalization.pool_size =
-      static_cast<int>(args.getInt("relocalization_pool_size", cfg.relocalization.pool_size));
-  cfg.relocalization.margin = args.getDouble("relocalization_margin", cfg.relocalization.margin);
-  cfg.relocalization.fraction =
-      args.getDouble("relocalization_fraction", cfg.relocalization.fraction);
-  cfg.relocalization.refine_candidates = static_cast<int>(
-      args.getInt("relocalization_refine_candidates", cfg.relocalization.refine_candidates));
-  cfg.relocalization.restart =
-      args.getInt("relocalization_restart", cfg.relocalization.restart ? 1 : 0) != 0;
-  cfg.global.refine_candidates =
-      static_cast<int>(args.getInt("refine_candidates", cfg.global.refine_candidates));
-  cfg.search.refine_rounds =
-      static_cast<int>(args.getInt("refine_rounds", cfg.search.refine_rounds));
-  cfg.search.refine_tries = static_cast<int>(args.getInt("refine_tries", cfg.search.refine_tries));
-  cfg.global.pool_size = static_cast<int>(args.getInt("global_pool_size", cfg.global.pool_size));
-  cfg.global.search_frames =
-      static_cast<int>(args.getInt("global_search_frames", cfg.global.search_frames));
-  cfg.global.confirm_frames =
-      static_cast<int>(args.getInt("global_confirm_frames", cfg.global.confirm_frames));
-  cfg.global.confirm_fraction =
-      args.getDouble("global_confirm_fraction", cfg.global.confirm_fraction);
   const std::string priors_dir = args.get("priors_dir", "config/color_priors");
   const std::string output = args.get("output", "results/evaluate_localization");
   const std::string name = args.get("name", fs::path(bag).stem().string());
   const std::string init = args.get("init", "global");
-  cfg.mirror_fraction = args.getDouble("mirror_fraction", cfg.mirror_fraction);
-  cfg.mirror_relative_weight = args.getDouble("mirror_relative_weight", cfg.mirror_relative_weight);
-  cfg.mirror_test.margin_nats =
-      args.getDouble("mirror_test_margin_nats", cfg.mirror_test.margin_nats);
-  cfg.mirror_test.memory_s = args.getDouble("mirror_test_memory_s", cfg.mirror_test.memory_s);
-  cfg.likelihood.position_tolerance_m =
-      args.getDouble("position_tolerance_m", cfg.likelihood.position_tolerance_m);
-  cfg.likelihood.heading_tolerance_rad =
-      args.getDouble("heading_tolerance_rad", cfg.likelihood.heading_tolerance_rad);
-  cfg.likelihood.max_neighbourhood_cells = static_cast<int>(
-      args.getInt("max_neighbourhood_cells", cfg.likelihood.max_neighbourhood_cells));
   args.finish();
   if (init != "global" && init != "truth") args.fail("--init must be global or truth");
   if (bag.empty()) args.fail("--bag FILE is required");
@@ -128,8 +74,9 @@ int main(int argc, char** argv) {
   try {
     const std::string dir = ros_params::resolvePackagePath(priors_dir);
     std::vector<color::LightingPrior> priors;
-    for (const std::string& m : filter == "switching" ? std::vector<std::string>{"dark", "bright"}
-                                                      : std::vector<std::string>{"all"})
+    for (const std::string& m : filter == "switching"
+                                    ? ros_params::kDefaultSwitchingPriors
+                                    : std::vector<std::string>{ros_params::kDefaultSinglePrior})
       priors.push_back(color::LightingPrior::loadYaml((fs::path(dir) / (m + ".yaml")).string()));
     ros_bag::BagFrameReader reader(bag);
     const auto frames = reader.readAll();

@@ -11,11 +11,13 @@ namespace adaptive_perception::tools {
 
 class Args {
  public:
-  Args(int argc, char** argv, std::string usage) : usage_(std::move(usage)) {
+  /// `help`, when given, is printed after the usage line on --help only (the options in full).
+  Args(int argc, char** argv, std::string usage, const std::string& help = "")
+      : usage_(std::move(usage)) {
     for (int i = 1; i < argc; ++i) {
       std::string a = argv[i];
       if (a == "-h" || a == "--help") {
-        std::cout << "usage: " << usage_ << "\n";
+        std::cout << "usage: " << usage_ << "\n" << help;
         std::exit(0);
       }
       if (a.rfind("--", 0) != 0) fail("unexpected argument '" + a + "'");

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "adaptive_perception/color/switching_color_filter.h"
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/world/label_renderer.h"
 
@@ -51,7 +52,8 @@ struct ImageLikelihoodConfig {
   // scaled with its width, and the exponent by the reference grid's pixel count over its own, so
   // that an image weighs the same at any resolution (RbpfConfig::forCamera).
   int reference_width_px = 208;
-  void validate() const;
+  static const config::Fields<ImageLikelihoodConfig>& fields();
+  void validate() const { fields().validate(*this); }
 };
 
 /// How many grid steps a pixel's neighbours lie left/right (du) and up/down (dv).

@@ -19,6 +19,7 @@
 // Contract: the evidence belongs to the hypothesis it was summed for. When the estimate moves to
 // the mirror cluster on its own the sum changes sign; when it jumps anywhere else by more than
 // 0.5 m, or the particles were placed anew (`restart`), it starts again.
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/localization/image_likelihood.h"
 
 namespace adaptive_perception::localization {
@@ -26,7 +27,8 @@ namespace adaptive_perception::localization {
 struct MirrorTestConfig {
   double margin_nats = 3.0;  // 0 turns the test off
   double memory_s = 4.0;     // time constant of the evidence's fading
-  void validate() const;
+  static const config::Fields<MirrorTestConfig>& fields();
+  void validate() const { fields().validate(*this); }
 };
 
 class MirrorTest {

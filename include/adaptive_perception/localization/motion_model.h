@@ -6,6 +6,7 @@
 //   sd(dx) = sd(dy) = alpha3 |t| + alpha4 |r| + min_translation_std_m
 //   sd(dyaw)        = alpha1 |r| + alpha2 |t| + min_rotation_std_rad
 // with t = |(dx, dy)| in metres and r = |dyaw| in radians; then composed onto the particle's pose.
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/math/se2.h"
 
@@ -18,7 +19,8 @@ struct MotionModelConfig {
   double alpha4 = 0.05;                  // translation noise (m) per radian of rotation
   double min_translation_std_m = 0.005;  // per step, so that particles never collapse when standing
   double min_rotation_std_rad = 0.005;
-  void validate() const;  // throws std::invalid_argument naming the field
+  static const config::Fields<MotionModelConfig>& fields();  // as ~odom_alpha1.., ~odom_min_*
+  void validate() const { fields().validate(*this); }
 };
 
 /// Standard deviations (translation, rotation) of the noise for a measured relative motion.

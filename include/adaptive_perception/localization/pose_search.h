@@ -36,7 +36,8 @@ struct PoseSearchConfig {
   int refine_tries = 6;
   double refine_sigma_m = 0.08;
   double refine_sigma_rad = 0.08;
-  void validate() const;
+  static const config::Fields<PoseSearchConfig>& fields();
+  void validate() const { fields().validate(*this); }
 };
 
 /// Poses scored side by side over a search's window: a search's candidates [0, candidates) and the

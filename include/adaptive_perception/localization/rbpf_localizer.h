@@ -73,6 +73,9 @@ struct RbpfConfig {
   /// wrong hypothesis (on the bright bag a global start converged for 1 seed in 5 with 4, 3 in 5
   /// with 25, 1 in 5 with 100).
   static color::ColorModelConfig rbpfModelConfig();
+  /// Every field above but threads and seed (which tools and nodes read in their own ways), the
+  /// nested configs' included.
+  static const config::Fields<RbpfConfig>& fields();
   void validate() const;
   /// This configuration as a camera of that size runs it: strides scaled with the width over
   /// likelihood.reference_width_px, the exponent with the pixel count (the same configuration for a

@@ -37,7 +37,8 @@ struct RelocalizationConfig {
   double fraction = 0.5;  // of the particles redrawn from the check's poses (restart false)
   bool restart = true;
   int refine_candidates = 20;  // a side
-  void validate() const;
+  static const config::Fields<RelocalizationConfig>& fields();
+  void validate() const { fields().validate(*this); }
 };
 
 class RelocalizationMonitor {

@@ -42,6 +42,7 @@
 #include "adaptive_perception/SavePrior.h"
 #include "adaptive_perception/color/color_estimator.h"
 #include "adaptive_perception/ros/camera_model_source.h"
+#include "adaptive_perception/ros/image_gate.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
 
@@ -70,7 +71,7 @@ class ColorEstimatorNode {
   std::unique_ptr<color::ColorEstimator> estimator_;
   std::string map_frame_;
   double tf_timeout_s_ = 0.1;
-  ros_conv::StampOrder stamp_order_{"color_estimator", "image"};
+  ros_conv::ImageGate gate_{"color_estimator", 0.0, {}, ros_conv::ImageGate::Output::kYuv};
 
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;

@@ -1,8 +1,9 @@
 #pragma once
-// The image intake the camera nodes share: keeps the images in stamp order (ros_conv::StampOrder:
+// The image intake every camera node shares: keeps the images in stamp order (ros_conv::StampOrder:
 // an older image is dropped, time really going back restarts), drops images that come faster than
-// a rate on their stamps, and converts the rest to bgr8, reporting an unreadable image with a
-// throttled error naming the node and the problem.
+// a rate on their stamps (max_rate_hz <= 0: none), and converts the rest to bgr8 or to YUV (the
+// colour nodes), reporting an unreadable image with a throttled error naming the node and the
+// problem.
 #include <sensor_msgs/Image.h>
 
 #include <opencv2/core.hpp>
@@ -14,15 +15,20 @@ namespace adaptive_perception::ros_conv {
 
 class ImageGate {
  public:
-  ImageGate(std::string node, double max_rate_hz, ros_conv::StampOrderConfig order = {})
-      : node_(node), max_rate_hz_(max_rate_hz), order_(std::move(node), "image", order) {}
+  enum class Output { kBgr8, kYuv };
+  ImageGate(std::string node, double max_rate_hz, ros_conv::StampOrderConfig order = {},
+            Output output = Output::kBgr8)
+      : node_(node),
+        max_rate_hz_(max_rate_hz),
+        output_(output),
+        order_(std::move(node), "image", order) {}
 
   enum class Result { kProcess, kTooSoon, kOutOfOrder, kBadImage };
-  /// kProcess with *bgr filled, or why not. `publisher` (the caller id) is named in warnings.
-  /// *time_went_back is set when time really went back (StampOrder's kRestart: the caller restarts
-  /// its filter; the image is still judged); an image only a little older than the last is
-  /// kOutOfOrder.
-  Result accept(const sensor_msgs::Image& msg, const std::string& publisher, cv::Mat* bgr,
+  /// kProcess with *image filled (bgr8 or YUV, CV_8UC3), or why not. `publisher` (the caller id) is
+  /// named in warnings. *time_went_back is set when time really went back (StampOrder's kRestart:
+  /// the caller restarts its filter; the image is still judged); an image only a little older than
+  /// the last is kOutOfOrder.
+  Result accept(const sensor_msgs::Image& msg, const std::string& publisher, cv::Mat* image,
                 bool* time_went_back);
   long badImages() const { return bad_images_; }
   long outOfOrder() const { return order_.dropped(); }
@@ -30,6 +36,7 @@ class ImageGate {
  private:
   std::string node_;
   double max_rate_hz_;
+  Output output_;
   StampOrder order_;
   ros::Time last_processed_;
   long bad_images_ = 0;

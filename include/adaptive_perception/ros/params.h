@@ -9,6 +9,7 @@
 #include <string>
 
 #include "adaptive_perception/color/color_model.h"
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/ros/stamp_order.h"
@@ -43,6 +44,40 @@ T getInRange(const ros::NodeHandle& nh, const std::string& name, const T& def, c
   return v;
 }
 
+/// Every field of a config's table that is set as a private parameter (others keep *config's
+/// value): ints and bools must be given as such (a real may be given as an int). Throws ParamError
+/// naming the parameter, its value and the allowed range.
+template <class C>
+void loadFields(const ros::NodeHandle& nh, const config::Fields<C>& fields, C* config) {
+  for (const config::Field<C>& f : fields.all()) {
+    if (!nh.hasParam(f.name)) continue;
+    double v = 0.0;
+    bool ok = false;
+    if (f.kind == config::Kind::kInt) {
+      int i = 0;
+      ok = nh.getParam(f.name, i);
+      v = i;
+    } else if (f.kind == config::Kind::kBool) {
+      bool b = false;
+      ok = nh.getParam(f.name, b);
+      v = b ? 1.0 : 0.0;
+    } else {
+      ok = nh.getParam(f.name, v);
+    }
+    if (!ok) {
+      const char* want = f.kind == config::Kind::kInt    ? "an integer"
+                         : f.kind == config::Kind::kBool ? "a boolean"
+                                                         : "a number";
+      throw ParamError("parameter " + nh.resolveName(f.name) + " has the wrong type (expected " +
+                       want + ")");
+    }
+    if (!f.range.contains(v))
+      throw ParamError("parameter " + nh.resolveName(f.name) + " = " +
+                       config::formatValue(f.kind, v) + " is out of range " + f.range.text());
+    f.set(*config, v);
+  }
+}
+
 /// A list of numbers; integers and reals may be mixed (YAML `[10, 20.5]`). Throws ParamError naming
 /// the parameter when it is not a list of numbers.
 std::vector<double> getNumbers(const ros::NodeHandle& nh, const std::string& name,
@@ -58,6 +93,10 @@ std::string getFrameId(const ros::NodeHandle& nh, const std::string& name, const
 /// A file in the package's share directory (e.g. "config/field_4legged.yaml") when `value` is
 /// relative and not found from the current directory; `value` itself otherwise.
 std::string resolvePackagePath(const std::string& value);
+
+/// The priors a colour node runs on when ~priors / ~single_prior are not set.
+inline const std::vector<std::string> kDefaultSwitchingPriors = {"dark", "bright"};
+inline const std::string kDefaultSinglePrior = "all";
 
 /// The lighting priors a colour node runs on, from ~filter (switching: the ~priors list; single:
 /// ~single_prior) and ~priors_dir (YAML files NAME.yaml). Returns the priors and sets *filter and

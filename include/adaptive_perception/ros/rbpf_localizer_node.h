@@ -3,21 +3,10 @@
 // lighting (Schulz & Fox 2004, section IV). The algorithm is localization::RbpfLocalizer; this node
 // feeds it images, odometry and the head chain from tf, and publishes its estimate.
 //
-// Parameters (private; defaults and ranges in config/rbpf_localizer.yaml):
-//   ~particles (int), ~threads (int, 0 = all cores), ~seed (int).
-//   ~pixel_stride (int, px of a 208-wide image: scaled with the camera's width),
-//   ~outlier_probability, ~exponent (scaled by the grid's pixel count): the image likelihood (eq.
-//   16). ~resample_ess_fraction: the resampling threshold.
-//   ~global_pool_size, ~global_pixel_stride: the global search from the first image.
-//   ~odom_alpha1..4, ~odom_min_translation_std_m, ~odom_min_rotation_std_rad: motion model.
-//   ~filter (switching | single), ~priors (list), ~single_prior, ~priors_dir, ~field_file,
-//   ~mode_stay_probability, ~drift_std_per_sqrt_s: the per-particle lighting filters.
-//   ~initial_pose ([x_m, y_m, yaw_rad], optional: without it the node starts with a global search),
-//   ~initial_pose_std ([x_m, y_m, yaw_rad]).
-//   ~map_frame, ~odom_frame, ~base_frame, ~publish_tf (bool), ~transform_tolerance_s,
-//   ~tf_timeout_s.
-//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
-//   this (or the clock jumping back) restarts (ros/stamp_order.h).
+// Parameters (private): every one with its default, range and doc in parameters() below, shown as
+//   the table of docs/nodes/rbpf_localizer.md; the algorithm's come from localization::RbpfConfig's
+//   field table (loaded by ros_params::loadFields), the node's own (threads, seed, priors, field
+//   file, initial pose, frames, tf timing) are read here.
 // Subscribed:
 //   camera/image_raw (sensor_msgs/Image: yuv422 | bgr8 | rgb8, 208x160 or camera/camera_info's
 //   size), camera/camera_info (optional), initialpose (geometry_msgs/PoseWithCovarianceStamped,
@@ -49,6 +38,7 @@
 #include "adaptive_perception/color/color_lut.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
 #include "adaptive_perception/ros/camera_model_source.h"
+#include "adaptive_perception/ros/image_gate.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
 
@@ -59,6 +49,9 @@ class RbpfLocalizerNode {
   /// Throws ros_params::ParamError / std::runtime_error (bad prior or field file) with a clear
   /// message.
   RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads, with its default, range and doc (the table of
+  /// docs/nodes/rbpf_localizer.md, made by describe_parameters).
+  static std::vector<config::ParameterDoc> parameters();
 
  private:
   void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
@@ -83,10 +76,10 @@ class RbpfLocalizerNode {
   std::optional<std::pair<math::SE2, Eigen::Matrix3d>> configured_pose_;  // ~initial_pose
   std::string map_frame_, odom_frame_, base_frame_;
   bool publish_tf_ = true;
-  double transform_tolerance_s_ = 0.1, tf_timeout_s_ = 0.1;
+  double transform_tolerance_s_ = 0.0, tf_timeout_s_ = 0.0;  // set from their parameters
   std::optional<Eigen::Isometry3d> last_odom_;
   ros::Time last_stamp_;
-  ros_conv::StampOrder stamp_order_{"rbpf_localizer", "image"};
+  ros_conv::ImageGate gate_{"rbpf_localizer", 0.0, {}, ros_conv::ImageGate::Output::kYuv};
   color::ColorLutCache lut_;
 
   tf2_ros::Buffer tf_buffer_;

@@ -1,28 +1,25 @@
 #include "adaptive_perception/localization/global_localization.h"
 
-#include <stdexcept>
-#include <string>
-
 #include "adaptive_perception/math/parallel_for.h"
 
 namespace adaptive_perception::localization {
 
-void GlobalLocalizationConfig::validate() const {
-  if (pool_size < 0 || pool_size > 10000000)
-    throw std::invalid_argument("global_pool_size = " + std::to_string(pool_size) +
-                                " (allowed: 0..10000000)");
-  if (!(confirm_fraction >= 0.0 && confirm_fraction <= 1.0))
-    throw std::invalid_argument("global_confirm_fraction = " + std::to_string(confirm_fraction) +
-                                " (allowed: 0..1)");
-  if (confirm_frames < 0 || confirm_frames > 100)
-    throw std::invalid_argument("global_confirm_frames = " + std::to_string(confirm_frames) +
-                                " (allowed: 0..100, at most global_search_frames turns it off)");
-  if (search_frames < 1 || search_frames > 100)
-    throw std::invalid_argument("global_search_frames = " + std::to_string(search_frames) +
-                                " (allowed: 1..100)");
-  if (refine_candidates < 0 || refine_candidates > 1000000)
-    throw std::invalid_argument("refine_candidates = " + std::to_string(refine_candidates) +
-                                " (allowed: 0..1000000)");
+const config::Fields<GlobalLocalizationConfig>& GlobalLocalizationConfig::fields() {
+  using C = GlobalLocalizationConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("global_pool_size", &C::pool_size, config::closed(0, 10000000),
+               "uniform poses the global search scores (0: no search, the particles as drawn)")
+          .add("global_search_frames", &C::search_frames, config::closed(1, 100),
+               "images scored before the particles commit (also the relocalization check's)")
+          .add(
+              "global_confirm_frames", &C::confirm_frames, config::closed(0, 100),
+              "the pool goes on to this image, then the second draw (<= global_search_frames: off)")
+          .add("global_confirm_fraction", &C::confirm_fraction, config::closed(0, 1),
+               "share of the particles drawn again from the pool at the second draw")
+          .add("refine_candidates", &C::refine_candidates, config::closed(0, 1000000),
+               "best poses refined at the commit and at the second draw");
+  return f;
 }
 
 GlobalLocalization::GlobalLocalization(const GlobalLocalizationConfig& config) : config_(config) {

@@ -12,28 +12,26 @@ namespace {
 constexpr double kLogUniformYuv = -16.635532333438686;  // log(1 / 256^3)
 }  // namespace
 
-void ImageLikelihoodConfig::validate() const {
-  if (reference_width_px < 16 || reference_width_px > 10000)
-    throw std::invalid_argument("reference_width_px = " + std::to_string(reference_width_px) +
-                                " (allowed: 16..10000)");
-  if (pixel_stride < 1 || pixel_stride > 256)
-    throw std::invalid_argument("pixel_stride = " + std::to_string(pixel_stride) +
-                                " (allowed: 1..256)");
-  if (!(outlier_probability >= 0.0 && outlier_probability < 1.0))
-    throw std::invalid_argument("outlier_probability = " + std::to_string(outlier_probability) +
-                                " (allowed: 0 <= p < 1)");
-  if (!(exponent > 0.0 && exponent <= 1.0))
-    throw std::invalid_argument("exponent = " + std::to_string(exponent) +
-                                " (allowed: 0 < e <= 1)");
-  if (!(position_tolerance_m >= 0.0 && position_tolerance_m <= 1.0))
-    throw std::invalid_argument("position_tolerance_m = " + std::to_string(position_tolerance_m) +
-                                " (allowed: 0..1)");
-  if (!(heading_tolerance_rad >= 0.0 && heading_tolerance_rad <= 0.5))
-    throw std::invalid_argument("heading_tolerance_rad = " + std::to_string(heading_tolerance_rad) +
-                                " (allowed: 0..0.5)");
-  if (max_neighbourhood_cells < 0 || max_neighbourhood_cells > 16)
-    throw std::invalid_argument("max_neighbourhood_cells = " +
-                                std::to_string(max_neighbourhood_cells) + " (allowed: 0..16)");
+const config::Fields<ImageLikelihoodConfig>& ImageLikelihoodConfig::fields() {
+  using C = ImageLikelihoodConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("pixel_stride", &C::pixel_stride, config::closed(1, 256),
+               "every stride-th pixel in x and y is scored (px of a reference_width_px-wide image)")
+          .add("outlier_probability", &C::outlier_probability, config::belowOne(),
+               "weight of the uniform density in each pixel's likelihood")
+          .add("exponent", &C::exponent, config::aboveZero(1),
+               "the image log-likelihood is multiplied by this (scaled by the grid's pixel count)")
+          .add("position_tolerance_m", &C::position_tolerance_m, config::closed(0, 1),
+               "a pixel's predicted colour is blurred over where a pose error this size moves it "
+               "(m)")
+          .add("heading_tolerance_rad", &C::heading_tolerance_rad, config::closed(0, 0.5),
+               "the same for a heading error (rad)")
+          .add("max_neighbourhood_cells", &C::max_neighbourhood_cells, config::closed(0, 16),
+               "at most this many grid steps of blur")
+          .add("reference_width_px", &C::reference_width_px, config::closed(16, 10000),
+               "the strides are in pixels of an image this wide; other cameras are scaled");
+  return f;
 }
 
 double gridPixelCount(int w, int h, int s) {

@@ -2,20 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 #include "adaptive_perception/world/color_class.h"
 
 namespace adaptive_perception::localization {
 
-void MirrorTestConfig::validate() const {
-  if (!(margin_nats >= 0.0 && std::isfinite(margin_nats)))
-    throw std::invalid_argument("mirror_test_margin_nats = " + std::to_string(margin_nats) +
-                                " (allowed: >= 0, 0 turns the test off)");
-  if (!(memory_s > 0.0 && memory_s <= 1e6))
-    throw std::invalid_argument("mirror_test_memory_s = " + std::to_string(memory_s) +
-                                " (allowed: 0 < s <= 1e6)");
+const config::Fields<MirrorTestConfig>& MirrorTestConfig::fields() {
+  using C = MirrorTestConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("mirror_test_margin_nats", &C::margin_nats, config::closed(0, 1e6),
+               "the particles move to their mirrors when the evidence exceeds this (0: off)")
+          .add("mirror_test_memory_s", &C::memory_s, config::aboveZero(1e6),
+               "time constant of the evidence's fading (s)");
+  return f;
 }
 
 MirrorTest::MirrorTest(const std::vector<color::LightingPrior>& priors,

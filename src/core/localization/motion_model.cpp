@@ -1,19 +1,26 @@
 #include "adaptive_perception/localization/motion_model.h"
 
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 namespace adaptive_perception::localization {
 
-void MotionModelConfig::validate() const {
-  const double v[] = {alpha1, alpha2, alpha3, alpha4, min_translation_std_m, min_rotation_std_rad};
-  const char* n[] = {
-      "alpha1", "alpha2", "alpha3", "alpha4", "min_translation_std_m", "min_rotation_std_rad"};
-  for (int i = 0; i < 6; ++i)
-    if (!(v[i] >= 0.0 && v[i] <= 10.0))
-      throw std::invalid_argument(std::string(n[i]) + " = " + std::to_string(v[i]) +
-                                  " (allowed: 0..10)");
+const config::Fields<MotionModelConfig>& MotionModelConfig::fields() {
+  using C = MotionModelConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("odom_alpha1", &C::alpha1, config::closed(0, 10),
+               "rotation noise per radian of rotation")
+          .add("odom_alpha2", &C::alpha2, config::closed(0, 10),
+               "rotation noise (rad) per metre of translation")
+          .add("odom_alpha3", &C::alpha3, config::closed(0, 10),
+               "translation noise per metre of translation")
+          .add("odom_alpha4", &C::alpha4, config::closed(0, 10),
+               "translation noise (m) per radian of rotation")
+          .add("odom_min_translation_std_m", &C::min_translation_std_m, config::closed(0, 1),
+               "translation noise floor per step (m), so that particles never collapse")
+          .add("odom_min_rotation_std_rad", &C::min_rotation_std_rad, config::closed(0, 1),
+               "rotation noise floor per step (rad)");
+  return f;
 }
 
 Eigen::Vector2d motionNoiseStd(const math::SE2& d, const MotionModelConfig& c) {

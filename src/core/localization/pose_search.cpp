@@ -1,33 +1,29 @@
 #include "adaptive_perception/localization/pose_search.h"
 
 #include <algorithm>
-#include <stdexcept>
-#include <string>
 
 #include "adaptive_perception/math/parallel_for.h"
 #include "adaptive_perception/math/particle_set.h"
 
 namespace adaptive_perception::localization {
 
-void PoseSearchConfig::validate() const {
-  if (!(free_space_margin_m >= 0.0 && free_space_margin_m <= 2.0))
-    throw std::invalid_argument("free_space_margin_m = " + std::to_string(free_space_margin_m) +
-                                " (allowed: 0..2)");
-  if (pixel_stride < 1 || pixel_stride > 256)
-    throw std::invalid_argument("global_pixel_stride = " + std::to_string(pixel_stride) +
-                                " (allowed: 1..256)");
-  if (refine_rounds < 0 || refine_rounds > 20)
-    throw std::invalid_argument("refine_rounds = " + std::to_string(refine_rounds) +
-                                " (allowed: 0..20)");
-  if (refine_tries < 0 || refine_tries > 1000)
-    throw std::invalid_argument("refine_tries = " + std::to_string(refine_tries) +
-                                " (allowed: 0..1000)");
-  if (!(refine_sigma_m >= 0.0 && refine_sigma_m <= 5.0))
-    throw std::invalid_argument("refine_sigma_m = " + std::to_string(refine_sigma_m) +
-                                " (allowed: 0..5)");
-  if (!(refine_sigma_rad >= 0.0 && refine_sigma_rad <= 3.2))
-    throw std::invalid_argument("refine_sigma_rad = " + std::to_string(refine_sigma_rad) +
-                                " (allowed: 0..3.2)");
+const config::Fields<PoseSearchConfig>& PoseSearchConfig::fields() {
+  using C = PoseSearchConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("free_space_margin_m", &C::free_space_margin_m, config::closed(0, 2),
+               "uniform poses are drawn this far from walls and goals (m)")
+          .add("global_pixel_stride", &C::pixel_stride, config::closed(1, 256),
+               "the searches score every stride-th pixel (px of a reference_width_px-wide image)")
+          .add("refine_rounds", &C::refine_rounds, config::closed(0, 20),
+               "hill-climbing rounds on a search's best poses (0: off)")
+          .add("refine_tries", &C::refine_tries, config::closed(0, 1000),
+               "perturbations a pose and round")
+          .add("refine_sigma_m", &C::refine_sigma_m, config::closed(0, 5),
+               "first round's perturbation (m), halved every round")
+          .add("refine_sigma_rad", &C::refine_sigma_rad, config::closed(0, 3.2),
+               "first round's perturbation (rad), halved every round");
+  return f;
 }
 
 PoseSearch::PoseSearch(std::shared_ptr<const ImageLikelihood> likelihood,

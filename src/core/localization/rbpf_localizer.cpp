@@ -19,29 +19,37 @@ color::ColorModelConfig RbpfConfig::rbpfModelConfig() {
   return c;
 }
 
+const config::Fields<RbpfConfig>& RbpfConfig::fields() {
+  using C = RbpfConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("particles", &C::particles, config::closed(1, 1000000), "number of particles")
+          .add("resample_ess_fraction", &C::resample_ess_fraction, config::aboveZero(1),
+               "resample when the effective sample size falls below this share of the particles")
+          .add("mirror_fraction", &C::mirror_fraction, config::closed(0, 0.5),
+               "share of the particles replaced by point mirrors of others at each resampling")
+          .add("mirror_relative_weight", &C::mirror_relative_weight, config::aboveZero(1),
+               "a mirrored particle's weight relative to the others")
+          .add("drift_std_per_sqrt_s", &C::model, &color::ColorModelConfig::drift_std_per_sqrt_s,
+               config::closed(0, 100), "lighting drift of each particle's filter (levels/sqrt(s))")
+          .add("mode_stay_probability", &C::switching,
+               &color::SwitchingFilterConfig::mode_stay_probability, config::closed(1e-3, 1),
+               "probability that the lighting stays in its mode from one image to the next")
+          .nest(&C::likelihood, ImageLikelihoodConfig::fields())
+          .nest(&C::motion, MotionModelConfig::fields())
+          .nest(&C::search, PoseSearchConfig::fields())
+          .nest(&C::global, GlobalLocalizationConfig::fields())
+          .nest(&C::relocalization, RelocalizationConfig::fields())
+          .nest(&C::mirror_test, MirrorTestConfig::fields());
+  return f;
+}
+
 void RbpfConfig::validate() const {
-  if (particles < 1 || particles > 1000000)
-    throw std::invalid_argument("particles = " + std::to_string(particles) +
-                                " (allowed: 1..1000000)");
+  fields().validate(*this);
   if (threads < 1 || threads > 256)
     throw std::invalid_argument("threads = " + std::to_string(threads) + " (allowed: 1..256)");
-  if (!(resample_ess_fraction > 0.0 && resample_ess_fraction <= 1.0))
-    throw std::invalid_argument("resample_ess_fraction = " + std::to_string(resample_ess_fraction) +
-                                " (allowed: 0 < f <= 1)");
-  if (!(mirror_fraction >= 0.0 && mirror_fraction <= 0.5))
-    throw std::invalid_argument("mirror_fraction = " + std::to_string(mirror_fraction) +
-                                " (allowed: 0..0.5)");
-  if (!(mirror_relative_weight > 0.0 && mirror_relative_weight <= 1.0))
-    throw std::invalid_argument("mirror_relative_weight = " +
-                                std::to_string(mirror_relative_weight) + " (allowed: 0 < w <= 1)");
-  motion.validate();
-  likelihood.validate();
   model.validate();
   switching.validate();
-  search.validate();
-  global.validate();
-  relocalization.validate();
-  mirror_test.validate();
 }
 
 RbpfConfig RbpfConfig::forCamera(const world::PinholeCamera& camera) const {

@@ -2,25 +2,26 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 namespace adaptive_perception::localization {
 
-void RelocalizationConfig::validate() const {
-  if (!(interval_s >= 0.0 && interval_s <= 1e6))
-    throw std::invalid_argument("relocalization_interval_s = " + std::to_string(interval_s) +
-                                " (allowed: 0..1e6)");
-  if (pool_size < 0 || pool_size > 10000000)
-    throw std::invalid_argument("relocalization_pool_size = " + std::to_string(pool_size) +
-                                " (allowed: 0..10000000)");
-  if (!(fraction > 0.0 && fraction <= 1.0))
-    throw std::invalid_argument("relocalization_fraction = " + std::to_string(fraction) +
-                                " (allowed: 0 < f <= 1)");
-  if (!std::isfinite(margin)) throw std::invalid_argument("relocalization_margin must be finite");
-  if (refine_candidates < 0 || refine_candidates > 1000000)
-    throw std::invalid_argument("relocalization_refine_candidates = " +
-                                std::to_string(refine_candidates) + " (allowed: 0..1000000)");
+const config::Fields<RelocalizationConfig>& RelocalizationConfig::fields() {
+  using C = RelocalizationConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("relocalization_interval_s", &C::interval_s, config::closed(0, 1e6),
+               "a check that the particles are not lost every this many seconds (0: off)")
+          .add("relocalization_pool_size", &C::pool_size, config::closed(0, 10000000),
+               "uniform poses a check scores beside the particles")
+          .add("relocalization_margin", &C::margin, config::closed(-1e6, 1e6),
+               "the best uniform pose must beat the particles' by this (tempered nats)")
+          .add("relocalization_fraction", &C::fraction, config::aboveZero(1),
+               "share of the particles drawn from the check's poses (relocalization_restart false)")
+          .add("relocalization_restart", &C::restart,
+               "a check that wins restarts the global search (else: the draw above)")
+          .add("relocalization_refine_candidates", &C::refine_candidates,
+               config::closed(0, 1000000), "best poses refined on each side of a check");
+  return f;
 }
 
 RelocalizationMonitor::RelocalizationMonitor(const RelocalizationConfig& config) : config_(config) {

@@ -1,0 +1,39 @@
+#include "adaptive_perception/ros/parameter_docs.h"
+
+#include <stdexcept>
+
+#include "adaptive_perception/ros/rbpf_localizer_node.h"
+
+namespace adaptive_perception::ros_params {
+
+const std::map<std::string, std::vector<config::ParameterDoc>>& nodeParameters() {
+  static const std::map<std::string, std::vector<config::ParameterDoc>> nodes = {
+      {"rbpf_localizer", RbpfLocalizerNode::parameters()}};
+  return nodes;
+}
+
+std::string parameterBlockBegin(const std::string& node) {
+  return "<!-- parameters: made by `describe_parameters --node " + node +
+         " --update`; do not edit by hand -->\n";
+}
+
+std::string parameterBlockEnd() { return "<!-- parameters: end -->\n"; }
+
+std::string parameterBlock(const std::string& node) {
+  const auto it = nodeParameters().find(node);
+  if (it == nodeParameters().end()) throw std::runtime_error("no parameter table for node " + node);
+  return parameterBlockBegin(node) + config::markdownTable(it->second) + parameterBlockEnd();
+}
+
+std::string withParameterBlock(const std::string& page, const std::string& node) {
+  const std::string begin = parameterBlockBegin(node), end = parameterBlockEnd();
+  const size_t b = page.find(begin);
+  const size_t e = b == std::string::npos ? b : page.find(end, b);
+  if (e == std::string::npos)
+    throw std::runtime_error("the page has no parameter block for " + node + " (add the lines '" +
+                             begin.substr(0, begin.size() - 1) + "' and '" +
+                             end.substr(0, end.size() - 1) + "')");
+  return page.substr(0, b) + parameterBlock(node) + page.substr(e + end.size());
+}
+
+}  // namespace adaptive_perception::ros_params
