@@ -162,10 +162,12 @@ class RbpfLocalizer {
                     std::uint64_t frame_seed, double margin, double fraction, bool restart,
                     int refine_candidates, StepResult* result);
   std::vector<math::SE2> poses() const;
-  color::SwitchingColorFilter priorLighting() const;
+  /// A lighting filter at the priors (the particles' start, and the searches' lighting).
+  const color::SwitchingColorFilter& priorLighting() const { return prior_lighting_; }
 
   std::vector<color::LightingPrior> priors_;
   RbpfConfig config_;
+  color::SwitchingColorFilter prior_lighting_;
   std::shared_ptr<const ImageLikelihood> likelihood_;
   PoseSearch search_;
   GlobalLocalization global_;

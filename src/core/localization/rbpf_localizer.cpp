@@ -82,6 +82,7 @@ RbpfLocalizer::RbpfLocalizer(const world::FieldMap& map, const world::PinholeCam
                              const RbpfConfig& config)
     : priors_(priors),
       config_(validated(config).forCamera(camera)),
+      prior_lighting_(priors, config_.model, config_.switching),
       likelihood_(
           std::make_shared<const ImageLikelihood>(map, camera, config_.model, config_.likelihood)),
       search_(likelihood_, config_.search, config_.threads),
@@ -91,10 +92,6 @@ RbpfLocalizer::RbpfLocalizer(const world::FieldMap& map, const world::PinholeCam
       rng_(config.seed),
       image_(likelihood_->grid(config_.likelihood.pixel_stride)) {
   initUniform();
-}
-
-color::SwitchingColorFilter RbpfLocalizer::priorLighting() const {
-  return color::SwitchingColorFilter(priors_, config_.model, config_.switching);
 }
 
 std::vector<math::SE2> RbpfLocalizer::poses() const {
