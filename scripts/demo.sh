@@ -46,7 +46,7 @@ done
 # odometry and replayed 20x faster through line_extractor + ekf_slam_mapper (which then owns map -> odom).
 real_bag="$AP_ROOT/results/demo/intel.bag"
 "$AP_WS/devel/lib/adaptive_perception/carmen_to_bag" --input "$AP_ROOT/data/laser/intel.clf.bz2" \
-  --output "$real_bag" --overwrite --max_issues 0 --odometry laser_poses > /dev/null 2>&1
+  --output "$real_bag" --overwrite --max_issues 0 > /dev/null 2>&1
 echo "demo: replaying intel (real log) through laser_demo.launch (rviz=$RVIZ)"
 rrate="$(awk -v r="$RATE" 'BEGIN { print 20 * r }')"
 roslaunch --disable-title adaptive_perception laser_demo.launch bag:="$real_bag" name:=intel real_log:=true \

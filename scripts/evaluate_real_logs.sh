@@ -3,7 +3,7 @@
 # then evaluate_lines (speed, segments per scan, one scan drawn as PNG) and evaluate_slam over the whole
 # log (landmark map over the trajectory as PNG, landmark count, real-time factor). Writes results/real_logs/.
 # Usage: scripts/evaluate_real_logs.sh [RETIRE_AFTER=0] [ODOM_NOISE_SCALE=8] [LOGS="intel fr079 mit-csail fr-clinic_robotlaser"]
-# Odometry: the robot pose each laser line carries (carmen_to_bag --odometry laser_poses). Retirement
+# Odometry: the robot pose each laser line carries (carmen_to_bag's default). Retirement
 # (the paper's 50 on USC SAL) is off by default: on the Intel log it froze landmarks before the loops
 # closed (doubled corridors), and the whole log still runs at about 140x real time without it.
 # The EKF's default odometry noise fits the simulator; these robots' odometry is far worse (the Intel
@@ -22,7 +22,6 @@ summary="$OUT/summary.txt"
 : > "$summary"
 for log in $LOGS; do
   "$BIN/carmen_to_bag" --input "$AP_ROOT/data/laser/$log.clf.bz2" --output "$OUT/$log.bag" --overwrite --max_issues 3 \
-    --odometry laser_poses \
     2> "$OUT/$log.issues.txt" | tee -a "$summary"
   "$BIN/evaluate_lines" --bag "$OUT/$log.bag" --output "$OUT/$log" --name "$log" | tail -n 1 | sed "s/^/$log /" | tee -a "$summary"
   "$BIN/evaluate_slam" --bag "$OUT/$log.bag" --retire_after "$RETIRE_AFTER" \

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The relations benchmark (Kuemmerle et al. 2009) on every real log in data/laser/ that has a
-# relations file: carmen_to_bag with its defaults but the lasers' own poses as odometry, then
+# relations file: carmen_to_bag with its defaults, then
 # evaluate_slam with the same settings on every log (FLAGS, default: the laser-odometry front end
 # and loop closing), and one table of relation errors (mean and std, translational and rotational)
 # beside the published figures of the usual peers, plus each log's map PNG. Writes
@@ -36,7 +36,7 @@ for log in "${logs[@]}"; do
   rel="$AP_ROOT/data/laser/relations/$log.relations"
   [ -f "$rel" ] || { echo "evaluate_slam_benchmark: no relations for $log (skipped)"; continue; }
   "$BIN/carmen_to_bag" --input "$AP_ROOT/data/laser/$log.clf.bz2" --output "$dir/$log.bag" \
-    --overwrite --max_issues 3 --odometry laser_poses > "$dir/log.txt" 2>&1 || {
+    --overwrite --max_issues 3 > "$dir/log.txt" 2>&1 || {
     echo "evaluate_slam_benchmark: $log: carmen_to_bag failed: $(tail -n 1 "$dir/log.txt")"; continue; }
   # shellcheck disable=SC2086
   if ! "$BIN/evaluate_slam" --bag "$dir/$log.bag" --relations "$rel" $FLAGS --output "$dir" \

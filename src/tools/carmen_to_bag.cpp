@@ -4,10 +4,11 @@
 //   20] [--odometry auto|odom_lines|laser_poses]
 //
 // Topics: scan (sensor_msgs/LaserScan: angle_min, angle_increment and range_max from the log;
-// FLASER and ROBOTLASER1 in `laser`, RLASER in `rear_laser`), odom (nav_msgs/Odometry from ODOM
-// lines, or from the lasers' robot poses when the log has none; --odometry laser_poses takes the
-// lasers' poses even then: each scan then carries the odometry of its own instant, which matters on
-// logs whose ODOM stamps are out of order, like intel) + tf odom -> base_link, base_link
+// FLASER and ROBOTLASER1 in `laser`, RLASER in `rear_laser`), odom (nav_msgs/Odometry; --odometry
+// auto, the default, takes the lasers' robot poses, so that each scan carries the odometry of its
+// own instant, which matters on logs whose ODOM stamps are out of order, like intel; it takes the
+// ODOM lines only when the lasers' poses never change; odom_lines and laser_poses force either)
+// + tf odom -> base_link, base_link
 // -> laser (tf_static when the mounting never changes, else tf at each scan), ground_truth/pose
 // (PoseStamped in map) from TRUEPOS. Every stamp is the line's ipc_timestamp, so published relation
 // files for these logs line up with the bag. Malformed / truncated / unknown / out-of-order lines
@@ -122,7 +123,11 @@ int main(int argc, char** argv) {
     };
     if (odometry == "odom_lines" && log.odometry.empty())
       throw std::runtime_error(input + ": --odometry odom_lines, but the log has no ODOM lines");
-    const bool from_lines = odometry == "odom_lines" || (odometry == "auto" && !log.odometry.empty());
+    // auto: the lasers' own robot poses, so that each scan carries the odometry of its own instant
+    // (intel's ODOM stamps are out of order against its FLASER lines), unless those poses never
+    // change (a logger that left them zero) and the log has ODOM lines.
+    const bool from_lines = odometry == "odom_lines" ||
+                            (odometry == "auto" && !log.odometry.empty() && !io::laserPosesMove(log));
     if (from_lines) {
       for (const auto& o : log.odometry) writeOdom(o.timestamp_s, o.pose, o.tv_mps, o.rv_radps);
     } else {

@@ -324,7 +324,7 @@ int main(int argc, char** argv) {
       tum(ekf_tum, t, ekf.pose());
       if (loop_closing) {
         const auto c1 = std::chrono::steady_clock::now();
-        mapper.add(robot, ekf.pose());
+        mapper.add(robot, ekf.pose(), front_end == "laser_odometry" ? &prediction : nullptr);
         const double dl =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - c1).count();
         compute_s += dl;
@@ -441,7 +441,7 @@ int main(int argc, char** argv) {
         "merged=%ld scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f "
         "front_end=%s front_end_relation_trans_error_m=%.4f front_end_relation_rot_error_deg=%.3f "
         "front_end_matched=%.3f front_end_ms_mean=%.3f loop_closures=%d graph_nodes=%d "
-        "ekf_relation_trans_error_m=%.4f grid_cells=%dx%d grid_s=%.1f\n",
+        "ekf_relation_trans_error_m=%.4f chain_edges_replaced=%d grid_cells=%dx%d grid_s=%.1f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
         with_truth ? double(below) / with_truth : -1.0,
@@ -454,7 +454,7 @@ int main(int argc, char** argv) {
         has_rel && !front_estimate.empty() ? math::radToDeg(front_rel.rot_mean_rad) : -1.0,
         laser_odometry.scans() ? double(laser_odometry.matched()) / laser_odometry.scans() : -1.0,
         1e3 * front_s / scans.size(), mapper.loopClosures(), mapper.nodes(),
-        has_rel ? ekf_rel.trans_mean_m : -1.0, grid.width, grid.height, grid_s);
+        has_rel ? ekf_rel.trans_mean_m : -1.0, mapper.chainEdgesReplaced(), grid.width, grid.height, grid_s);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";
     return 1;

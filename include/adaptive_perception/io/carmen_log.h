@@ -70,6 +70,10 @@ struct CarmenReadOptions {
   size_t max_issues_kept = 1000;      // later issues are counted, not stored
 };
 
+/// Whether the lasers' robot poses move over the log (some loggers leave them zero): when they do,
+/// each scan carries the odometry of its own instant, which carmen_to_bag prefers to ODOM lines.
+bool laserPosesMove(const CarmenLog& log);
+
 /// Reads a log from a file (.bz2 decompressed on the fly). Throws std::runtime_error naming the
 /// file when it cannot be opened or decompressed.
 CarmenLog readCarmenLog(const std::string& path,

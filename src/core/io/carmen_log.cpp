@@ -242,4 +242,12 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
   return log;
 }
 
+bool laserPosesMove(const CarmenLog& log) {
+  for (const auto& l : log.lasers) {
+    const math::SE2 d = math::between(log.lasers.front().robot_pose, l.robot_pose);
+    if (std::hypot(d.x_m, d.y_m) > 1e-6 || std::fabs(d.yaw_rad) > 1e-6) return true;
+  }
+  return false;
+}
+
 }  // namespace adaptive_perception::io

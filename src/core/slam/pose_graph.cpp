@@ -89,8 +89,10 @@ void LoopClosingConfig::validate() const {
        "node_translation_m must be > 0");
   need(std::isfinite(node_rotation_rad) && node_rotation_rad > 0.0,
        "node_rotation_rad must be > 0");
-  for (double v : {odometry_std_m, odometry_std_rad, loop_std_m})
+  for (double v : {odometry_std_m, odometry_std_rad, loop_std_m, chain_gate_std_m,
+                   chain_gate_std_rad})
     need(std::isfinite(v) && v > 0.0, "the *_std_* fields must be > 0");
+  need(std::isfinite(chain_gate_chi2) && chain_gate_chi2 > 0.0, "chain_gate_chi2 must be > 0");
   need(min_node_gap >= 1, "min_node_gap must be >= 1");
   need(std::isfinite(search_radius_m) && search_radius_m >= 0.0, "search_radius_m must be >= 0");
   need(max_candidates_per_node >= 0, "max_candidates_per_node must be >= 0");
@@ -112,7 +114,7 @@ LoopClosingMapper::LoopClosingMapper(LoopClosingConfig config) : config_(config)
 }
 
 void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
-                            const math::SE2& local_pose) {
+                            const math::SE2& local_pose, const math::SE2* reference_pose) {
   bool new_node = nodes_.empty();
   if (!new_node) {
     const math::SE2 d = math::between(nodes_.back().local, local_pose);
@@ -128,14 +130,27 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
       graph_.addNode(local_pose);
     } else {
       const int prev = graph_.numNodes() - 1;
-      const math::SE2 z = math::between(nodes_.back().local, local_pose);
+      math::SE2 z = math::between(nodes_.back().local, local_pose);
+      if (reference_pose && nodes_.back().has_reference) {
+        const math::SE2 zr = math::between(nodes_.back().reference, *reference_pose);
+        const double dx = z.x_m - zr.x_m, dy = z.y_m - zr.y_m;
+        const double dyaw = math::angleDiff(z.yaw_rad, zr.yaw_rad);
+        const double chi2 = (dx * dx + dy * dy) / (config_.chain_gate_std_m *
+                                                   config_.chain_gate_std_m) +
+                            dyaw * dyaw / (config_.chain_gate_std_rad * config_.chain_gate_std_rad);
+        if (chi2 > config_.chain_gate_chi2) {
+          z = zr;
+          ++chain_replaced_;
+        }
+      }
       graph_.addNode(graph_.node(prev) * z);
       Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
       info(0, 0) = info(1, 1) = 1.0 / (config_.odometry_std_m * config_.odometry_std_m);
       info(2, 2) = 1.0 / (config_.odometry_std_rad * config_.odometry_std_rad);
       graph_.addEdge(prev, prev + 1, z, info);
     }
-    nodes_.push_back({local_pose, std::move(pts)});
+    nodes_.push_back({local_pose, reference_pose ? *reference_pose : math::SE2(),
+                      reference_pose != nullptr, std::move(pts)});
     if (tryLoop(graph_.numNodes() - 1)) graph_.optimize();
   }
   scans_.push_back({static_cast<int>(nodes_.size()) - 1,

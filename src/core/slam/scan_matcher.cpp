@@ -54,6 +54,9 @@ void LaserOdometryConfig::validate() const {
     need(std::isfinite(v) && v > 0.0, "LaserOdometryConfig: odom_std_m and odom_std_rad must be > 0");
   need(std::isfinite(odometry_gate_chi2) && odometry_gate_chi2 > 0.0,
        "LaserOdometryConfig: odometry_gate_chi2 must be > 0");
+  need(std::isfinite(odometry_gate_min_score) && odometry_gate_min_score >= 0.0 &&
+           odometry_gate_min_score <= 1.0,
+       "LaserOdometryConfig: odometry_gate_min_score must be in [0, 1]");
   for (double v : {odom_std_per_m, odom_std_per_rad})
     need(std::isfinite(v) && v >= 0.0,
          "LaserOdometryConfig: odom_std_per_m and odom_std_per_rad must be >= 0");
@@ -320,15 +323,20 @@ math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
       // The disagreement's chi-square, dm^T (P + H^-1)^-1 dm = dm^T H (P^-1 + H)^-1 P^-1 dm (finite
       // where H is singular: along a corridor the scan cannot see, no disagreement counts).
       const double chi2 = dm.dot(H * sum.solve(P_inv * dm));
-      if (chi2 > config_.odometry_gate_chi2) {
+      const bool weak = chi2 > config_.odometry_gate_chi2 &&
+                        m.score < config_.odometry_gate_min_score;
+      if (weak) {
+        prior = priors.front();  // a weak match against the odometry: the odometry alone
+        ++weak_rejected_;
+      } else if (chi2 > config_.odometry_gate_chi2) {
         prior = m.pose;  // the odometry disagrees beyond its noise: the match alone
         ++odometry_rejected_;
       } else {
         const Eigen::Vector3d d = sum.solve(H * dm);
         prior = math::SE2(prior.x_m + d.x(), prior.y_m + d.y(), prior.yaw_rad + d.z());
       }
-      last_matched_ = true;
-      ++matched_;
+      last_matched_ = !weak;
+      matched_ += last_matched_ ? 1 : 0;
     } else {
       prior = priors.front();  // no match to trust: the wheel odometry
     }

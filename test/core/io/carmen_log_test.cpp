@@ -118,3 +118,17 @@ TEST(CarmenLog, ReadsBzip2AndFailsClearlyOnMissingFile) {
   EXPECT_TRUE(log.issues.empty());
   EXPECT_EQ(log.lasers[0].ranges_m.size(), 361u);
 }
+
+TEST(CarmenLog, TellsWhetherTheLasersPosesMove) {
+  // FLASER n ranges.. laser_x laser_y laser_th robot_x robot_y robot_th ipc_timestamp host logger
+  const std::string still =
+      "FLASER 2 1.0 2.0 0 0 0 0 0 0 100.0 host 0.1\n"
+      "FLASER 2 1.0 2.0 0 0 0 0 0 0 100.2 host 0.3\n"
+      "ODOM 0.5 0.0 0.0 0.3 0.0 0.0 100.1 host 0.2\n";
+  EXPECT_FALSE(laserPosesMove(parseCarmenLog(still)));
+  const std::string moving =
+      "FLASER 2 1.0 2.0 0 0 0 0 0 0 100.0 host 0.1\n"
+      "FLASER 2 1.0 2.0 0 0 0 0 0 0.01 100.2 host 0.3\n";
+  EXPECT_TRUE(laserPosesMove(parseCarmenLog(moving)));
+  EXPECT_FALSE(laserPosesMove(CarmenLog()));
+}

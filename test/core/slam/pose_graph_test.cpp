@@ -128,6 +128,53 @@ TEST(LoopClosingMapper, ClosesADriftingLoopInASyntheticRoom) {
   EXPECT_LT(worst_out, 0.25 * worst_in);
 }
 
+// One lap of the rectangle; the local estimator (the EKF) is exact but for one jump of 0.2 rad
+// halfway along the second side (a wrong line pairing), which it keeps from then on. The front
+// end's poses are exact. The chain edge across the jump fails the gate and takes the front end's
+// relative pose, so the lap after the jump stays where it is; without the reference the jump
+// turns the rest of the lap.
+TEST(LoopClosingMapper, AChainEdgeWhereTheLocalEstimatorJumpsTakesTheFrontEnd) {
+  const std::vector<Eigen::Vector2d> corners = {{1.2, 1.0}, {8.8, 1.0}, {8.8, 3.6}, {1.2, 3.6}};
+  std::vector<math::SE2> truth;
+  for (int c = 0; c < 4; ++c) {
+    const Eigen::Vector2d a = corners[c], b = corners[(c + 1) % 4];
+    const double yaw = std::atan2(b.y() - a.y(), b.x() - a.x());
+    const int n = static_cast<int>(std::round((b - a).norm() / 0.1));
+    for (int k = 0; k < n; ++k)
+      truth.emplace_back(a.x() + (b - a).x() * k / n, a.y() + (b - a).y() * k / n, yaw);
+  }
+  const size_t jump_at = 90;
+  auto run = [&](bool with_reference, int* replaced) {
+    slam::LoopClosingConfig c;
+    c.max_candidates_per_node = 0;  // the chain alone: no loop edge may hide the effect
+    slam::LoopClosingMapper mapper(c);
+    std::mt19937 rng(4);
+    const math::SE2 jump(0.0, 0.0, 0.2);
+    for (size_t i = 0; i < truth.size(); ++i) {
+      // The jumped estimator: the truth turned by 0.2 rad about the pose where it jumped.
+      const math::SE2 local =
+          i < jump_at ? truth[i] : truth[jump_at] * jump * math::between(truth[jump_at], truth[i]);
+      mapper.add(adaptive_perception::test::scanFrom(truth[i], &rng, 0.01), local,
+                 with_reference ? &truth[i] : nullptr);
+    }
+    *replaced = mapper.chainEdgesReplaced();
+    double worst = 0.0;
+    const std::vector<math::SE2> out = mapper.trajectory();
+    for (size_t i = jump_at + 10; i < truth.size(); ++i)
+      worst = std::max(worst, std::fabs(math::angleDiff(out[i].yaw_rad, truth[i].yaw_rad)));
+    return worst;
+  };
+  int replaced_with = 0, replaced_without = 0;
+  const double with_ref = run(true, &replaced_with), without_ref = run(false, &replaced_without);
+  std::printf("a 0.2 rad jump of the local estimator: worst yaw after it %.4f rad with the front "
+              "end's reference (%d chain edge(s) replaced), %.4f without\n",
+              with_ref, replaced_with, without_ref);
+  EXPECT_EQ(replaced_with, 1);
+  EXPECT_EQ(replaced_without, 0);
+  EXPECT_NEAR(without_ref, 0.2, 0.01);
+  EXPECT_LT(with_ref, 0.01);
+}
+
 TEST(PoseGraph2D, RefusesBadEdges) {
   slam::PoseGraph2D g;
   g.addNode({});
@@ -136,6 +183,9 @@ TEST(PoseGraph2D, RefusesBadEdges) {
   EXPECT_THROW(g.addEdge(0, 1, {}, Eigen::Matrix3d::Zero()), std::invalid_argument);
   slam::LoopClosingConfig c;
   c.min_loop_score = 2.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = slam::LoopClosingConfig();
+  c.chain_gate_chi2 = 0.0;
   EXPECT_THROW(c.validate(), std::invalid_argument);
 }
 
