@@ -2,20 +2,18 @@
 # Runs the line extractor over the four real CARMEN logs in data/laser/: converts each with carmen_to_bag,
 # then evaluate_lines (speed, segments per scan, one scan drawn as PNG) and evaluate_slam over the whole
 # log (landmark map over the trajectory as PNG, landmark count, real-time factor). Writes results/real_logs/.
-# Usage: scripts/evaluate_real_logs.sh [RETIRE_AFTER=0] [ODOM_NOISE_SCALE=8] [LOGS="intel fr079 mit-csail fr-clinic_robotlaser"]
-# Odometry: the robot pose each laser line carries (carmen_to_bag's default). Retirement
-# (the paper's 50 on USC SAL) is off by default: on the Intel log it froze landmarks before the loops
-# closed (doubled corridors), and the whole log still runs at about 140x real time without it.
-# The EKF's default odometry noise fits the simulator; these robots' odometry is far worse (the Intel
-# log drifts by more than a turn), and on the Intel log 8x the default gave the squarest map (4x:
-# a rotated, smeared map; 1x: divergence).
+# Usage: scripts/evaluate_real_logs.sh [RETIRE_AFTER=0] [ODOM_NOISE_SCALE=1] [LOGS="intel fr079 mit-csail fr-clinic_robotlaser"]
+# Odometry: the robot pose each laser line carries (carmen_to_bag's default). evaluate_slam runs with
+# its defaults (slam::LaserSlam: laser-odometry front end, loop closing); ODOM_NOISE_SCALE scales the
+# EKF's prediction noise. Retirement (the paper's 50 on USC SAL) is off by default: on the Intel log
+# it froze landmarks before the loops closed (doubled corridors).
 # Needs a built workspace (scripts/setup.sh). The whole set takes about 15 minutes on two cores.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 BIN="$AP_WS/devel/lib/adaptive_perception"
 OUT="$AP_ROOT/results/real_logs"
 RETIRE_AFTER="${1:-0}"
-ODOM_NOISE_SCALE="${2:-8}"
+ODOM_NOISE_SCALE="${2:-1}"
 LOGS="${3:-intel fr079 mit-csail fr-clinic_robotlaser}"
 mkdir -p "$OUT"
 summary="$OUT/summary.txt"

@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
 # The relations benchmark (Kuemmerle et al. 2009) on every real log in data/laser/ that has a
 # relations file: carmen_to_bag with its defaults, then
-# evaluate_slam with the same settings on every log (FLAGS, default: the laser-odometry front end
-# and loop closing), and one table of relation errors (mean and std, translational and rotational)
+# evaluate_slam with its defaults (slam::LaserSlam's: the laser-odometry front end and loop closing),
+# the same on every log (FLAGS adds options), and one table of relation errors (mean and std, translational and rotational)
 # beside the published figures of the usual peers, plus each log's map PNG. Writes
 # results/slam_benchmark/<log>/ (evaluate_slam's output, log.txt), table.csv and table.md.
-# Usage: [FLAGS="--front_end laser_odometry --loop_closing 1"] scripts/evaluate_slam_benchmark.sh [LOG ...]
+# Usage: [FLAGS="..."] scripts/evaluate_slam_benchmark.sh [LOG ...]
 # About 10 minutes on two cores for the three logs.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 BIN="$AP_WS/devel/lib/adaptive_perception"
-FLAGS="${FLAGS:---front_end laser_odometry --loop_closing 1}"
+FLAGS="${FLAGS:-}"
 [ -x "$BIN/evaluate_slam" ] || "$AP_ROOT/scripts/setup.sh" || exit 1
 OUT="$AP_ROOT/results/slam_benchmark"
 mkdir -p "$OUT"
@@ -57,4 +57,4 @@ md="$OUT/table.md"
   tail -n +2 "$csv" | awk -F, '{printf "| %s |", $1; for (i = 2; i <= NF; ++i) printf " %s |", $i; printf "\n"}'
 } > "$md"
 cat "$md"
-echo "evaluate_slam_benchmark: flags '$FLAGS'; table in $csv and $md, maps in $OUT/<log>/: map.png (line landmarks), map_grid.png and map.yaml + map.pgm (the occupancy grid at the optimised poses, map_server format)"
+echo "evaluate_slam_benchmark: flags '${FLAGS:-(the defaults)}'; table in $csv and $md, maps in $OUT/<log>/: map.png (line landmarks), map_grid.png and map.yaml + map.pgm (the occupancy grid at the optimised poses, map_server format)"

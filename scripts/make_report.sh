@@ -77,7 +77,7 @@ part slam_loop "$BIN/evaluate_slam" --bag rosbag/laser_loop.bag --output "$OUT/s
   --name "simulator loop"
 "$BIN/carmen_to_bag" --input data/laser/intel.clf.bz2 --output "$TMP/intel.bag" --overwrite \
   --max_issues 3 > /dev/null 2>&1
-part slam_intel "$BIN/evaluate_slam" --bag "$TMP/intel.bag" --odom_noise_scale 8 \
+part slam_intel "$BIN/evaluate_slam" --bag "$TMP/intel.bag" \
   --output "$OUT/slam_intel" --name "Intel lab"
 rm -f "$TMP/intel.bag"
 

@@ -22,7 +22,9 @@ using ros_params::ParamError;
 EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : tf_listener_(tf_buffer_) {
   namespace P = ros_params;
-  slam::LineEkfSlamConfig& c = config_;
+  config_.front_end = P::get<bool>(pnh, "front_end", config_.front_end);
+  config_.loop_closing = P::get<bool>(pnh, "loop_closing", config_.loop_closing);
+  slam::LineEkfSlamConfig& c = config_.ekf;
   try {
     c.variant = slam::parseVariant(P::get<std::string>(pnh, "variant", "standard"));
     c.association = slam::parseAssociation(P::get<std::string>(pnh, "association", "jcbb"));
@@ -75,21 +77,22 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   } catch (const std::invalid_argument& e) {
     throw ParamError(std::string("ekf_slam_mapper parameters: ") + e.what());
   }
-  slam_ = std::make_unique<slam::LineEkfSlam>(config_, initial_pose_, initial_cov_);
+  slam_ = std::make_unique<slam::LaserSlam>(config_, initial_pose_, initial_cov_);
   path_.header.frame_id = map_frame_;
 
   pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("ekf_slam_mapper/pose", 5);
   map_pub_ = nh.advertise<visualization_msgs::MarkerArray>("ekf_slam_mapper/map", 1, true);
   path_pub_ = nh.advertise<nav_msgs::Path>("ekf_slam_mapper/path", 1, true);
   lines_sub_ = nh.subscribe("lines", 20, &EkfSlamMapperNode::onLines, this);
-  if (config_.variant == slam::Variant::kExternal)
+  if (config_.ekf.variant == slam::Variant::kExternal)
     external_sub_ = nh.subscribe("external_pose", 20, &EkfSlamMapperNode::onExternalPose, this);
   save_srv_ =
       service_queue_.handle(pnh).advertiseService("save_map", &EkfSlamMapperNode::onSaveMap, this);
   reset_srv_ =
       service_queue_.handle(pnh).advertiseService("reset", &EkfSlamMapperNode::onReset, this);
-  if (map_update_interval_s_ > 0.0) {
+  if (map_update_interval_s_ > 0.0 || config_.front_end || config_.loop_closing)
     scan_sub_ = nh.subscribe(ros_topics::kScan, 20, &EkfSlamMapperNode::onScan, this);
+  if (map_update_interval_s_ > 0.0) {
     grid_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
     grid_meta_pub_ = nh.advertise<nav_msgs::MapMetaData>("map_metadata", 1, true);
     get_map_srv_ = service_queue_.handle(nh).advertiseService("dynamic_map",
@@ -105,19 +108,24 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   diagnostics_.add(*freq_);
   diagnostics_.add("slam", this, &EkfSlamMapperNode::diagnose);
   diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_, &mutex_);
-  ROS_INFO("ekf_slam_mapper: variant %s, association %s, retirement %s",
-           slam::variantName(config_.variant).c_str(),
-           config_.association == slam::Association::kJcbb ? "jcbb" : "nn",
-           config_.retire_after_updates > 0
-               ? ("after " + std::to_string(config_.retire_after_updates) + " updates").c_str()
-               : "off");
+  ROS_INFO("ekf_slam_mapper: variant %s, association %s, retirement %s, front end %s, loop "
+           "closing %s",
+           slam::variantName(config_.ekf.variant).c_str(),
+           config_.ekf.association == slam::Association::kJcbb ? "jcbb" : "nn",
+           config_.ekf.retire_after_updates > 0
+               ? ("after " + std::to_string(config_.ekf.retire_after_updates) + " updates").c_str()
+               : "off",
+           config_.front_end ? "laser odometry" : "off (wheel odometry)",
+           config_.loop_closing ? "on" : "off");
 }
 
 void EkfSlamMapperNode::reset(const char* why) {
   ROS_WARN("ekf_slam_mapper: %s: the map starts again", why);
-  slam_ = std::make_unique<slam::LineEkfSlam>(config_, initial_pose_, initial_cov_);
+  slam_ = std::make_unique<slam::LaserSlam>(config_, initial_pose_, initial_cov_);
   path_.poses.clear();
   keyframes_->clear();
+  grid_scan_index_.clear();
+  grid_mount_.clear();
   recent_scans_.clear();
   ++resets_;
 }
@@ -166,24 +174,38 @@ void EkfSlamMapperNode::onLines(const ros::MessageEvent<const LineSegmentArray>&
   const Eigen::Isometry3d& odom = tf.odom_to_base;
   const math::SE2 mount = world::isometryToPlanar(tf.base_to_sensor);
   const auto t0 = std::chrono::steady_clock::now();
+  // The scan these lines came from: its points for the front end and the loop closer, and the
+  // grid's scan. Without it the front end follows the wheel odometry for this scan.
+  sensor_msgs::LaserScanConstPtr scan;
+  while (!recent_scans_.empty() && recent_scans_.front()->header.stamp < msg->header.stamp)
+    recent_scans_.pop_front();
+  if (!recent_scans_.empty() && recent_scans_.front()->header.stamp == msg->header.stamp) {
+    scan = recent_scans_.front();
+    recent_scans_.pop_front();
+  } else if (scan_sub_) {
+    ++scans_without_laser_scan_;
+  }
+  laser::LaserScan2D scan2d;
+  std::vector<Eigen::Vector2d> points_robot;
+  if (scan) {
+    scan2d = ros_conv::fromLaserScan(*scan);
+    std::vector<laser::ScanPoint> pts;
+    laser::validPoints(scan2d, 0.0, &pts);
+    points_robot.reserve(pts.size());
+    for (const auto& p : pts) points_robot.push_back(mount.transformPoint(p.p_m));
+  }
   try {
-    slam_->predictFromOdometry(world::isometryToPlanar(odom));
-    slam_->update(slam::toObservations(segments, mount));
+    slam_->add(points_robot, slam::toObservations(segments, mount),
+               world::isometryToPlanar(odom));
   } catch (const std::exception& e) {
     ROS_ERROR_THROTTLE(10.0, "ekf_slam_mapper: update failed (%s): scan skipped", e.what());
     ++update_failures_;
     return;
   }
-  // The grid keeps the scan these lines came from, at the pose the filter now gives it.
-  if (map_update_interval_s_ > 0.0) {
-    while (!recent_scans_.empty() && recent_scans_.front()->header.stamp < msg->header.stamp)
-      recent_scans_.pop_front();
-    if (!recent_scans_.empty() && recent_scans_.front()->header.stamp == msg->header.stamp) {
-      keyframes_->add(ros_conv::fromLaserScan(*recent_scans_.front()), slam_->pose() * mount);
-      recent_scans_.pop_front();
-    } else {
-      ++scans_without_laser_scan_;
-    }
+  // The grid keeps the scan, at the pose the mapper now gives it (moved when loops close).
+  if (scan && map_update_interval_s_ > 0.0 && keyframes_->add(scan2d, slam_->pose() * mount)) {
+    grid_scan_index_.push_back(slam_->scans() - 1);
+    grid_mount_.push_back(mount);
   }
   last_update_ms_ =
       1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -209,6 +231,11 @@ bool EkfSlamMapperNode::renderGrid(nav_msgs::OccupancyGrid* out, slam::Occupancy
     scans = keyframes_->scans();
     poses = keyframes_->poses();
     stamp = last_stamp_;
+    if (config_.loop_closing) {
+      const std::vector<math::SE2> trajectory = slam_->trajectory();
+      for (size_t i = 0; i < poses.size(); ++i)
+        poses[i] = trajectory.at(grid_scan_index_[i]) * grid_mount_[i];
+    }
   }
   if (scans.empty()) return false;
   const auto t0 = std::chrono::steady_clock::now();
@@ -244,7 +271,7 @@ void EkfSlamMapperNode::onMapTimer() {
 
 bool EkfSlamMapperNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
   std::lock_guard<std::mutex> lock(mutex_);
-  const int landmarks = slam_->numLandmarks() + slam_->numFixedLandmarks();
+  const int landmarks = slam_->ekf().numLandmarks() + slam_->ekf().numFixedLandmarks();
   const size_t keyframes = keyframes_->size();
   reset("reset requested");
   last_stamp_ = ros::Time();
@@ -288,7 +315,7 @@ void EkfSlamMapperNode::onExternalPose(
   const bool with_yaw =
       std::isfinite(cov(2, 2)) && cov(2, 2) > 0.0 && cov(2, 2) < 1e3 && std::isfinite(z.yaw_rad);
   // Gate: a copy takes the update; the real filter follows only when the innovation is plausible.
-  slam::LineEkfSlam trial = *slam_;
+  slam::LineEkfSlam trial = slam_->ekf();
   const double d2 = with_yaw ? trial.updateExternalPose(z, cov)
                              : trial.updateExternalPosition(Eigen::Vector2d(z.x_m, z.y_m), cxy);
   if (d2 > math::chiSquareQuantile(external_gate_, with_yaw ? 3 : 2)) {
@@ -296,7 +323,7 @@ void EkfSlamMapperNode::onExternalPose(
     ++external_rejected_;
     return;
   }
-  *slam_ = std::move(trial);
+  slam_->ekf() = std::move(trial);
   ++external_used_;
 }
 
@@ -305,7 +332,7 @@ void EkfSlamMapperNode::publish(const std_msgs::Header& scan_header,
   std_msgs::Header h = scan_header;
   h.frame_id = map_frame_;
   const geometry_msgs::PoseWithCovarianceStamped pose =
-      ros_conv::toPoseWithCovariance(slam_->pose(), slam_->poseCovariance(), h);
+      ros_conv::toPoseWithCovariance(slam_->pose(), slam_->ekf().poseCovariance(), h);
   pose_pub_.publish(pose);
   if (publish_tf_)
     tf_broadcaster_.sendTransform(ros_conv::toTransform(
@@ -345,10 +372,14 @@ visualization_msgs::MarkerArray EkfSlamMapperNode::mapMarkers(const std_msgs::He
       make("tentative landmarks", visualization_msgs::Marker::LINE_LIST, 0.03, 0.6f, 0.6f, 0.6f);
   visualization_msgs::Marker bands =
       make("2-sigma", visualization_msgs::Marker::LINE_LIST, 0.02, 0.9f, 0.2f, 0.2f);
-  auto point = [](const Eigen::Vector2d& p) {
+  // The EKF's map drawn where the loop closer now puts it (identity without loop closing).
+  const slam::LineEkfSlam& ekf = slam_->ekf();
+  const math::SE2 correction = slam_->pose() * ekf.pose().inverse();
+  auto point = [&correction](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d c = correction.transformPoint(p);
     geometry_msgs::Point q;
-    q.x = p.x();
-    q.y = p.y();
+    q.x = c.x();
+    q.y = c.y();
     return q;
   };
   auto add = [&](visualization_msgs::Marker& m, const slam::Landmark& info) {
@@ -357,31 +388,31 @@ visualization_msgs::MarkerArray EkfSlamMapperNode::mapMarkers(const std_msgs::He
       m.points.push_back(point(pc.second));
     }
   };
-  for (int i = 0; i < slam_->numLandmarks(); ++i) {
-    const slam::Landmark& info = slam_->landmarkInfo(i);
+  for (int i = 0; i < ekf.numLandmarks(); ++i) {
+    const slam::Landmark& info = ekf.landmarkInfo(i);
     add(info.confirmed() ? confirmed : tentative, info);
     if (!info.confirmed()) continue;
     // 2-sigma band of the line's normal offset at the midpoint: the offset of a point at distance
     // u along the line from the foot is rho + u * (alpha error) to first order.
-    const slam::Line l = slam_->landmark(i);
+    const slam::Line l = ekf.landmark(i);
     const Eigen::Vector2d n(std::cos(l.alpha_rad), std::sin(l.alpha_rad));
     const Eigen::Vector2d t(-n.y(), n.x()), mid = 0.5 * (info.start_m + info.end_m);
     const double u = t.dot(mid - l.rho_m * n);
-    const Eigen::Matrix2d c = slam_->landmarkCovariance(i);
+    const Eigen::Matrix2d c = ekf.landmarkCovariance(i);
     const double sd = std::sqrt(std::max(0.0, c(0, 0) + 2.0 * u * c(0, 1) + u * u * c(1, 1)));
     bands.points.push_back(point(mid - 2.0 * sd * n));
     bands.points.push_back(point(mid + 2.0 * sd * n));
   }
-  for (int k = 0; k < slam_->numFixedLandmarks(); ++k) add(fixed, slam_->fixedLandmark(k).info);
+  for (int k = 0; k < ekf.numFixedLandmarks(); ++k) add(fixed, ekf.fixedLandmark(k).info);
   // The robot's 2-sigma position ellipse.
   visualization_msgs::Marker ellipse =
       make("robot 2-sigma", visualization_msgs::Marker::LINE_STRIP, 0.02, 0.9f, 0.2f, 0.2f);
-  const Eigen::Matrix2d pc = slam_->poseCovariance().topLeftCorner<2, 2>();
+  const Eigen::Matrix2d pc = ekf.poseCovariance().topLeftCorner<2, 2>();
   const Eigen::LLT<Eigen::Matrix2d> llt(pc + 1e-12 * Eigen::Matrix2d::Identity());
   const Eigen::Matrix2d lower = llt.matrixL();
   for (int k = 0; k <= 36; ++k) {
     const double a = 2.0 * M_PI * k / 36.0;
-    const Eigen::Vector2d p = Eigen::Vector2d(slam_->pose().x_m, slam_->pose().y_m) +
+    const Eigen::Vector2d p = Eigen::Vector2d(ekf.pose().x_m, ekf.pose().y_m) +
                               2.0 * lower * Eigen::Vector2d(std::cos(a), std::sin(a));
     ellipse.points.push_back(point(p));
   }
@@ -417,7 +448,7 @@ bool EkfSlamMapperNode::onSaveMap(SaveMap::Request& req, SaveMap::Response& res)
   std::unique_ptr<const slam::LineEkfSlam> snapshot;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    snapshot = std::make_unique<const slam::LineEkfSlam>(*slam_);
+    snapshot = std::make_unique<const slam::LineEkfSlam>(slam_->ekf());
   }
   try {
     slam::writeLineMapYaml(path, *snapshot);
@@ -451,12 +482,20 @@ void EkfSlamMapperNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
     stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no scan processed yet");
   else
     stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "mapping");
+  const slam::LineEkfSlam& ekf = slam_->ekf();
   int confirmed = 0;
-  for (int i = 0; i < slam_->numLandmarks(); ++i) confirmed += slam_->landmarkInfo(i).confirmed();
-  stat.add("variant", slam::variantName(config_.variant));
+  for (int i = 0; i < ekf.numLandmarks(); ++i) confirmed += ekf.landmarkInfo(i).confirmed();
+  stat.add("variant", slam::variantName(config_.ekf.variant));
   stat.add("landmarks (confirmed)", confirmed);
-  stat.add("landmarks (in state)", slam_->numLandmarks());
-  stat.add("landmarks (anchored or retired)", slam_->numFixedLandmarks());
+  stat.add("landmarks (in state)", ekf.numLandmarks());
+  stat.add("landmarks (anchored or retired)", ekf.numFixedLandmarks());
+  stat.add("front end", config_.front_end ? "laser odometry" : "off");
+  stat.add("front end: matched scans", slam_->frontEnd().matched());
+  stat.add("front end: weak matches (odometry kept)", slam_->frontEnd().weakMatchesRejected());
+  stat.add("loop closing", config_.loop_closing ? "on" : "off");
+  stat.add("loop closures", slam_->loopCloser().loopClosures());
+  stat.add("graph nodes", slam_->loopCloser().nodes());
+  stat.add("chain edges from the front end (EKF jumped)", slam_->loopCloser().chainEdgesReplaced());
   stat.add("update time last (ms)", last_update_ms_);
   stat.add("update time max (ms)", max_update_ms_);
   stat.add("scans", scans_);

@@ -7,16 +7,20 @@
 //                 [--range_noise_std_m 0.01] [--max_gap_m 0.3] [--odom_noise_scale 1]
 //                 [--line_model_rho_std_m 0.02] [--line_model_alpha_std_rad 0.01]
 //                 [--merge_landmarks 1] [--share_landmarks 1] [--first_estimate_jacobians 0]
-//                 [--front_end none|laser_odometry] [--loop_closing 0|1] [--output DIR]
+//                 [--front_end laser_odometry|none] [--loop_closing 1|0] [--output DIR]
 //                 [--name TITLE]
 //
-// --front_end laser_odometry: each scan is first matched against the last keyframes
-// (slam/scan_matcher.h), and the matched pose stands in for the wheel odometry in the EKF's
-// prediction; its own trajectory goes to OUTPUT/laser_odometry.tum and its relation error to
-// the summary (front_end_relation_trans_error_m, -1 without). --loop_closing 1: a pose graph over
+// The mapper is slam::LaserSlam (slam/laser_slam.h), as ekf_slam_mapper runs it; the defaults are
+// its defaults, the same on every log. --front_end laser_odometry (default): each scan is first
+// matched against the last keyframes (slam/scan_matcher.h), and the matched pose stands in for the
+// wheel odometry in the EKF's prediction, with the front end's noise; its own trajectory goes to
+// OUTPUT/laser_odometry.tum and its relation error to the summary
+// (front_end_relation_trans_error_m, -1 without). --loop_closing 1 (default): a pose graph over
 // keyframes of the EKF's trajectory with loop edges from scan matching (slam/pose_graph.h);
 // OUTPUT/estimate.tum then holds every scan's optimised pose (OUTPUT/ekf.tum the EKF's own), and
 // the relation keys are of the optimised trajectory (ekf_relation_trans_error_m: the EKF's).
+// `--front_end none --loop_closing 0` is the paper's filter alone, on the wheel odometry with
+// --odom_noise_scale times its noise model (the simulator's consistency checks run it so).
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
 // /tf_static (identity when absent). The external variant simulates an absolute position sensor
 // from ground_truth/pose with --external_std_m noise on every scan (the bag must have ground
@@ -64,12 +68,11 @@
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/slam/laser_slam.h"
 #include "adaptive_perception/slam/line_ekf_slam.h"
 #include "adaptive_perception/slam/map_drawing.h"
 #include "adaptive_perception/slam/occupancy_grid.h"
 #include "adaptive_perception/slam/relations.h"
-#include "adaptive_perception/slam/pose_graph.h"
-#include "adaptive_perception/slam/scan_matcher.h"
 #include "adaptive_perception/world/camera_model.h"
 #include "tool_args.h"
 
@@ -168,10 +171,11 @@ int main(int argc, char** argv) {
                    "[--max_scans N] [--range_noise_std_m S] [--max_gap_m M] [--odom_noise_scale K] "
                    "[--line_model_rho_std_m S] [--line_model_alpha_std_rad S] [--merge_landmarks "
                    "0|1] [--share_landmarks 0|1] [--first_estimate_jacobians 0|1] "
-                   "[--front_end none|laser_odometry] [--loop_closing 0|1] [--output DIR] "
+                   "[--front_end laser_odometry|none] [--loop_closing 1|0] [--output DIR] "
                    "[--name TITLE]");
   const std::string bag_path = args.get("bag", "");
-  slam::LineEkfSlamConfig cfg;
+  slam::LaserSlamConfig slam_cfg;
+  slam::LineEkfSlamConfig& cfg = slam_cfg.ekf;
   const std::string association = args.get("association", "jcbb");
   const std::string variant = args.get("variant", "standard");
   cfg.retire_after_updates = static_cast<int>(args.getInt("retire_after", 0));
@@ -191,12 +195,14 @@ int main(int argc, char** argv) {
   cfg.first_estimate_jacobians =
       args.getInt("first_estimate_jacobians", cfg.first_estimate_jacobians ? 1 : 0) != 0;
   const double odom_scale = args.getDouble("odom_noise_scale", 1.0);
-  const std::string front_end = args.get("front_end", "none");
-  const bool loop_closing = args.getInt("loop_closing", 0) != 0;
-  localization::MotionModelConfig& m = cfg.motion;
-  for (double* a : {&m.alpha1, &m.alpha2, &m.alpha3, &m.alpha4, &m.min_translation_std_m,
-                    &m.min_rotation_std_rad})
-    *a *= odom_scale;
+  const std::string front_end = args.get("front_end", "laser_odometry");
+  slam_cfg.loop_closing = args.getInt("loop_closing", slam_cfg.loop_closing ? 1 : 0) != 0;
+  const bool loop_closing = slam_cfg.loop_closing;
+  slam_cfg.front_end = front_end == "laser_odometry";
+  for (localization::MotionModelConfig* m : {&cfg.motion, &slam_cfg.front_end_motion})
+    for (double* a : {&m->alpha1, &m->alpha2, &m->alpha3, &m->alpha4, &m->min_translation_std_m,
+                      &m->min_rotation_std_rad})
+      *a *= odom_scale;
   laser::LineExtractionConfig lines;
   lines.range_noise_std_m = args.getDouble("range_noise_std_m", lines.range_noise_std_m);
   lines.max_gap_m = args.getDouble("max_gap_m", lines.max_gap_m);
@@ -207,7 +213,7 @@ int main(int argc, char** argv) {
   try {
     cfg.association = slam::parseAssociation(association);
     cfg.variant = slam::parseVariant(variant);
-    cfg.validate();
+    slam_cfg.validate();
     if (external_std <= 0.0) throw std::invalid_argument("--external_std_m must be > 0");
     const std::vector<slam::Relation> relations = relations_path.empty()
                                                       ? std::vector<slam::Relation>()
@@ -251,7 +257,8 @@ int main(int argc, char** argv) {
       slam::writeRelations(make_relations, slam::relationsFromTrajectory(t, 1.0, 200));
     }
     const math::SE2* t0 = nearest(truth, scans.front()->header.stamp);
-    slam::LineEkfSlam ekf(cfg, t0 ? *t0 : math::SE2());
+    slam::LaserSlam slam(slam_cfg, t0 ? *t0 : math::SE2());
+    const slam::LineEkfSlam& ekf = slam.ekf();
     laser::LineExtractor extractor(lines);
     fs::create_directories(output);
     std::ofstream ekf_tum(fs::path(output) / "ekf.tum"),
@@ -270,13 +277,10 @@ int main(int argc, char** argv) {
     long merged = 0;
     const math::SE2* prev_odom = nullptr;
     std::map<double, math::SE2> estimate, front_estimate;
-    slam::LaserOdometry laser_odometry;
-    slam::LoopClosingMapper mapper;
     std::vector<double> scan_stamps;
     std::vector<std::pair<double, laser::LaserScan2D>> kept_scans;  // for the occupancy grid
     std::ofstream front_tum;
     if (front_end == "laser_odometry") front_tum.open(fs::path(output) / "laser_odometry.tum");
-    double front_s = 0.0;
     std::vector<std::pair<math::SE2, Eigen::Matrix3d>> est_cov;
     std::vector<math::SE2> truth_at_scan;
     slam::MapTrajectory est_path{"estimate", cv::Scalar(0, 0, 220), {}},
@@ -289,31 +293,32 @@ int main(int argc, char** argv) {
       prev_odom = o;
       const auto c0 = std::chrono::steady_clock::now();
       const laser::LaserScan2D scan2d = ros_conv::fromLaserScan(*s);
-      math::SE2 prediction = *o;
       std::vector<Eigen::Vector2d> robot;
-      if (front_end == "laser_odometry" || loop_closing) {
+      if (slam_cfg.front_end || loop_closing) {
         std::vector<laser::ScanPoint> pts;
         laser::validPoints(scan2d, 0.0, &pts);
         robot.reserve(pts.size());
         for (const auto& p : pts) robot.push_back(mount.transformPoint(p.p_m));
       }
-      if (front_end == "laser_odometry") {
-        prediction = laser_odometry.add(robot, *o);
-        front_estimate[s->header.stamp.toSec()] = prediction;
-        tum(front_tum, s->header.stamp.toSec(), prediction);
-        front_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+      slam::LaserSlam::ExternalPosition external;
+      const bool with_external = cfg.variant == slam::Variant::kExternal && g;
+      if (with_external) {
+        external.xy_m = Eigen::Vector2d(g->x_m + rng.gaussian(0.0, external_std),
+                                        g->y_m + rng.gaussian(0.0, external_std));
+        external.cov = Eigen::Matrix2d::Identity() * external_std * external_std;
       }
-      ekf.predictFromOdometry(prediction);
-      const slam::LineEkfSlam::UpdateResult up =
-          ekf.update(slam::toObservations(extractor.extract(scan2d), mount));
+      const slam::LaserSlam::Step step =
+          slam.add(robot, slam::toObservations(extractor.extract(scan2d), mount), *o,
+                   with_external ? &external : nullptr);
+      const slam::LineEkfSlam::UpdateResult& up = step.ekf;
+      if (slam_cfg.front_end) {
+        front_estimate[s->header.stamp.toSec()] = step.prediction;
+        tum(front_tum, s->header.stamp.toSec(), step.prediction);
+      }
       nis_sum += up.nis;
       nis_dof += up.nis_dof;
       nis_csv << nis_rows++ << "," << up.nis << "," << up.nis_dof << "," << up.merged << "\n";
       merged += up.merged;
-      if (cfg.variant == slam::Variant::kExternal && g)
-        ekf.updateExternalPosition(Eigen::Vector2d(g->x_m + rng.gaussian(0.0, external_std),
-                                                   g->y_m + rng.gaussian(0.0, external_std)),
-                                   Eigen::Matrix2d::Identity() * external_std * external_std);
       const double dt =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
       compute_s += dt;
@@ -322,15 +327,7 @@ int main(int argc, char** argv) {
       estimate[t] = ekf.pose();
       kept_scans.emplace_back(t, scan2d);
       tum(ekf_tum, t, ekf.pose());
-      if (loop_closing) {
-        const auto c1 = std::chrono::steady_clock::now();
-        mapper.add(robot, ekf.pose(), front_end == "laser_odometry" ? &prediction : nullptr);
-        const double dl =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - c1).count();
-        compute_s += dl;
-        max_update_s = std::max(max_update_s, dt + dl);
-        scan_stamps.push_back(t);
-      }
+      scan_stamps.push_back(t);
       const Eigen::Matrix3d pc = ekf.poseCovariance();
       cov_csv << std::fixed << t << "," << pc(0, 0) << "," << pc(0, 1) << "," << pc(1, 1) << ","
               << pc(2, 2) << "\n";
@@ -350,7 +347,13 @@ int main(int argc, char** argv) {
     }
     const std::map<double, math::SE2> ekf_estimate = estimate;
     if (loop_closing) {
-      const std::vector<math::SE2> final_poses = mapper.trajectory();
+      std::ofstream loops(fs::path(output) / "loop_edges.csv");
+      loops << "t_from,t_to,dx_m,dy_m,dyaw_rad,score\n";
+      for (const auto& e : slam.loopCloser().loopEdges())
+        loops << std::fixed << scan_stamps.at(e.scan_from) << "," << scan_stamps.at(e.scan_to)
+              << "," << e.relative.x_m << "," << e.relative.y_m << "," << e.relative.yaw_rad << ","
+              << e.score << "\n";
+      const std::vector<math::SE2> final_poses = slam.trajectory();
       for (size_t i = 0; i < scan_stamps.size(); ++i) estimate[scan_stamps[i]] = final_poses[i];
       est_path.points_m.clear();
       for (const auto& [t, p] : estimate) est_path.points_m.emplace_back(p.x_m, p.y_m);
@@ -440,8 +443,8 @@ int main(int argc, char** argv) {
         "relation_rot_error_deg_std=%.3f relations_used=%d landmarks=%d fixed_landmarks=%d "
         "merged=%ld scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f "
         "front_end=%s front_end_relation_trans_error_m=%.4f front_end_relation_rot_error_deg=%.3f "
-        "front_end_matched=%.3f front_end_ms_mean=%.3f loop_closures=%d graph_nodes=%d "
-        "ekf_relation_trans_error_m=%.4f chain_edges_replaced=%d grid_cells=%dx%d grid_s=%.1f\n",
+        "front_end_matched=%.3f front_end_weak_matches=%ld loop_closures=%d graph_nodes=%d "
+        "ekf_relation_trans_error_m=%.4f chain_edges_replaced=%d loops_rejected_free_space=%ld grid_cells=%dx%d grid_s=%.1f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
         with_truth ? double(below) / with_truth : -1.0,
@@ -452,9 +455,12 @@ int main(int argc, char** argv) {
         duration / std::max(compute_s, 1e-9), front_end.c_str(),
         has_rel && !front_estimate.empty() ? front_rel.trans_mean_m : -1.0,
         has_rel && !front_estimate.empty() ? math::radToDeg(front_rel.rot_mean_rad) : -1.0,
-        laser_odometry.scans() ? double(laser_odometry.matched()) / laser_odometry.scans() : -1.0,
-        1e3 * front_s / scans.size(), mapper.loopClosures(), mapper.nodes(),
-        has_rel ? ekf_rel.trans_mean_m : -1.0, mapper.chainEdgesReplaced(), grid.width, grid.height, grid_s);
+        slam.frontEnd().scans() ? double(slam.frontEnd().matched()) / slam.frontEnd().scans()
+                                : -1.0,
+        slam.frontEnd().weakMatchesRejected(), slam.loopCloser().loopClosures(),
+        slam.loopCloser().nodes(), has_rel ? ekf_rel.trans_mean_m : -1.0,
+        slam.loopCloser().chainEdgesReplaced(), slam.loopCloser().freeSpaceRejections(),
+        grid.width, grid.height, grid_s);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";
     return 1;

@@ -1,15 +1,22 @@
 #pragma once
-// ekf_slam_mapper: line-landmark EKF SLAM (Garulli et al. 2005, section 2.2). The algorithm is
-// slam::LineEkfSlam; this node feeds it line_extractor's segments and the odometry from tf, and
-// publishes the robot pose, map -> odom and the map.
+// ekf_slam_mapper: line-landmark EKF SLAM (Garulli et al. 2005, section 2.2) with a laser-odometry
+// front end and loop closing. The algorithm is slam::LaserSlam (slam/laser_slam.h), the same that
+// evaluate_slam runs; this node feeds it line_extractor's segments, the scans they came from and
+// the odometry from tf, and publishes the robot pose, map -> odom and the map.
 //
 // Parameters (private; defaults and ranges in config/ekf_slam_mapper.yaml):
+//   ~front_end (bool, true): predict the EKF from laser odometry matched on each scan (needs
+//   `scan`), with slam::LaserSlamConfig::front_end_motion as its noise; false: from the wheel
+//   odometry with ~odom_alpha1.. (the paper's filter).
+//   ~loop_closing (bool, true): a pose graph over the EKF's keyframes with loop edges from scan
+//   matching (needs `scan`); the published pose, map -> odom, path and grid are the graph's.
 //   ~variant (standard | anchor | external), ~retire_after_updates (int, 0 = off; the paper: 50),
 //   ~anchor_min_angle_rad.
 //   ~association (jcbb | nn), ~gate_probability, ~confirm_sightings, ~tentative_timeout_scans,
 //   ~min_new_line_length_m, ~line_model_rho_std_m, ~line_model_alpha_std_rad, ~merge_landmarks,
 //   ~share_landmarks, ~first_estimate_jacobians.
-//   ~odom_alpha1..4, ~odom_min_translation_std_m, ~odom_min_rotation_std_rad: motion noise.
+//   ~odom_alpha1..4, ~odom_min_translation_std_m, ~odom_min_rotation_std_rad: the wheel
+//   odometry's motion noise (used with ~front_end false).
 //   ~initial_pose ([x_m, y_m, yaw_rad], default the origin), ~initial_pose_std ([m, m, rad]).
 //   ~external_gate_probability: external poses whose innovation fails this chi-square gate are
 //   rejected (outliers).
@@ -23,13 +30,15 @@
 //   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed:
 //   lines (adaptive_perception/LineSegmentArray from line_extractor, in the laser frame),
-//   scan (sensor_msgs/LaserScan: the scans the lines came from, matched by stamp, for the grid),
+//   scan (sensor_msgs/LaserScan: the scans the lines came from, matched by stamp: the front end's
+//   and the loop closer's points, and the grid's scans),
 //   tf odom -> base_link and base_link -> the lines' frame at the scan stamp,
 //   external_pose (geometry_msgs/PoseWithCovarianceStamped in map; variant external only: x, y,
 //   and yaw too when its variance is finite and below 1e3 rad^2).
 // Published:
 //   ekf_slam_mapper/pose (geometry_msgs/PoseWithCovarianceStamped), tf map -> odom,
-//   ekf_slam_mapper/map (visualization_msgs/MarkerArray: confirmed segments black, anchored /
+//   ekf_slam_mapper/map (visualization_msgs/MarkerArray, drawn with the loop closer's current
+//   correction of the EKF's frame: confirmed segments black, anchored /
 //   retired blue, tentative grey; 2-sigma bands of each landmark's offset at its midpoint; the
 //   robot's 2-sigma position ellipse), ekf_slam_mapper/path (nav_msgs/Path),
 //   map (nav_msgs/OccupancyGrid, latched, every ~map_update_interval_s) and map_metadata
@@ -64,6 +73,7 @@
 #include "adaptive_perception/SaveMap.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
+#include "adaptive_perception/slam/laser_slam.h"
 #include "adaptive_perception/slam/line_ekf_slam.h"
 #include "adaptive_perception/slam/occupancy_grid.h"
 
@@ -91,10 +101,10 @@ class EkfSlamMapperNode {
   visualization_msgs::MarkerArray mapMarkers(const std_msgs::Header& header) const;
 
   std::mutex mutex_;
-  slam::LineEkfSlamConfig config_;
+  slam::LaserSlamConfig config_;
   math::SE2 initial_pose_;
   Eigen::Matrix3d initial_cov_ = Eigen::Matrix3d::Zero();
-  std::unique_ptr<slam::LineEkfSlam> slam_;
+  std::unique_ptr<slam::LaserSlam> slam_;
   std::string map_frame_, odom_frame_, base_frame_, map_file_;
   bool publish_tf_ = true;
   double transform_tolerance_s_ = 0.1, tf_timeout_s_ = 0.2, external_gate_ = 0.999;
@@ -106,6 +116,10 @@ class EkfSlamMapperNode {
   double map_update_interval_s_ = 5.0;
   std::deque<sensor_msgs::LaserScanConstPtr> recent_scans_;  // awaiting their lines
   std::unique_ptr<slam::GridKeyframes> keyframes_;
+  // Per grid keyframe: its scan's index in slam_ and the laser mount, so that the grid is drawn
+  // at the loop closer's latest poses.
+  std::vector<int> grid_scan_index_;
+  std::vector<math::SE2> grid_mount_;
   long grid_renders_ = 0, scans_without_laser_scan_ = 0;
   double last_grid_s_ = 0.0;
 

@@ -77,12 +77,31 @@ struct LoopClosingConfig {
   double coarse_yaw_step_rad = 0.02;
   ScanMatcherConfig fine;            // then the fine match (its own window) at fine.resolution_m
   double min_loop_score = 0.55;      // of the fine match, 0..1
+  // A match is also checked for free space: between the new scan at the matched pose and each
+  // scan of the candidate's submap, a point of either more than free_space_tolerance_m (plus 5%
+  // of the range) short of the other's return at its bearing is one the other saw through; a
+  // match with more than max_free_space_violations of such points among those the other could
+  // see is rejected (the walls of a wrong alignment stand in the other scans' free space; people
+  // walking by make a few).
+  double free_space_tolerance_m = 0.3;
+  double max_free_space_violations = 0.1;
   double loop_std_m = 0.05;          // a loop edge's std in its best-seen direction (the others
                                      // from the match's information, matchInformation)
   double max_range_m = 25.0;         // scan points farther than this are left out
   double connect_gap_m = 0.3;        // consecutive returns closer than this make one wall
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
+
+/// The free-space check of a match between two scans (points in their robot frames), B at
+/// b_in_a in A's frame: the larger of the share of B's points that A saw through (more than
+/// tolerance_m plus 5% of A's return short of it, at its bearing in 1-degree bins) among those
+/// within A's returns' bearings and max_range_m, and the same for A's points against B. 0 for a
+/// right match of a static scene; a wrong alignment puts walls where the other scan saw free space.
+/// LoopClosingMapper applies it between the new scan and every scan of the candidate's submap
+/// (a point counting as seen through when any of them saw through it).
+double freeSpaceViolationShare(const std::vector<Eigen::Vector2d>& scan_a,
+                               const std::vector<Eigen::Vector2d>& scan_b, const math::SE2& b_in_a,
+                               double max_range_m, double tolerance_m);
 
 class LoopClosingMapper {
  public:
@@ -94,9 +113,21 @@ class LoopClosingMapper {
            const math::SE2* reference_pose = nullptr);
   /// The final pose of every scan added, in order.
   std::vector<math::SE2> trajectory() const;
+  /// The last scan's final pose (trajectory().back()); the origin before the first scan.
+  math::SE2 lastPose() const;
   int loopClosures() const { return graph_.numLoopEdges(); }
   int nodes() const { return graph_.numNodes(); }
   long attempts() const { return attempts_; }
+  /// Matches above min_loop_score that the free-space check rejected.
+  long freeSpaceRejections() const { return free_space_rejected_; }
+  /// Each loop edge as found: the scans (indices in the order added) of its two nodes, the
+  /// measured relative pose of the newer in the older's frame, and the fine match's score.
+  struct LoopEdge {
+    int scan_from, scan_to;
+    math::SE2 relative;
+    double score;
+  };
+  const std::vector<LoopEdge>& loopEdges() const { return loop_edges_; }
   /// Chain edges that took the reference's relative pose (the local estimator failed the gate).
   int chainEdgesReplaced() const { return chain_replaced_; }
 
@@ -107,6 +138,7 @@ class LoopClosingMapper {
   PoseGraph2D graph_;
   struct NodeData {
     math::SE2 local;  // the local estimator's pose at the node
+    int scan = 0;     // the scan the node was made from (index in the order added)
     math::SE2 reference;  // the reference pose at the node (when given)
     bool has_reference = false;
     std::vector<Eigen::Vector2d> points;
@@ -119,6 +151,8 @@ class LoopClosingMapper {
   std::vector<ScanRef> scans_;
   long attempts_ = 0;
   int chain_replaced_ = 0;
+  long free_space_rejected_ = 0;
+  std::vector<LoopEdge> loop_edges_;
 };
 
 }  // namespace adaptive_perception::slam

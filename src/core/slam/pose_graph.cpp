@@ -93,6 +93,11 @@ void LoopClosingConfig::validate() const {
                    chain_gate_std_rad})
     need(std::isfinite(v) && v > 0.0, "the *_std_* fields must be > 0");
   need(std::isfinite(chain_gate_chi2) && chain_gate_chi2 > 0.0, "chain_gate_chi2 must be > 0");
+  need(std::isfinite(free_space_tolerance_m) && free_space_tolerance_m >= 0.0,
+       "free_space_tolerance_m must be >= 0");
+  need(std::isfinite(max_free_space_violations) && max_free_space_violations >= 0.0 &&
+           max_free_space_violations <= 1.0,
+       "max_free_space_violations must be in [0, 1]");
   need(min_node_gap >= 1, "min_node_gap must be >= 1");
   need(std::isfinite(search_radius_m) && search_radius_m >= 0.0, "search_radius_m must be >= 0");
   need(max_candidates_per_node >= 0, "max_candidates_per_node must be >= 0");
@@ -107,6 +112,51 @@ void LoopClosingConfig::validate() const {
   need(std::isfinite(min_loop_score) && min_loop_score >= 0.0 && min_loop_score <= 1.0,
        "min_loop_score must be in [0, 1]");
   need(std::isfinite(max_range_m) && max_range_m > 0.1, "max_range_m must be > 0.1");
+}
+
+namespace {
+/// A scan's farthest return per 1-degree bearing bin (-1: none), in its robot frame.
+struct BearingRanges {
+  static constexpr int kBins = 360;
+  std::vector<float> range = std::vector<float>(kBins, -1.0f);
+  static int bin(const Eigen::Vector2d& p) {
+    const int b = static_cast<int>(std::floor((std::atan2(p.y(), p.x()) + M_PI) * kBins /
+                                              (2.0 * M_PI)));
+    return std::clamp(b, 0, kBins - 1);
+  }
+  explicit BearingRanges(const std::vector<Eigen::Vector2d>& scan) {
+    for (const auto& p : scan) {
+      float& r = range[bin(p)];
+      r = std::max(r, static_cast<float>(p.norm()));
+    }
+  }
+  /// 0: out of view (beyond max_range_m or no return at its bearing); 1: seen, not in front of the
+  /// return; 2: in front of the return by more than tolerance_m + 5% of its range (seen through).
+  int classify(const Eigen::Vector2d& q, double max_range_m, double tolerance_m) const {
+    const double d = q.norm();
+    if (d > max_range_m) return 0;
+    const float r = range[bin(q)];
+    if (r < 0.0f) return 0;
+    return d < r - tolerance_m - 0.05 * r ? 2 : 1;
+  }
+};
+}  // namespace
+
+double freeSpaceViolationShare(const std::vector<Eigen::Vector2d>& scan_a,
+                               const std::vector<Eigen::Vector2d>& scan_b, const math::SE2& b_in_a,
+                               double max_range_m, double tolerance_m) {
+  const BearingRanges view_a(scan_a), view_b(scan_b);
+  auto share = [&](const BearingRanges& view, const std::vector<Eigen::Vector2d>& pts,
+                   const math::SE2& to_view) {
+    long seen = 0, through = 0;
+    for (const auto& p : pts) {
+      const int c = view.classify(to_view.transformPoint(p), max_range_m, tolerance_m);
+      seen += c > 0;
+      through += c == 2;
+    }
+    return seen > 0 ? static_cast<double>(through) / seen : 0.0;
+  };
+  return std::max(share(view_a, scan_b, b_in_a), share(view_b, scan_a, b_in_a.inverse()));
 }
 
 LoopClosingMapper::LoopClosingMapper(LoopClosingConfig config) : config_(config) {
@@ -149,8 +199,9 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
       info(2, 2) = 1.0 / (config_.odometry_std_rad * config_.odometry_std_rad);
       graph_.addEdge(prev, prev + 1, z, info);
     }
-    nodes_.push_back({local_pose, reference_pose ? *reference_pose : math::SE2(),
-                      reference_pose != nullptr, std::move(pts)});
+    nodes_.push_back({local_pose, static_cast<int>(scans_.size()),
+                      reference_pose ? *reference_pose : math::SE2(), reference_pose != nullptr,
+                      std::move(pts)});
     if (tryLoop(graph_.numNodes() - 1)) graph_.optimize();
   }
   scans_.push_back({static_cast<int>(nodes_.size()) - 1,
@@ -198,6 +249,36 @@ bool LoopClosingMapper::tryLoop(int n) {
                                        config_.fine.search_xy_m + 1.0, config_.connect_gap_m);
       const ScanMatch f = matchScan(fine_field, nodes_[n].points, c.pose, config_.fine);
       if (f.score < config_.min_loop_score) continue;
+      // Free space both ways: the share of the new scan's points (at the matched pose) that some
+      // scan of the submap saw through, among those that one of them could see; and the share of
+      // the submap's points that the new scan saw through, among those it could see.
+      const BearingRanges n_view(nodes_[n].points);
+      std::vector<int> n_state(nodes_[n].points.size(), 0);
+      long sub_seen = 0, sub_through = 0;
+      for (int m = lo; m <= hi; ++m) {
+        const math::SE2 n_in_m = (xk_inv * graph_.node(m)).inverse() * f.pose;
+        const math::SE2 m_in_n = n_in_m.inverse();
+        const BearingRanges m_view(nodes_[m].points);
+        for (size_t i = 0; i < nodes_[n].points.size(); ++i)
+          n_state[i] = std::max(n_state[i], m_view.classify(n_in_m.transformPoint(nodes_[n].points[i]),
+                                                            config_.max_range_m,
+                                                            config_.free_space_tolerance_m));
+        for (const auto& p : nodes_[m].points) {
+          const int c = n_view.classify(m_in_n.transformPoint(p), config_.max_range_m,
+                                        config_.free_space_tolerance_m);
+          sub_seen += c > 0;
+          sub_through += c == 2;
+        }
+      }
+      const long n_seen = std::count_if(n_state.begin(), n_state.end(), [](int c) { return c > 0; });
+      const long n_through = std::count(n_state.begin(), n_state.end(), 2);
+      const double share =
+          std::max(n_seen > 0 ? static_cast<double>(n_through) / n_seen : 0.0,
+                   sub_seen > 0 ? static_cast<double>(sub_through) / sub_seen : 0.0);
+      if (share > config_.max_free_space_violations) {
+        ++free_space_rejected_;
+        continue;
+      }
       // The match's own information, scaled as a whole so that its best-seen translation has
       // loop_std_m: along a corridor the scan cannot see, the loop edge says next to nothing.
       Eigen::Matrix3d info = matchInformation(fine_field, nodes_[n].points, f.pose);
@@ -209,6 +290,7 @@ bool LoopClosingMapper::tryLoop(int n) {
       info *= 1.0 / (config_.loop_std_m * config_.loop_std_m * best_xy);
       info += 1e-6 * Eigen::Matrix3d::Identity();  // positive definite for the solver
       graph_.addEdge(k, n, f.pose, info, true);
+      loop_edges_.push_back({nodes_[k].scan, nodes_[n].scan, f.pose, f.score});
       closed = true;
     } catch (const std::invalid_argument&) {
       continue;  // a submap too large for a field: no match
@@ -222,6 +304,11 @@ std::vector<math::SE2> LoopClosingMapper::trajectory() const {
   out.reserve(scans_.size());
   for (const ScanRef& s : scans_) out.push_back(graph_.node(s.node) * s.offset);
   return out;
+}
+
+math::SE2 LoopClosingMapper::lastPose() const {
+  if (scans_.empty()) return math::SE2();
+  return graph_.node(scans_.back().node) * scans_.back().offset;
 }
 
 }  // namespace adaptive_perception::slam

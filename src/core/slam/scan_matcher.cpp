@@ -48,6 +48,8 @@ void LaserOdometryConfig::validate() const {
   need(std::isfinite(min_score) && min_score >= 0.0 && min_score <= 1.0,
        "LaserOdometryConfig: min_score must be in [0, 1]");
   need(min_points >= 1, "LaserOdometryConfig: min_points must be >= 1");
+  need(std::isfinite(edge_margin_m) && edge_margin_m >= 0.0,
+       "LaserOdometryConfig: edge_margin_m must be >= 0");
   need(std::isfinite(connect_gap_m) && connect_gap_m >= 0.0,
        "LaserOdometryConfig: connect_gap_m must be >= 0");
   for (double v : {odom_std_m, odom_std_rad})
@@ -245,6 +247,7 @@ void LaserOdometry::reset() {
   keyframes_.clear();
   field_.clear();
   started_ = false;
+  farthest_seen_m_ = 0.0;
   pose_ = last_odom_ = last_step_ = math::SE2();
   last_score_ = 0.0;
   last_matched_ = false;
@@ -266,8 +269,23 @@ math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
   std::vector<Eigen::Vector2d> pts;
   pts.reserve(points_robot.size());
   const double r2 = config_.max_range_m * config_.max_range_m;
-  for (const auto& p : points_robot)
-    if (p.allFinite() && p.squaredNorm() <= r2) pts.push_back(p);
+  for (const auto& p : points_robot) {
+    if (!p.allFinite()) continue;
+    const double d2 = p.squaredNorm();
+    farthest_seen_m_ = std::max(farthest_seen_m_, std::sqrt(d2));
+    if (d2 <= r2) pts.push_back(p);
+  }
+  // The points matched: all of pts, but for a sensor that reaches less far than max_range_m, not
+  // those within edge_margin_m of its reach (they go into the map all the same).
+  std::vector<Eigen::Vector2d> query;
+  const double reach_m = farthest_seen_m_ - config_.edge_margin_m;
+  if (farthest_seen_m_ < config_.max_range_m) {
+    query.reserve(pts.size());
+    for (const auto& p : pts)
+      if (p.squaredNorm() <= reach_m * reach_m) query.push_back(p);
+  } else {
+    query = pts;
+  }
   if (!started_) {
     started_ = true;
     pose_ = odom;
@@ -297,11 +315,11 @@ math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
     priors.push_back(pose_);
   }
   math::SE2 prior = priors.front();
-  if (static_cast<int>(pts.size()) >= config_.min_points && !field_.empty()) {
+  if (static_cast<int>(query.size()) >= config_.min_points && !field_.empty()) {
     ScanMatch m;
     m.score = -1.0;
     for (const math::SE2& candidate : priors) {
-      const ScanMatch c = matchScan(field_.front(), pts, candidate, config_.matcher);
+      const ScanMatch c = matchScan(field_.front(), query, candidate, config_.matcher);
       if (c.score > m.score) {
         m = c;
         prior = candidate;
@@ -316,7 +334,7 @@ math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
       const Eigen::Matrix3d P_inv =
           Eigen::Vector3d(1.0 / (sd_xy * sd_xy), 1.0 / (sd_xy * sd_xy), 1.0 / (sd_yaw * sd_yaw))
               .asDiagonal();
-      const Eigen::Matrix3d H = matchInformation(field_.front(), pts, m.pose);
+      const Eigen::Matrix3d H = matchInformation(field_.front(), query, m.pose);
       const Eigen::Vector3d dm(m.pose.x_m - prior.x_m, m.pose.y_m - prior.y_m,
                                math::angleDiff(m.pose.yaw_rad, prior.yaw_rad));
       const Eigen::LDLT<Eigen::Matrix3d> sum(P_inv + H);

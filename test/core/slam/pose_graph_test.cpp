@@ -175,6 +175,41 @@ TEST(LoopClosingMapper, AChainEdgeWhereTheLocalEstimatorJumpsTakesTheFrontEnd) {
   EXPECT_LT(with_ref, 0.01);
 }
 
+// Two scans of a 4 x 4 m room from its centre facing east; in the second the room is 1 m further
+// east (the robot stood 1 m west). Matched as if taken from the same pose, the second scan's points
+// all lie on or behind the first's walls, but the first scan's east wall (x = 2) stands in front
+// of the second's returns, which reach x = 3 (or the side walls): a beam at bearing t hits the
+// first's wall at 2 / cos t and the second's at min(3 / cos t, 2 / |sin t|). The share counted
+// from that geometry, beam by beam, is the reference; at the true offset the share is 0.
+TEST(FreeSpaceViolationShare, AWrongAlignmentPutsWallsInTheOtherScansFreeSpace) {
+  using adaptive_perception::test::Segment;
+  const std::vector<Segment> room{{{-2, -2}, {2, -2}}, {{2, -2}, {2, 2}}, {{2, 2}, {-2, 2}},
+                                  {{-2, 2}, {-2, -2}}};
+  const math::SE2 a_pose(0.0, 0.0, 0.0), b_pose(-1.0, 0.0, 0.0);
+  const std::vector<Eigen::Vector2d> a =
+      adaptive_perception::test::scanOf(room, a_pose, nullptr, 0.0, 20.0);
+  const std::vector<Eigen::Vector2d> b =
+      adaptive_perception::test::scanOf(room, b_pose, nullptr, 0.0, 20.0);
+  ASSERT_EQ(a.size(), 181u);
+  const double tolerance_m = 0.3;
+  int expected = 0;
+  for (int i = 0; i <= 180; ++i) {
+    const double t = (i - 90) * M_PI / 180.0;
+    const double d = std::min(2.0 / std::cos(t), 2.0 / std::max(std::fabs(std::sin(t)), 1e-9));
+    const double r = std::min(3.0 / std::cos(t), 2.0 / std::max(std::fabs(std::sin(t)), 1e-9));
+    expected += d < r - tolerance_m - 0.05 * r;
+  }
+  const double wrong = slam::freeSpaceViolationShare(a, b, math::SE2(), 25.0, tolerance_m);
+  const double right =
+      slam::freeSpaceViolationShare(a, b, math::between(a_pose, b_pose), 25.0, tolerance_m);
+  std::printf("free-space violations: %.3f at a 1 m wrong alignment (geometry: %d of 181), %.3f at "
+              "the right one\n",
+              wrong, expected, right);
+  EXPECT_GT(expected, 60);
+  EXPECT_NEAR(wrong, expected / 181.0, 2.0 / 181.0);  // a beam either side of a 1-degree bin edge
+  EXPECT_EQ(right, 0.0);
+}
+
 TEST(PoseGraph2D, RefusesBadEdges) {
   slam::PoseGraph2D g;
   g.addNode({});
@@ -186,6 +221,9 @@ TEST(PoseGraph2D, RefusesBadEdges) {
   EXPECT_THROW(c.validate(), std::invalid_argument);
   c = slam::LoopClosingConfig();
   c.chain_gate_chi2 = 0.0;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+  c = slam::LoopClosingConfig();
+  c.max_free_space_violations = 1.5;
   EXPECT_THROW(c.validate(), std::invalid_argument);
 }
 

@@ -180,6 +180,34 @@ TEST(LaserOdometry, KeepsASoundOdometryAgainstAWeakMatchThatTurns) {
   EXPECT_EQ(weak_without, 0);
 }
 
+TEST(LaserOdometry, DoesNotShrinkAFeaturelessCorridorAtTheEdgeOfTheSensorsReach) {
+  // 40 m along a straight corridor 2 m wide with nothing on its walls, seen by a laser that
+  // reaches 6 m, with an exact wheel odometry. The scans say nothing about the motion along the
+  // corridor, so the laser odometry should keep the odometry's. But each scan newly sees a little
+  // wall at the edge of the laser's reach, beyond the local map: matched, those points pull the
+  // scan backwards, scan after scan. With the edge margin they are not matched.
+  const std::vector<adaptive_perception::test::Segment> walls{{{0, 0}, {100, 0}},
+                                                              {{0, 2}, {100, 2}}};
+  auto run = [&](double margin_m) {
+    slam::LaserOdometryConfig c;
+    c.edge_margin_m = margin_m;
+    slam::LaserOdometry lo(c);
+    std::mt19937 rng(2);
+    math::SE2 est;
+    for (int k = 0; k <= 400; ++k) {  // 0.1 m a scan
+      const math::SE2 truth(1.0 + 0.1 * k, 1.0, 0.0);
+      est = lo.add(adaptive_perception::test::scanOf(walls, truth, &rng, 0.01, 6.0), truth);
+    }
+    return est.x_m - 41.0;
+  };
+  const double with_margin = run(slam::LaserOdometryConfig().edge_margin_m), without = run(0.0);
+  std::printf("40 m along a featureless corridor: laser odometry ends %.3f m off with the edge "
+              "margin, %.3f m without\n",
+              with_margin, without);
+  EXPECT_LT(std::fabs(with_margin), 0.1);
+  EXPECT_GT(std::fabs(without), 3.0 * std::fabs(with_margin));
+}
+
 TEST(ScanMatcher, RefusesBadSettings) {
   slam::ScanMatcherConfig c;
   c.resolution_m = 0.0;

@@ -21,9 +21,19 @@ inline std::vector<Segment> room() {
           {{7, 6}, {7, 4}}};
 }
 
-/// Ray-casts 181 beams over 180 degrees from `pose`: the hit points in the robot frame.
+/// Ray-casts 181 beams over 180 degrees from `pose` against `walls`: the hit points (robot
+/// frame) closer than max_range_m.
+inline std::vector<Eigen::Vector2d> scanOf(const std::vector<Segment>& walls, const math::SE2& pose,
+                                           std::mt19937* rng, double noise_m, double max_range_m);
+
+/// Ray-casts 181 beams over 180 degrees from `pose` in room(): the hit points in the robot frame.
 inline std::vector<Eigen::Vector2d> scanFrom(const math::SE2& pose, std::mt19937* rng = nullptr,
                                              double noise_m = 0.0) {
+  return scanOf(room(), pose, rng, noise_m, 20.0);
+}
+
+inline std::vector<Eigen::Vector2d> scanOf(const std::vector<Segment>& walls, const math::SE2& pose,
+                                           std::mt19937* rng, double noise_m, double max_range_m) {
   std::vector<Eigen::Vector2d> out;
   std::normal_distribution<double> n(0.0, noise_m > 0 ? noise_m : 1.0);
   for (int i = 0; i <= 180; ++i) {
@@ -31,7 +41,7 @@ inline std::vector<Eigen::Vector2d> scanFrom(const math::SE2& pose, std::mt19937
     const Eigen::Vector2d o(pose.x_m, pose.y_m);
     const Eigen::Vector2d d(std::cos(pose.yaw_rad + b), std::sin(pose.yaw_rad + b));
     double best = 1e9;
-    for (const auto& s : room()) {
+    for (const auto& s : walls) {
       const Eigen::Vector2d e = s.b - s.a;
       const double den = d.x() * (-e.y()) - d.y() * (-e.x());
       if (std::fabs(den) < 1e-12) continue;
@@ -40,7 +50,7 @@ inline std::vector<Eigen::Vector2d> scanFrom(const math::SE2& pose, std::mt19937
       const double u = (d.x() * r.y() - d.y() * r.x()) / den;
       if (t > 0.05 && u >= 0 && u <= 1) best = std::min(best, t);
     }
-    if (best > 20) continue;
+    if (best > max_range_m) continue;
     if (rng && noise_m > 0) best += n(*rng);
     out.emplace_back(best * std::cos(b), best * std::sin(b));
   }

@@ -1,0 +1,97 @@
+// slam::LaserSlam against its header's contract: with the front end and loop closing off it is the
+// line-landmark EKF on the wheel odometry, pose for pose; with the defaults the front end removes a
+// wheel-odometry bias; one pose per scan, scans with no points included.
+#include "adaptive_perception/slam/laser_slam.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "synthetic_room.h"
+
+namespace slam = adaptive_perception::slam;
+namespace math = adaptive_perception::math;
+using adaptive_perception::test::scanFrom;
+
+namespace {
+
+// A drive across the synthetic room below the pillar; the wheel odometry over-reads distance by
+// 10% and turns 2% too much.
+struct Drive {
+  std::vector<math::SE2> truth, odom;
+  Drive() {
+    math::SE2 prev(1.0, 1.0, 0.0), o = prev;
+    for (int k = 0; k < 120; ++k) {
+      const math::SE2 next(1.0 + 0.06 * k, 1.0 + 0.005 * k, 0.3 * std::sin(0.05 * k));
+      const math::SE2 d = math::between(prev, next);
+      o = o * math::SE2(1.1 * d.x_m, 1.1 * d.y_m, 1.02 * d.yaw_rad);
+      truth.push_back(next);
+      odom.push_back(o);
+      prev = next;
+    }
+  }
+};
+
+TEST(LaserSlam, WithoutFrontEndAndLoopClosingIsTheEkfOnTheWheelOdometry) {
+  const Drive drive;
+  slam::LaserSlamConfig c;
+  c.front_end = false;
+  c.loop_closing = false;
+  slam::LaserSlam mapper(c, drive.truth.front());
+  slam::LineEkfSlam ekf(c.ekf, drive.truth.front());
+  std::mt19937 rng(1);
+  // One line seen on every scan: the wall at y = 0 (rho 1 below the robot when level).
+  for (size_t k = 0; k < drive.truth.size(); ++k) {
+    std::vector<slam::LineObservation> obs;
+    const std::vector<Eigen::Vector2d> points = scanFrom(drive.truth[k], &rng, 0.01);
+    mapper.add(points, obs, drive.odom[k]);
+    ekf.predictFromOdometry(drive.odom[k]);
+    ekf.update(obs);
+    EXPECT_DOUBLE_EQ(mapper.pose().x_m, ekf.pose().x_m);
+    EXPECT_DOUBLE_EQ(mapper.pose().yaw_rad, ekf.pose().yaw_rad);
+  }
+  EXPECT_EQ(mapper.trajectory().size(), drive.truth.size());
+  EXPECT_EQ(mapper.loopCloser().nodes(), 0);
+  EXPECT_EQ(mapper.frontEnd().scans(), 0);
+}
+
+TEST(LaserSlam, TheFrontEndRemovesAWheelOdometryBiasAndEveryScanHasAPose) {
+  const Drive drive;
+  slam::LaserSlam mapper(slam::LaserSlamConfig(), drive.truth.front());
+  std::mt19937 rng(2);
+  double worst = 0.0;
+  for (size_t k = 0; k < drive.truth.size(); ++k) {
+    // Every tenth scan arrives without points (a dropped scan message): the front end follows
+    // the wheel odometry there.
+    const std::vector<Eigen::Vector2d> points =
+        k % 10 == 9 ? std::vector<Eigen::Vector2d>() : scanFrom(drive.truth[k], &rng, 0.01);
+    mapper.add(points, {}, drive.odom[k]);
+    worst = std::max(worst, std::hypot(mapper.pose().x_m - drive.truth[k].x_m,
+                                       mapper.pose().y_m - drive.truth[k].y_m));
+  }
+  const math::SE2 o = drive.odom.back(), t = drive.truth.back();
+  std::printf("LaserSlam over a biased odometry: worst error %.3f m; odometry alone %.3f m at the "
+              "end\n",
+              worst, std::hypot(o.x_m - t.x_m, o.y_m - t.y_m));
+  EXPECT_LT(worst, 0.1);
+  EXPECT_GT(std::hypot(o.x_m - t.x_m, o.y_m - t.y_m), 0.5);
+  const std::vector<math::SE2> traj = mapper.trajectory();
+  ASSERT_EQ(traj.size(), drive.truth.size());
+  EXPECT_DOUBLE_EQ(traj.back().x_m, mapper.pose().x_m);
+  EXPECT_EQ(mapper.scans(), static_cast<int>(drive.truth.size()));
+}
+
+TEST(LaserSlam, RefusesABadConfigNamingIt) {
+  slam::LaserSlamConfig c;
+  c.front_end_motion.alpha1 = -1.0;
+  try {
+    slam::LaserSlam mapper(c);
+    FAIL() << "a negative alpha1 was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("alpha1"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
