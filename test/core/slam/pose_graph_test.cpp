@@ -85,20 +85,26 @@ TEST(PoseGraph2D, AWrongLoopEdgeIsHeldOff) {
   EXPECT_NEAR(g.node(10).x_m, 10.0, 0.1);
 }
 
-// The robot drives a rectangle in the synthetic room twice, at 0.1 m a scan; the local poses it
-// is given turn 0.3 degrees too much per metre, so the second lap lies up to about a metre off
-// the first. The mapper closes the loop at the first lap's nodes and pulls the second lap back.
-TEST(LoopClosingMapper, ClosesADriftingLoopInASyntheticRoom) {
+// Laps of a 7.6 x 2.6 m rectangle in the synthetic room, 0.1 m a pose, facing along each side.
+std::vector<math::SE2> rectangleLaps(int laps) {
   const std::vector<Eigen::Vector2d> corners = {{1.2, 1.0}, {8.8, 1.0}, {8.8, 3.6}, {1.2, 3.6}};
-  std::vector<math::SE2> truth;
-  for (int lap = 0; lap < 2; ++lap)
+  std::vector<math::SE2> out;
+  for (int lap = 0; lap < laps; ++lap)
     for (int c = 0; c < 4; ++c) {
       const Eigen::Vector2d a = corners[c], b = corners[(c + 1) % 4];
       const double yaw = std::atan2(b.y() - a.y(), b.x() - a.x());
       const int n = static_cast<int>(std::round((b - a).norm() / 0.1));
       for (int k = 0; k < n; ++k)
-        truth.emplace_back(a.x() + (b - a).x() * k / n, a.y() + (b - a).y() * k / n, yaw);
+        out.emplace_back(a.x() + (b - a).x() * k / n, a.y() + (b - a).y() * k / n, yaw);
     }
+  return out;
+}
+
+// The robot drives a rectangle in the synthetic room twice, at 0.1 m a scan; the local poses it
+// is given turn 0.3 degrees too much per metre, so the second lap lies up to about a metre off
+// the first. The mapper closes the loop at the first lap's nodes and pulls the second lap back.
+TEST(LoopClosingMapper, ClosesADriftingLoopInASyntheticRoom) {
+  std::vector<math::SE2> truth = rectangleLaps(2);
   truth.push_back(truth.front());
   slam::LoopClosingMapper mapper;
   std::mt19937 rng(3);
@@ -134,15 +140,7 @@ TEST(LoopClosingMapper, ClosesADriftingLoopInASyntheticRoom) {
 // relative pose, so the lap after the jump stays where it is; without the reference the jump
 // turns the rest of the lap.
 TEST(LoopClosingMapper, AChainEdgeWhereTheLocalEstimatorJumpsTakesTheFrontEnd) {
-  const std::vector<Eigen::Vector2d> corners = {{1.2, 1.0}, {8.8, 1.0}, {8.8, 3.6}, {1.2, 3.6}};
-  std::vector<math::SE2> truth;
-  for (int c = 0; c < 4; ++c) {
-    const Eigen::Vector2d a = corners[c], b = corners[(c + 1) % 4];
-    const double yaw = std::atan2(b.y() - a.y(), b.x() - a.x());
-    const int n = static_cast<int>(std::round((b - a).norm() / 0.1));
-    for (int k = 0; k < n; ++k)
-      truth.emplace_back(a.x() + (b - a).x() * k / n, a.y() + (b - a).y() * k / n, yaw);
-  }
+  const std::vector<math::SE2> truth = rectangleLaps(1);
   const size_t jump_at = 90;
   auto run = [&](bool with_reference, int* replaced) {
     slam::LoopClosingConfig c;
