@@ -51,6 +51,16 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       P::get<bool>(pnh, "first_estimate_jacobians", c.first_estimate_jacobians);
   P::loadMotionModel(pnh, &c.motion);
   P::loadInitialPose(pnh, {1e-3, 1e-3, 1e-3}, &initial_pose_, &initial_cov_);
+  initial_map_ = P::get<std::string>(pnh, "initial_map", "");
+  if (!initial_map_.empty()) {
+    try {
+      known_map_ = slam::readLineMapYaml(initial_map_);
+    } catch (const std::exception& e) {
+      throw ParamError(std::string("~initial_map: ") + e.what());
+    }
+    c.extend_map = false;  // localize against the loaded map, never extend it
+    config_.loop_closing = false;
+  }
   external_gate_ = P::getInRange(pnh, "external_gate_probability", external_gate_, 0.5, 0.999999);
   map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
@@ -78,6 +88,10 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     throw ParamError(std::string("ekf_slam_mapper parameters: ") + e.what());
   }
   slam_ = std::make_unique<slam::LaserSlam>(config_, initial_pose_, initial_cov_);
+  slam_->ekf().addFixedLandmarks(known_map_);
+  if (!initial_map_.empty())
+    ROS_INFO("ekf_slam_mapper: localizing against %zu landmarks of %s (the map is not extended)",
+             known_map_.size(), initial_map_.c_str());
   path_.header.frame_id = map_frame_;
 
   pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("ekf_slam_mapper/pose", 5);
@@ -122,6 +136,7 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 void EkfSlamMapperNode::reset(const char* why) {
   ROS_WARN("ekf_slam_mapper: %s: the map starts again", why);
   slam_ = std::make_unique<slam::LaserSlam>(config_, initial_pose_, initial_cov_);
+  slam_->ekf().addFixedLandmarks(known_map_);
   path_.poses.clear();
   keyframes_->clear();
   grid_scan_index_.clear();

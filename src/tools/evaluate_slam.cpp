@@ -41,7 +41,8 @@
 // available. --make_relations writes reference relations from ground_truth/pose (1 s chain + 200
 // random pairs). Writes OUTPUT/estimate.tum, truth.tum, odometry.tum, pose_covariance.csv,
 // nees.csv (per scan with ground truth: NEES and the pose error), nis.csv (per scan: NIS, dof, landmarks merged),
-// landmarks.csv, map.png (the line landmarks) and the occupancy grid of every scan at its final
+// landmarks.csv, map.png (the line landmarks), line_map.yaml (the EKF's map as ~save_map writes
+// it, for ekf_slam_mapper's ~initial_map) and the occupancy grid of every scan at its final
 // pose (estimate.tum's) in map_server's files, map.yaml + map.pgm (slam/occupancy_grid.h, 0.05 m),
 // and map_grid.png.
 #include <geometry_msgs/PoseStamped.h>
@@ -71,6 +72,7 @@
 #include "adaptive_perception/slam/laser_slam.h"
 #include "adaptive_perception/slam/line_ekf_slam.h"
 #include "adaptive_perception/slam/map_drawing.h"
+#include "adaptive_perception/slam/map_io.h"
 #include "adaptive_perception/slam/occupancy_grid.h"
 #include "adaptive_perception/slam/relations.h"
 #include "adaptive_perception/world/camera_model.h"
@@ -419,6 +421,7 @@ int main(int argc, char** argv) {
     for (int i = 0; i < ekf.numLandmarks(); ++i) write(ekf.landmark(i), ekf.landmarkInfo(i), false);
     for (int k = 0; k < ekf.numFixedLandmarks(); ++k)
       write(ekf.fixedLandmark(k).line, ekf.fixedLandmark(k).info, true);
+    slam::writeLineMapYaml((fs::path(output) / "line_map.yaml").string(), ekf);
     std::vector<slam::MapTrajectory> paths{odom_path, est_path};
     if (!truth_path.points_m.empty()) paths.insert(paths.begin() + 1, truth_path);
     cv::imwrite((fs::path(output) / "map.png").string(),

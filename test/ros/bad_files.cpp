@@ -1,5 +1,5 @@
 // rostest: every node given an empty, corrupt or foreign file (field map, colour priors, place
-// database, tracking dynamics) must stop at start-up with an error naming the file, and leave the
+// database, tracking dynamics, line map) must stop at start-up with an error naming the file, and leave the
 // file byte for byte as it was.
 #include <gtest/gtest.h>
 #include <ros/package.h>
@@ -129,6 +129,17 @@ TEST_F(BadFiles, TrackingDynamics) {
   check({"condensation_tracker", "empty dynamics", "dynamics", "dynamics.yaml", ""});
   check({"condensation_tracker", "dynamics of the wrong size", "dynamics", "dynamics.yaml",
          "A1: [1, 2, 3]\nA0: [0]\nd: [0]\nB: [1]\n"});
+}
+
+TEST_F(BadFiles, LineMaps) {
+  check({"ekf_slam_mapper", "empty line map", "initial_map", "map.yaml", ""});
+  check({"ekf_slam_mapper", "binary line map", "initial_map", "map.yaml",
+         std::string(kGarbage, sizeof kGarbage - 1)});
+  check({"ekf_slam_mapper", "line map without rho", "initial_map", "map.yaml",
+         "landmarks:\n  - {id: 1, alpha_rad: 0.1}\nstate_covariance: {dim: 5, data: "
+         "[1,0,0,0,0, 0,1,0,0,0, 0,0,1,0,0, 0,0,0,1,0, 0,0,0,0,1]}\n"});
+  check({"ekf_slam_mapper", "line map with a covariance of the wrong size", "initial_map",
+         "map.yaml", "landmarks: []\nstate_covariance: {dim: 3, data: [1, 0, 0, 1]}\n"});
 }
 
 // Settings that used to be taken at start-up and fail later (issue 27): each must stop the node

@@ -10,6 +10,11 @@
 //   odometry with ~odom_alpha1.. (the paper's filter).
 //   ~loop_closing (bool, true): a pose graph over the EKF's keyframes with loop edges from scan
 //   matching (needs `scan`); the published pose, map -> odom, path and grid are the graph's.
+//   ~initial_map (path, default none): a line map written by ~save_map (slam/map_io.h), loaded at
+//   start-up (and again on ~reset) to localize against without extending it: its confirmed and
+//   fixed landmarks correct the pose with their covariance, no landmark is started, and loop
+//   closing is off (the map is already global). A file that cannot be read or parsed stops the
+//   node with the file and line. ~save_map never replaces it unless asked (overwrite).
 //   ~variant (standard | anchor | external), ~retire_after_updates (int, 0 = off; the paper: 50),
 //   ~anchor_min_angle_rad.
 //   ~association (jcbb | nn), ~gate_probability, ~confirm_sightings, ~tentative_timeout_scans,
@@ -105,6 +110,8 @@ class EkfSlamMapperNode {
   math::SE2 initial_pose_;
   Eigen::Matrix3d initial_cov_ = Eigen::Matrix3d::Zero();
   std::unique_ptr<slam::LaserSlam> slam_;
+  std::string initial_map_;                      // ~initial_map, empty: mapping
+  std::vector<slam::FixedLandmark> known_map_;  // its landmarks
   std::string map_frame_, odom_frame_, base_frame_, map_file_;
   bool publish_tf_ = true;
   double transform_tolerance_s_ = 0.1, tf_timeout_s_ = 0.2, external_gate_ = 0.999;

@@ -86,6 +86,9 @@ struct LineEkfSlamConfig {
   // Two landmarks whose difference is compatible with zero at gate_probability are merged (the
   // same wall initialised twice before a loop closed); checked for the landmarks seen each scan.
   bool merge_landmarks = true;
+  // false: no landmark is started, the filter localizes against the landmarks it has (a map loaded
+  // with addFixedLandmarks: ekf_slam_mapper's ~initial_map).
+  bool extend_map = true;
   // First-estimates Jacobians (FEJ-EKF; Huang, Mourikis & Roumeliotis 2008): the motion Jacobian
   // uses the predicted positions x_{k+1|k} - x_{k|k-1} and the observation Jacobians the predicted
   // pose x_{k|k-1} and each landmark's first direction estimate, so the linearised filter keeps
@@ -168,6 +171,12 @@ class LineEkfSlam {
     int nis_dof = 0;
   };
   UpdateResult update(const std::vector<LineObservation>& observations);
+
+  /// Landmarks of a known map (slam/map_io.h readLineMap), outside the state: their observations
+  /// correct the pose with each landmark's covariance added to the measurement noise, as retired
+  /// ones do; they are never revised. Throws std::invalid_argument on a non-finite line or a
+  /// covariance that is not symmetric positive semi-definite.
+  void addFixedLandmarks(const std::vector<FixedLandmark>& landmarks);
 
   /// Data association alone (for tests and tools): per observation a landmark index or -1.
   std::vector<int> associate(const std::vector<LineObservation>& observations) const;

@@ -14,6 +14,13 @@
 
 namespace adaptive_perception::slam {
 
+/// Reads a map written by writeLineMapYaml back as landmarks to localize against
+/// (LineEkfSlam::addFixedLandmarks): the confirmed landmarks of the state, each with its marginal
+/// covariance from state_covariance, and the fixed ones with theirs; tentative landmarks are left
+/// out. Throws std::runtime_error "PATH:LINE: what" on a file that cannot be read, a missing or
+/// malformed field, a covariance of the wrong size or not symmetric positive semi-definite.
+std::vector<FixedLandmark> readLineMapYaml(const std::string& path);
+
 /// Writes to a temporary file beside `path` and renames it over `path`, so a failed write never
 /// leaves a truncated map. Throws std::runtime_error naming the file.
 void writeLineMapYaml(const std::string& path, const LineEkfSlam& slam);

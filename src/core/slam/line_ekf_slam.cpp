@@ -1,6 +1,7 @@
 #include "adaptive_perception/slam/line_ekf_slam.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -433,6 +434,21 @@ int LineEkfSlam::mergeCompatible(std::vector<int> seen) {
   return merged;
 }
 
+void LineEkfSlam::addFixedLandmarks(const std::vector<FixedLandmark>& landmarks) {
+  for (const FixedLandmark& f : landmarks) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(f.cov);
+    if (!std::isfinite(f.line.rho_m) || !std::isfinite(f.line.alpha_rad) || !f.cov.allFinite() ||
+        std::fabs(f.cov(0, 1) - f.cov(1, 0)) > 1e-9 * (1.0 + f.cov.cwiseAbs().maxCoeff()) ||
+        es.eigenvalues().minCoeff() < -1e-12)
+      throw std::invalid_argument("addFixedLandmarks: landmark " + std::to_string(f.info.id) +
+                                  " has a non-finite line or a covariance that is not symmetric "
+                                  "positive semi-definite");
+    fixed_.push_back(f);
+    fixed_.back().info.confirmed_flag = true;
+    next_id_ = std::max(next_id_, f.info.id + 1);  // landmarks started later get new ids
+  }
+}
+
 LineEkfSlam::UpdateResult LineEkfSlam::update(const std::vector<LineObservation>& obs) {
   ++scan_;
   UpdateResult res;
@@ -454,7 +470,7 @@ LineEkfSlam::UpdateResult LineEkfSlam::update(const std::vector<LineObservation>
     res.matched = static_cast<int>(pairs.size());
   }
   for (size_t i = 0; i < obs.size(); ++i)
-    if (res.association[i] < 0 &&
+    if (config_.extend_map && res.association[i] < 0 &&
         (obs[i].end_m - obs[i].start_m).norm() >= config_.min_new_line_length_m) {
       addLandmark(obs[i], scan_);
       ++res.added;

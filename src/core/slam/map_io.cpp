@@ -2,13 +2,16 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/Eigenvalues>
 #include <array>
+#include <cmath>
 #include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
 #include "adaptive_perception/io/atomic_file.h"
+#include "adaptive_perception/io/yaml_file.h"
 
 namespace adaptive_perception::slam {
 
@@ -25,6 +28,113 @@ YAML::Node pieces(const Landmark& info) {
   return out;
 }
 }  // namespace
+
+namespace {
+[[noreturn]] void bad(const std::string& path, const YAML::Node& node, const std::string& what) {
+  throw std::runtime_error(io::yamlWhere(path, node) + ": " + what);
+}
+
+double number(const std::string& path, const YAML::Node& parent, const char* key) {
+  const YAML::Node v = parent[key];
+  if (!v) bad(path, parent, std::string("missing '") + key + "'");
+  try {
+    const double d = v.as<double>();
+    if (!std::isfinite(d)) bad(path, v, std::string("'") + key + "' is not finite");
+    return d;
+  } catch (const YAML::Exception&) {
+    bad(path, v, std::string("'") + key + "' is not a number");
+  }
+}
+
+void readPieces(const std::string& path, const YAML::Node& l, Landmark* info) {
+  const YAML::Node ps = l["pieces"];
+  if (!ps) return;
+  if (!ps.IsSequence()) bad(path, ps, "'pieces' is not a list");
+  for (const auto& p : ps) {
+    if (!p.IsSequence() || p.size() != 4) bad(path, p, "a piece is not [x0, y0, x1, y1]");
+    double v[4];
+    for (int i = 0; i < 4; ++i) {
+      try {
+        v[i] = p[i].as<double>();
+      } catch (const YAML::Exception&) {
+        bad(path, p, "a piece holds something that is not a number");
+      }
+    }
+    info->pieces.emplace_back(Eigen::Vector2d(v[0], v[1]), Eigen::Vector2d(v[2], v[3]));
+  }
+  if (!info->pieces.empty()) {
+    info->start_m = info->pieces.front().first;
+    info->end_m = info->pieces.back().second;
+  }
+}
+}  // namespace
+
+std::vector<FixedLandmark> readLineMapYaml(const std::string& path) {
+  const YAML::Node root = io::loadYamlFile(path, "line map");
+  if (!root.IsMap()) bad(path, root, "not a line map (no top-level mapping)");
+  const YAML::Node landmarks = root["landmarks"], fixed = root["fixed_landmarks"];
+  if (!landmarks || !landmarks.IsSequence()) bad(path, root, "missing the 'landmarks' list");
+  const YAML::Node cov = root["state_covariance"];
+  if (!cov || !cov["dim"] || !cov["data"] || !cov["data"].IsSequence())
+    bad(path, root, "missing 'state_covariance' with 'dim' and 'data'");
+  const int dim = static_cast<int>(number(path, cov, "dim"));
+  if (dim != 3 + 2 * static_cast<int>(landmarks.size()))
+    bad(path, cov, "state_covariance dim " + std::to_string(dim) + " does not match " +
+                       std::to_string(landmarks.size()) + " landmarks (3 + 2 per landmark)");
+  if (static_cast<int>(cov["data"].size()) != dim * dim)
+    bad(path, cov["data"], "state_covariance data holds " + std::to_string(cov["data"].size()) +
+                               " values, not dim^2 = " + std::to_string(dim * dim));
+  auto at = [&](int r, int c) {
+    const YAML::Node v = cov["data"][r * dim + c];
+    try {
+      return v.as<double>();
+    } catch (const YAML::Exception&) {
+      bad(path, v, "a covariance value is not a number");
+    }
+  };
+  auto check = [&](const Eigen::Matrix2d& c, const YAML::Node& where) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(c);
+    if (!c.allFinite() || std::fabs(c(0, 1) - c(1, 0)) > 1e-9 * (1.0 + c.cwiseAbs().maxCoeff()) ||
+        es.eigenvalues().minCoeff() < -1e-12)
+      bad(path, where, "a landmark covariance that is not symmetric positive semi-definite");
+  };
+  std::vector<FixedLandmark> out;
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    const YAML::Node l = landmarks[i];
+    if (l["confirmed"] && !l["confirmed"].as<bool>(false)) continue;  // tentative: not the map
+    FixedLandmark f;
+    f.info.id = static_cast<std::uint64_t>(number(path, l, "id"));
+    f.info.sightings = static_cast<int>(l["sightings"] ? number(path, l, "sightings") : 0);
+    f.line = Line{number(path, l, "rho_m"), number(path, l, "alpha_rad")};
+    const int k = 3 + 2 * static_cast<int>(i);
+    f.cov << at(k, k), at(k, k + 1), at(k + 1, k), at(k + 1, k + 1);
+    check(f.cov, l);
+    readPieces(path, l, &f.info);
+    out.push_back(f);
+  }
+  if (fixed) {
+    if (!fixed.IsSequence()) bad(path, fixed, "'fixed_landmarks' is not a list");
+    for (const auto& l : fixed) {
+      FixedLandmark f;
+      f.info.id = static_cast<std::uint64_t>(number(path, l, "id"));
+      f.info.sightings = static_cast<int>(l["sightings"] ? number(path, l, "sightings") : 0);
+      f.line = Line{number(path, l, "rho_m"), number(path, l, "alpha_rad")};
+      const YAML::Node c = l["covariance"];
+      if (!c || !c.IsSequence() || c.size() != 4) bad(path, l, "'covariance' is not 4 values");
+      for (int j = 0; j < 4; ++j) {
+        try {
+          f.cov(j / 2, j % 2) = c[j].as<double>();
+        } catch (const YAML::Exception&) {
+          bad(path, c, "a covariance value is not a number");
+        }
+      }
+      check(f.cov, l);
+      readPieces(path, l, &f.info);
+      out.push_back(f);
+    }
+  }
+  return out;
+}
 
 void writeLineMapYaml(const std::string& path, const LineEkfSlam& slam) {
   YAML::Node root;

@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/math/kalman_filter.h"
@@ -452,4 +453,86 @@ TEST(LineEkfSlam, PiecesOfOneWallInOneScanShareTheLandmark) {
       EXPECT_EQ(res.added, 1);
     }
   }
+}
+
+namespace {
+// Three walls of a room in map: x = 3, y = 2, x = -4.
+const Line kWalls[3] = {Line{3.0, 0.0}, Line{2.0, M_PI / 2}, Line{4.0, M_PI}};
+std::vector<slam::LineObservation> wallsSeenFrom(const math::SE2& pose) {
+  std::vector<slam::LineObservation> out;
+  for (const Line& w : kWalls) out.push_back(obsOf(slam::observeLine(pose, w, nullptr, nullptr)));
+  return out;
+}
+}  // namespace
+
+// A map saved by ~save_map reads back as the same lines with their marginal covariances, and a
+// filter given them (extend_map off) localizes from a wrong start without starting landmarks.
+TEST(LineMapYaml, ReadsBackTheMapAndLocalizesAgainstIt) {
+  slam::LineEkfSlamConfig cfg;
+  cfg.confirm_sightings = 1;
+  slam::LineEkfSlam mapper(cfg, math::SE2(), Eigen::Vector3d(1e-6, 1e-6, 1e-6).asDiagonal());
+  for (int k = 0; k < 3; ++k) {
+    mapper.predict(math::SE2());
+    mapper.update(wallsSeenFrom(math::SE2()));
+  }
+  ASSERT_EQ(mapper.numLandmarks(), 3);
+  const std::string path = testing::TempDir() + "/line_map_read_test.yaml";
+  slam::writeLineMapYaml(path, mapper);
+  const std::vector<slam::FixedLandmark> map = slam::readLineMapYaml(path);
+  ASSERT_EQ(map.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(map[i].line.rho_m, mapper.landmark(i).rho_m);
+    EXPECT_EQ(map[i].line.alpha_rad, mapper.landmark(i).alpha_rad);
+    EXPECT_TRUE(map[i].cov.isApprox(mapper.landmarkCovariance(i), 1e-12));
+    EXPECT_EQ(map[i].info.id, mapper.landmarkInfo(i).id);
+  }
+  std::remove(path.c_str());
+
+  slam::LineEkfSlamConfig loc_cfg;
+  loc_cfg.extend_map = false;
+  const math::SE2 truth(0.3, -0.2, 0.1);
+  slam::LineEkfSlam loc(loc_cfg, math::SE2(0.5, -0.35, 0.15),
+                        Eigen::Vector3d(0.04, 0.04, 0.01).asDiagonal());
+  loc.addFixedLandmarks(map);
+  std::vector<slam::LineObservation> obs = wallsSeenFrom(truth);
+  obs.push_back(obsOf(Line{1.0, -M_PI / 2}));  // a wall the map does not have (y = -1.2)
+  for (int k = 0; k < 5; ++k) {
+    loc.predict(math::SE2());
+    loc.update(obs);
+  }
+  EXPECT_NEAR(loc.pose().x_m, truth.x_m, 0.02);
+  EXPECT_NEAR(loc.pose().y_m, truth.y_m, 0.02);
+  EXPECT_NEAR(math::angleDiff(loc.pose().yaw_rad, truth.yaw_rad), 0.0, 0.01);
+  EXPECT_EQ(loc.numLandmarks(), 0);  // nothing started: the map is not extended
+  EXPECT_EQ(loc.numFixedLandmarks(), 3);
+}
+
+// A malformed map names the file and the line; a covariance of the wrong size is refused.
+TEST(LineMapYaml, RefusesAMalformedMapNamingFileAndLine) {
+  const std::string path = testing::TempDir() + "/line_map_bad_test.yaml";
+  auto expectError = [&](const std::string& text, const std::string& needle) {
+    {
+      std::ofstream f(path);
+      f << text;
+    }
+    try {
+      slam::readLineMapYaml(path);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  expectError(
+      "landmarks:\n  - {id: 1, alpha_rad: 0.1, confirmed: true}\n"
+      "state_covariance: {dim: 5, data: [1,0,0,0,0, 0,1,0,0,0, 0,0,1,0,0, 0,0,0,1,0, 0,0,0,0,1]}\n",
+      ":2: missing 'rho_m'");
+  expectError("landmarks: []\nstate_covariance: {dim: 5, data: [1, 0, 0, 1]}\n", "does not match");
+  expectError("landmarks: [\n", "");
+  expectError(
+      "landmarks:\n  - {id: 1, rho_m: 2, alpha_rad: 0.1}\n"
+      "state_covariance: {dim: 5, data: [1,0,0,0,0, 0,1,0,0,0, 0,0,1,0,0, 0,0,0,1,2, 0,0,0,2,1]}\n",
+      "positive semi-definite");
+  std::remove(path.c_str());
+  EXPECT_THROW(slam::readLineMapYaml("/nonexistent_dir/map.yaml"), std::runtime_error);
 }
