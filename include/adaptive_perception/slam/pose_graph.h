@@ -133,6 +133,11 @@ class LoopClosingMapper {
 
  private:
   bool tryLoop(int node);
+  /// The free-space check of node n matched at n_in_k in the frame of node k (xk_inv: k's pose
+  /// inverted) against the submap nodes lo..hi: the share of points seen through (see
+  /// freeSpaceViolationShare).
+  double freeSpaceShare(int n, const math::SE2& xk_inv, const math::SE2& n_in_k, int lo,
+                        int hi) const;
 
   LoopClosingConfig config_;
   PoseGraph2D graph_;

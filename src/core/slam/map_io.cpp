@@ -67,6 +67,16 @@ void readPieces(const std::string& path, const YAML::Node& l, Landmark* info) {
     info->end_m = info->pieces.back().second;
   }
 }
+
+/// A landmark's id, sightings, line and pieces (its covariance is read by the caller).
+FixedLandmark landmarkOf(const std::string& path, const YAML::Node& l) {
+  FixedLandmark f;
+  f.info.id = static_cast<std::uint64_t>(number(path, l, "id"));
+  f.info.sightings = static_cast<int>(l["sightings"] ? number(path, l, "sightings") : 0);
+  f.line = Line{number(path, l, "rho_m"), number(path, l, "alpha_rad")};
+  readPieces(path, l, &f.info);
+  return f;
+}
 }  // namespace
 
 std::vector<FixedLandmark> readLineMapYaml(const std::string& path) {
@@ -102,23 +112,16 @@ std::vector<FixedLandmark> readLineMapYaml(const std::string& path) {
   for (std::size_t i = 0; i < landmarks.size(); ++i) {
     const YAML::Node l = landmarks[i];
     if (l["confirmed"] && !l["confirmed"].as<bool>(false)) continue;  // tentative: not the map
-    FixedLandmark f;
-    f.info.id = static_cast<std::uint64_t>(number(path, l, "id"));
-    f.info.sightings = static_cast<int>(l["sightings"] ? number(path, l, "sightings") : 0);
-    f.line = Line{number(path, l, "rho_m"), number(path, l, "alpha_rad")};
+    FixedLandmark f = landmarkOf(path, l);
     const int k = 3 + 2 * static_cast<int>(i);
     f.cov << at(k, k), at(k, k + 1), at(k + 1, k), at(k + 1, k + 1);
     check(f.cov, l);
-    readPieces(path, l, &f.info);
     out.push_back(f);
   }
   if (fixed) {
     if (!fixed.IsSequence()) bad(path, fixed, "'fixed_landmarks' is not a list");
     for (const auto& l : fixed) {
-      FixedLandmark f;
-      f.info.id = static_cast<std::uint64_t>(number(path, l, "id"));
-      f.info.sightings = static_cast<int>(l["sightings"] ? number(path, l, "sightings") : 0);
-      f.line = Line{number(path, l, "rho_m"), number(path, l, "alpha_rad")};
+      FixedLandmark f = landmarkOf(path, l);
       const YAML::Node c = l["covariance"];
       if (!c || !c.IsSequence() || c.size() != 4) bad(path, l, "'covariance' is not 4 values");
       for (int j = 0; j < 4; ++j) {
@@ -129,7 +132,6 @@ std::vector<FixedLandmark> readLineMapYaml(const std::string& path) {
         }
       }
       check(f.cov, l);
-      readPieces(path, l, &f.info);
       out.push_back(f);
     }
   }

@@ -208,6 +208,36 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
                     math::between(nodes_.back().local, local_pose)});
 }
 
+double LoopClosingMapper::freeSpaceShare(int n, const math::SE2& xk_inv, const math::SE2& n_in_k,
+                                         int lo, int hi) const {
+  // The share of the new scan's points (at the matched pose) that some scan of the submap saw
+  // through, among those that one of them could see; and the share of the submap's points that the
+  // new scan saw through, among those it could see. The larger counts.
+  const std::vector<Eigen::Vector2d>& scan = nodes_[n].points;
+  const BearingRanges n_view(scan);
+  std::vector<int> n_state(scan.size(), 0);
+  long sub_seen = 0, sub_through = 0;
+  for (int m = lo; m <= hi; ++m) {
+    const math::SE2 n_in_m = (xk_inv * graph_.node(m)).inverse() * n_in_k;
+    const math::SE2 m_in_n = n_in_m.inverse();
+    const BearingRanges m_view(nodes_[m].points);
+    for (size_t i = 0; i < scan.size(); ++i)
+      n_state[i] = std::max(n_state[i], m_view.classify(n_in_m.transformPoint(scan[i]),
+                                                        config_.max_range_m,
+                                                        config_.free_space_tolerance_m));
+    for (const auto& p : nodes_[m].points) {
+      const int c = n_view.classify(m_in_n.transformPoint(p), config_.max_range_m,
+                                    config_.free_space_tolerance_m);
+      sub_seen += c > 0;
+      sub_through += c == 2;
+    }
+  }
+  const long n_seen = std::count_if(n_state.begin(), n_state.end(), [](int c) { return c > 0; });
+  const long n_through = std::count(n_state.begin(), n_state.end(), 2);
+  return std::max(n_seen > 0 ? static_cast<double>(n_through) / n_seen : 0.0,
+                  sub_seen > 0 ? static_cast<double>(sub_through) / sub_seen : 0.0);
+}
+
 bool LoopClosingMapper::tryLoop(int n) {
   if (nodes_[n].points.size() < 20) return false;
   const math::SE2 xn = graph_.node(n);
@@ -249,32 +279,7 @@ bool LoopClosingMapper::tryLoop(int n) {
                                        config_.fine.search_xy_m + 1.0, config_.connect_gap_m);
       const ScanMatch f = matchScan(fine_field, nodes_[n].points, c.pose, config_.fine);
       if (f.score < config_.min_loop_score) continue;
-      // Free space both ways: the share of the new scan's points (at the matched pose) that some
-      // scan of the submap saw through, among those that one of them could see; and the share of
-      // the submap's points that the new scan saw through, among those it could see.
-      const BearingRanges n_view(nodes_[n].points);
-      std::vector<int> n_state(nodes_[n].points.size(), 0);
-      long sub_seen = 0, sub_through = 0;
-      for (int m = lo; m <= hi; ++m) {
-        const math::SE2 n_in_m = (xk_inv * graph_.node(m)).inverse() * f.pose;
-        const math::SE2 m_in_n = n_in_m.inverse();
-        const BearingRanges m_view(nodes_[m].points);
-        for (size_t i = 0; i < nodes_[n].points.size(); ++i)
-          n_state[i] = std::max(n_state[i], m_view.classify(n_in_m.transformPoint(nodes_[n].points[i]),
-                                                            config_.max_range_m,
-                                                            config_.free_space_tolerance_m));
-        for (const auto& p : nodes_[m].points) {
-          const int c = n_view.classify(m_in_n.transformPoint(p), config_.max_range_m,
-                                        config_.free_space_tolerance_m);
-          sub_seen += c > 0;
-          sub_through += c == 2;
-        }
-      }
-      const long n_seen = std::count_if(n_state.begin(), n_state.end(), [](int c) { return c > 0; });
-      const long n_through = std::count(n_state.begin(), n_state.end(), 2);
-      const double share =
-          std::max(n_seen > 0 ? static_cast<double>(n_through) / n_seen : 0.0,
-                   sub_seen > 0 ? static_cast<double>(sub_through) / sub_seen : 0.0);
+      const double share = freeSpaceShare(n, xk_inv, f.pose, lo, hi);
       if (share > config_.max_free_space_violations) {
         ++free_space_rejected_;
         continue;
