@@ -69,7 +69,8 @@ int main(int argc, char** argv) {
                    "   or: evaluate_places --reference A --query B [--tolerance_frames N] "
                    "[--ground_truth CSV] "
                    "[--method thumbnail|gradient|chromaticity|words|fused|sequence] "
-                   "[--sequence_frames L] [--thumbnail_weight W] [--gradient_weight W] "
+                   "[--sequence_frames L] [--min_velocity V] [--max_velocity V] [--velocity_steps K] "
+                   "[--thumbnail_weight W] [--gradient_weight W] "
                    "[--chromaticity_weight W] [--words_weight W] [--database F] [--output DIR]");
   if (args.has("reference") || args.has("query")) return tools::runTraversalEvaluation(args);
   const std::string db_path = args.get("database", "");

@@ -3,7 +3,7 @@
 // traversals of one route (places/traversal_matcher.h, places/traversal_metrics.h).
 //
 //   evaluate_places --reference A --query B [--tolerance_frames 1] [--ground_truth CSV]
-//                   [--method sequence] [--sequence_frames 10] [--database F] [--output DIR]
+//                   [--method sequence] [--sequence_frames 20] [--database F] [--output DIR]
 //
 // A and B are folders of images (name order) or CSV lists of image paths (io/image_folder.h).
 // --database F keeps the reference traversal in a place database (places/place_database.h): when F
@@ -173,6 +173,10 @@ inline int runTraversalEvaluation(Args& args) {
   cfg.method = args.get("method", cfg.method);
   cfg.sequence.sequence_frames =
       static_cast<int>(args.getInt("sequence_frames", cfg.sequence.sequence_frames));
+  cfg.sequence.min_velocity = args.getDouble("min_velocity", cfg.sequence.min_velocity);
+  cfg.sequence.max_velocity = args.getDouble("max_velocity", cfg.sequence.max_velocity);
+  cfg.sequence.velocity_steps =
+      static_cast<int>(args.getInt("velocity_steps", cfg.sequence.velocity_steps));
   cfg.fusion.thumbnail = args.getDouble("thumbnail_weight", cfg.fusion.thumbnail);
   cfg.fusion.gradient = args.getDouble("gradient_weight", cfg.fusion.gradient);
   cfg.fusion.chromaticity = args.getDouble("chromaticity_weight", cfg.fusion.chromaticity);

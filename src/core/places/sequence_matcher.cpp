@@ -72,9 +72,12 @@ const std::vector<float>& SequenceMatcher::add(const std::vector<float>& distanc
   sum_.resize(n);
   const int steps = config_.velocity_steps;
   for (int vi = 0; vi < steps; ++vi) {
+    // Spread evenly in log(v): a query twice as fast as the reference and one half as fast
+    // are equally far from the same speed.
     const double v = steps == 1 ? config_.min_velocity
-                                : config_.min_velocity + (config_.max_velocity - config_.min_velocity) *
-                                                             vi / (steps - 1);
+                                : config_.min_velocity *
+                                      std::pow(config_.max_velocity / config_.min_velocity,
+                                               static_cast<double>(vi) / (steps - 1));
     std::fill(sum_.begin(), sum_.end(), 0.0f);
     for (int k = 0; k < len; ++k) {
       const long shift = std::lround(v * k);

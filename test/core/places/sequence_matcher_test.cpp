@@ -50,7 +50,7 @@ TEST(SequenceMatcher, AgreesWithBruteForce) {
     for (int j = 0; j < n; ++j) {
       double best = std::numeric_limits<double>::infinity();
       for (int vi = 0; vi < c.velocity_steps; ++vi) {
-        const double v = c.min_velocity + (c.max_velocity - c.min_velocity) * vi / 3.0;
+        const double v = c.min_velocity * std::pow(c.max_velocity / c.min_velocity, vi / 3.0);
         double s = 0.0;
         for (int k = 0; k < len; ++k) {
           const long r = j - std::lround(v * k);
@@ -91,6 +91,36 @@ TEST(SequenceMatcher, SequenceResolvesWhatSingleFramesCannot) {
   EXPECT_EQ(m.queries(), 0);
 }
 
+TEST(SequenceMatcher, DefaultsFollowAQueryDrivenAtAnotherSpeed) {
+  // 400 references; query t truly matches reference 10 + floor(speed t), for speeds between half
+  // and twice the reference's that lie on none of the searched velocities exactly. Each single
+  // frame is noisy and its truth farther than a fixed decoy: single frames almost never find the
+  // truth; with the defaults the trajectory search does, once a whole sequence has been seen.
+  for (const double speed : {0.55, 0.83, 1.37, 1.93}) {
+    places::SequenceMatcher m;  // defaults
+    const int len = m.config().sequence_frames;
+    std::mt19937 rng(11);
+    std::normal_distribution<float> noise(0.0f, 0.3f);
+    int single_right = 0, sequence_right = 0, scored = 0;
+    for (int t = 0; 10 + speed * t < 390; ++t) {
+      const int truth = 10 + static_cast<int>(std::floor(speed * t));
+      std::vector<float> d(400);
+      for (float& x : d) x = 5.0f + noise(rng);
+      d[truth] = 4.0f;
+      d[200] = 3.5f;
+      single_right += std::min_element(d.begin(), d.end()) - d.begin() == truth;
+      const std::vector<float>& s = m.add(d);
+      if (t + 1 < len) continue;
+      ++scored;
+      const long got = std::min_element(s.begin(), s.end()) - s.begin();
+      // Within one query frame's worth of references.
+      sequence_right += std::abs(got - truth) <= std::max(1.0, std::ceil(speed));
+    }
+    EXPECT_LT(single_right, scored / 20) << speed;
+    EXPECT_EQ(sequence_right, scored) << "speed " << speed;
+  }
+}
+
 TEST(SequenceMatcher, RejectsBadInput) {
   places::SequenceMatcher m;
   EXPECT_THROW(m.add({}), std::invalid_argument);
@@ -98,7 +128,7 @@ TEST(SequenceMatcher, RejectsBadInput) {
   EXPECT_THROW(m.add({1.0f, 2.0f}), std::invalid_argument);
   EXPECT_THROW(m.add({1.0f, std::nanf(""), 3.0f}), std::invalid_argument);
   places::SequenceMatcherConfig c;
-  c.max_velocity = 0.5;  // below min_velocity
+  c.max_velocity = 0.4;  // below min_velocity
   EXPECT_THROW(places::SequenceMatcher{c}, std::invalid_argument);
   c = {};
   c.sequence_frames = 0;
