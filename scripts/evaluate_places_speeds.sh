@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# How the traversal protocol's default configuration holds when the query is driven at another
+# speed than the reference: from a dataset of two aligned traversals (frame i of one is frame i of
+# the other, as in Nordland), it makes query lists that show the query traversal at each SPEED
+# (query frame k is query frame floor(SPEED k)) with the matching ground truth (reference frame
+# floor(SPEED k) +- TOLERANCE), and runs `evaluate_places --reference REF --query LIST
+# --ground_truth GT` with its defaults on each. The frames stay where they are (only lists of their
+# paths are written, to a temporary folder).
+# Prints each run's summary line and a Markdown table; writes results/places_speeds/<dataset>/.
+# Usage: [SPEEDS="0.6 0.73 1 1.37 2"] [TOLERANCE=1] scripts/evaluate_places_speeds.sh REF_DIR QUERY_DIR [EXTRA evaluate_places OPTIONS]
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+BIN="$AP_WS/devel/lib/adaptive_perception"
+SPEEDS="${SPEEDS:-0.6 0.73 1 1.37 2}"
+TOLERANCE="${TOLERANCE:-1}"
+[ "$#" -ge 2 ] || { echo "usage: $0 REF_DIR QUERY_DIR [evaluate_places options]"; exit 2; }
+REF="${1%/}"; QUERY="${2%/}"; shift 2
+[ -x "$BIN/evaluate_places" ] || "$AP_ROOT/scripts/setup.sh" || exit 1
+name="$(basename "$(dirname "$REF")")"
+OUT="$AP_ROOT/results/places_speeds/$name"
+TMP="$(mktemp -d)"
+trap 'rm -rf "$TMP"' EXIT
+mkdir -p "$OUT"
+mapfile -t frames < <(find "$QUERY" -maxdepth 1 -type f \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.bmp' -o -iname '*.ppm' \) | LC_ALL=C sort)
+n="${#frames[@]}"
+[ "$n" -gt 0 ] || { echo "evaluate_places_speeds: no images in $QUERY"; exit 1; }
+table="| query speed (x reference) | queries | recall@1 | recall@5 | PR AUC | recall at 100% precision |"$'\n'"|---|---|---|---|---|---|"
+for s in $SPEEDS; do
+  list="$TMP/query_$s.csv"; gt="$TMP/gt_$s.csv"
+  echo "image_path" > "$list"; : > "$gt"
+  # Query frame k shows frame floor(s k); ground truth counts from 1 (Nordland's convention).
+  awk -v s="$s" -v n="$n" -v t="$TOLERANCE" 'BEGIN { for (k = 0; int(s * k) < n; ++k) { i = int(s * k); print k + 1 "," i + 1 "," t } }' > "$gt"
+  awk -F, 'NR == FNR { f[NR - 1] = $0; next } { print f[$2 - 1] }' <(printf '%s\n' "${frames[@]}") "$gt" >> "$list"
+  dir="$OUT/speed_$s"
+  mkdir -p "$dir"
+  "$BIN/evaluate_places" --reference "$REF" --query "$list" --ground_truth "$gt" --output "$dir" "$@" > "$dir/log.txt" 2>&1 \
+    || { echo "evaluate_places_speeds: speed $s failed: $(tail -n 1 "$dir/log.txt")" >&2; continue; }
+  line="$(tail -n 1 "$dir/log.txt")"
+  echo "speed=$s $line"
+  table+=$'\n'"| $s | $(summary_value "$line" queries) | $(summary_value "$line" recall_at_1) | $(summary_value "$line" recall_at_5) | $(summary_value "$line" pr_auc) | $(summary_value "$line" recall_at_full_precision) |"
+done
+echo "$table" | tee "$OUT/table.md"
+echo "evaluate_places_speeds: tolerance ${TOLERANCE} reference frames; runs in $OUT"
