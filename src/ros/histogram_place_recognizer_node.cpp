@@ -38,6 +38,7 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
   rc.fusion.gradient = P::getInRange(pnh, "gradient_weight", rc.fusion.gradient, 0.0, 1000.0);
   rc.fusion.chromaticity =
       P::getInRange(pnh, "chromaticity_weight", rc.fusion.chromaticity, 0.0, 1000.0);
+  rc.fusion.layout = P::getInRange(pnh, "layout_weight", rc.fusion.layout, 0.0, 1000.0);
   rc.color_space = P::get<std::string>(pnh, "color_space", rc.color_space);
   rc.method = P::get<std::string>(pnh, "method", rc.method);
   rc.window = P::getInRange(pnh, "window", rc.window, 1, 1000);
@@ -74,6 +75,7 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
     throw std::runtime_error(path + ": no such place database (and ~create_if_missing is false)");
   }
   histograms_ = db_->settings().histogramConfig();
+  descriptors_ = places::descriptorConfigForMask(histograms_.mask);
   db_->useDescriptors(descriptors_);  // refuses a database whose descriptors have other settings
   reload();
 

@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
     places::ImageDescriptors tquery = places::computeDescriptors(kitchen, tcfg.descriptor);
     tquery.sift = places::extractSift(kitchen, places::SiftConfig());
     for (const char* method :
-         {"thumbnail", "gradient", "chromaticity", "words", "fused", "sequence"}) {
+         {"thumbnail", "gradient", "chromaticity", "layout", "words", "fused", "sequence"}) {
       places::TraversalMatcherConfig c = tcfg;
       c.method = method;
       places::TraversalMatcher matcher(refs, c);

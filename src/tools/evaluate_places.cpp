@@ -63,15 +63,15 @@ int main(int argc, char** argv) {
                    "evaluate_places --database DB.sqlite (--bag FILE | --list CSV) "
                    "[--images_per_place N] [--window M] [--spaces all|rgb,...] "
                    "[--methods paper|all|chi_square,jeffrey,ks,ks_cumulative,intersection] "
-                   "[--cue fused|thumbnail|gradient|chromaticity|histogram] "
+                   "[--cue fused|thumbnail|gradient|chromaticity|layout|histogram] "
                    "[--stay_probability P] [--likelihood_sharpness K] [--use_sequence 0|1] "
                    "[--output DIR]\n"
                    "   or: evaluate_places --reference A --query B [--tolerance_frames N] "
                    "[--ground_truth CSV] "
-                   "[--method thumbnail|gradient|chromaticity|words|fused|sequence] "
+                   "[--method thumbnail|gradient|chromaticity|layout|words|fused|sequence] "
                    "[--sequence_frames L] [--min_velocity V] [--max_velocity V] [--velocity_steps K] "
                    "[--thumbnail_weight W] [--gradient_weight W] "
-                   "[--chromaticity_weight W] [--words_weight W] [--database F] [--output DIR]");
+                   "[--chromaticity_weight W] [--layout_weight W] [--words_weight W] [--database F] [--output DIR]");
   if (args.has("reference") || args.has("query")) return tools::runTraversalEvaluation(args);
   const std::string db_path = args.get("database", "");
   const std::string bag = args.get("bag", "");
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
     const places::PlaceIndex index = db.loadIndex(spaces);
     if (index.numPlaces() == 0) throw std::runtime_error(db_path + ": the database has no place");
     const places::HistogramConfig hc = db.settings().histogramConfig();
-    const places::GlobalDescriptorConfig dc;
+    const places::GlobalDescriptorConfig dc = places::descriptorConfigForMask(hc.mask);
     const places::PlaceDescriptorIndex dindex = db.loadDescriptorIndex(index, dc);
     const bool have_cues = dindex.totalImages() > 0;
     if (!have_cues && rc.cue != "histogram") {
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
       for (Distance m : methods) combos.push_back({s, m, "", {}, 0});
     const size_t histogram_combos = combos.size();
     if (have_cues)
-      for (const char* cue : {"thumbnail", "gradient", "chromaticity", "fused"})
+      for (const char* cue : {"thumbnail", "gradient", "chromaticity", "layout", "fused"})
         combos.push_back({-1, Distance::kChiSquare, cue, {}, 0});
     for (Combo& c : combos) {
       c.d.reserve(tests.size());

@@ -23,6 +23,7 @@
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -180,6 +181,7 @@ inline int runTraversalEvaluation(Args& args) {
   cfg.fusion.thumbnail = args.getDouble("thumbnail_weight", cfg.fusion.thumbnail);
   cfg.fusion.gradient = args.getDouble("gradient_weight", cfg.fusion.gradient);
   cfg.fusion.chromaticity = args.getDouble("chromaticity_weight", cfg.fusion.chromaticity);
+  cfg.fusion.layout = args.getDouble("layout_weight", cfg.fusion.layout);
   cfg.fusion.words = args.getDouble("words_weight", cfg.fusion.words);
   const std::string output = args.get("output", "results/evaluate_places");
   const std::string db_path = args.get("database", "");
@@ -230,12 +232,12 @@ inline int runTraversalEvaluation(Args& args) {
                 refs.size(), stored ? db_path.c_str() : ref_path.c_str(), ref_s, query_files.size(),
                 query_path.c_str());
 
-    std::vector<std::string> methods = {"thumbnail", "gradient", "chromaticity",
+    std::vector<std::string> methods = {"thumbnail", "gradient", "chromaticity", "layout",
                                         "words",     "fused",    "sequence"};
     if (!refs.words()) {
       if (cfg.method == "words")
         throw std::runtime_error("--method words: no reference image has a SIFT keypoint");
-      methods.erase(methods.begin() + 3);
+      methods.erase(std::find(methods.begin(), methods.end(), "words"));
     }
     std::vector<places::TraversalMatcher> matchers;
     for (const std::string& m : methods) {

@@ -72,7 +72,8 @@ int main(int argc, char** argv) {
     if (explicit_settings) db.requireSettings(wanted);
     db.beginBatch();
     const places::HistogramConfig use = db.settings().histogramConfig();
-    const places::GlobalDescriptorConfig descriptors;
+    const places::GlobalDescriptorConfig descriptors =
+        places::descriptorConfigForMask(use.mask);
     db.useDescriptors(descriptors);
 
     // Histograms of every image, grouped by place in arrival order.

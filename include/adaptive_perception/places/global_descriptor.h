@@ -19,6 +19,16 @@
 //                 g = G / (R + G + B) of pixels brighter than 8 grey levels binned chroma_bins x
 //                 chroma_bins, over the image's left and right halves. Stored as 255 sqrt(mass),
 //                 so the L1 distance behaves like the Hellinger distance.
+//   layout        Where the bright and the dark are: the grey image's intensities histogram-
+//                 equalised (so that any monotonic change of brightness, contrast or gamma over the
+//                 whole image cancels), then a histogram of layout_bins equalised levels in each of
+//                 a few regions, stored as 255 sqrt(mass) like chromaticity. A perspective image
+//                 (omni_ring none): layout_columns x layout_rows regions of the image resized to
+//                 32 px per region. An omni-directional image (omni_ring a ring or auto, as the
+//                 colour histograms' mask): layout_sectors angular sectors of the ring, and of each
+//                 level's histogram over the sectors the magnitudes of its discrete Fourier
+//                 transform (frequencies 0 .. layout_sectors / 2), which do not change when the
+//                 robot turns on the spot (the ring image rotates).
 //
 // A grey image (Nordland) has no chromaticity: every pixel falls in the grey bin, so the cue
 // carries nothing there, as it should.
@@ -27,12 +37,14 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/places/histogram.h"
+
 namespace adaptive_perception::places {
 
-enum class DescriptorKind { kThumbnail = 0, kGradient = 1, kChromaticity = 2 };
-constexpr int kNumDescriptorKinds = 3;
+enum class DescriptorKind { kThumbnail = 0, kGradient = 1, kChromaticity = 2, kLayout = 3 };
+constexpr int kNumDescriptorKinds = 4;
 
-std::string descriptorName(DescriptorKind k);  // thumbnail, gradient, chromaticity
+std::string descriptorName(DescriptorKind k);  // thumbnail, gradient, chromaticity, layout
 /// Throws std::invalid_argument listing the valid names.
 DescriptorKind descriptorFromName(const std::string& name);
 
@@ -47,12 +59,19 @@ struct GlobalDescriptorConfig {
   int hog_height_px = 128;
   int hog_cell_px = 32;
   int chroma_bins = 8;  // per chromaticity axis, 2..64
+  int layout_columns = 4;  // perspective regions across, 1..16
+  int layout_rows = 2;     // perspective regions down, 1..16
+  int layout_sectors = 16;  // omni-directional sectors, even, 4..64
+  int layout_bins = 8;      // equalised grey levels per region, 2..64
+  // none: a perspective image. A ring or auto (omniDescriptorConfig sets it from the colour
+  // histograms' mask): an omni-directional image, described by sectors of that ring.
+  MaskConfig omni_ring;
 
   void validate() const;  // throws std::invalid_argument naming the bad field
   /// Bytes of one descriptor of `kind` with these settings.
   int length(DescriptorKind kind) const;
-  /// "thumbnail=64x32/8 gradient=256x128/32 chromaticity=8": what a stored descriptor was made
-  /// with (two configurations agree when these strings do).
+  /// "thumbnail=64x32/8 gradient=256x128/32 chromaticity=8 layout=regions4x2/8": what a stored
+  /// descriptor was made with (two configurations agree when these strings do).
   std::string toString() const;
 };
 
@@ -62,6 +81,7 @@ struct FusionWeights {
   double thumbnail = 1.0;  // each >= 0, not all 0
   double gradient = 1.0;
   double chromaticity = 0.0;
+  double layout = 0.0;
   // The bag of SIFT words (traversal matching only, bag_of_words.h): 0, because across light it
   // adds nothing the other cues miss (docs/places_across_light.md).
   double words = 0.0;
@@ -69,7 +89,11 @@ struct FusionWeights {
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
-/// True for "thumbnail", "gradient", "chromaticity" and "fused".
+/// The descriptor settings for images whose colour histograms use `mask`: the defaults, with
+/// omni_ring = mask (a ring mask marks omni-directional images).
+GlobalDescriptorConfig descriptorConfigForMask(const MaskConfig& mask);
+
+/// True for "thumbnail", "gradient", "chromaticity", "layout" and "fused".
 bool isCueName(const std::string& name);
 /// The weight of each descriptor kind for a cue: a single descriptor's name gives 1 for it and 0
 /// for the others, "fused" gives `fusion`. Throws std::invalid_argument for another name.

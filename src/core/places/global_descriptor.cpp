@@ -11,7 +11,8 @@
 namespace adaptive_perception::places {
 
 namespace {
-constexpr const char* kNames[kNumDescriptorKinds] = {"thumbnail", "gradient", "chromaticity"};
+constexpr const char* kNames[kNumDescriptorKinds] = {"thumbnail", "gradient", "chromaticity",
+                                                     "layout"};
 
 void need(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("GlobalDescriptorConfig: " + what);
@@ -108,6 +109,123 @@ cv::Mat chromaticity(const cv::Mat& image, const GlobalDescriptorConfig& c) {
   }
   return out;
 }
+
+// Histogram-equalisation lookup of the grey levels of `grey` where `mask` is set (all pixels for
+// an empty mask): level -> its rank among those pixels, 0..255.
+std::array<uchar, 256> equalisation(const cv::Mat& grey, const cv::Mat& mask) {
+  std::array<double, 256> count{};
+  for (int y = 0; y < grey.rows; ++y) {
+    const uchar* g = grey.ptr<uchar>(y);
+    const uchar* m = mask.empty() ? nullptr : mask.ptr<uchar>(y);
+    for (int x = 0; x < grey.cols; ++x)
+      if (!m || m[x]) count[g[x]] += 1.0;
+  }
+  double total = 0.0;
+  for (double c : count) total += c;
+  std::array<uchar, 256> lut{};
+  double below = 0.0;
+  for (int v = 0; v < 256; ++v) {
+    // The middle of the level's run of ranks, so that a flat image maps to mid-grey.
+    const double rank = total > 0.0 ? (below + 0.5 * count[v]) / total : 0.5;
+    lut[v] = cv::saturate_cast<uchar>(std::floor(rank * 255.999));
+    below += count[v];
+  }
+  return lut;
+}
+
+// 255 sqrt(mass) of each region's level histogram (rows: regions, columns: levels).
+void storeSqrtMass(const std::vector<double>& hist, const std::vector<double>& mass, int bins,
+                   uchar* out) {
+  for (size_t i = 0; i < hist.size(); ++i) {
+    const double m = mass[i / bins];
+    out[i] = cv::saturate_cast<uchar>(m > 0.0 ? 255.0 * std::sqrt(hist[i] / m) : 0.0);
+  }
+}
+
+cv::Mat layoutRegions(const cv::Mat& grey, const GlobalDescriptorConfig& c) {
+  const int cols = c.layout_columns, rows = c.layout_rows, bins = c.layout_bins;
+  const cv::Mat small = resized(grey, 32 * cols, 32 * rows);
+  const std::array<uchar, 256> lut = equalisation(small, cv::Mat());
+  std::vector<double> hist(static_cast<size_t>(cols) * rows * bins, 0.0);
+  std::vector<double> mass(static_cast<size_t>(cols) * rows, 0.0);
+  for (int y = 0; y < small.rows; ++y) {
+    const uchar* g = small.ptr<uchar>(y);
+    for (int x = 0; x < small.cols; ++x) {
+      const int region = (y / 32) * cols + x / 32;
+      hist[region * bins + lut[g[x]] * bins / 256] += 1.0;
+      mass[region] += 1.0;
+    }
+  }
+  cv::Mat out(1, c.length(DescriptorKind::kLayout), CV_8UC1);
+  storeSqrtMass(hist, mass, bins, out.ptr<uchar>(0));
+  return out;
+}
+
+cv::Mat layoutSectors(const cv::Mat& image, const cv::Mat& grey, const GlobalDescriptorConfig& c) {
+  MaskConfig ring = c.omni_ring;
+  if (ring.kind == MaskConfig::Kind::kAuto) {
+    cv::Mat bgr = image;
+    if (image.type() == CV_8UC1) cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
+    ring = detectRingMask(bgr, ring.auto_black_level);
+  }
+  // At most 160 px across: the sectors' histograms need a few hundred pixels each, not more.
+  const double scale = std::min(1.0, 160.0 / std::max(grey.cols, grey.rows));
+  const cv::Mat small = scale < 1.0 ? resized(grey, std::max(1, cvRound(grey.cols * scale)),
+                                              std::max(1, cvRound(grey.rows * scale)))
+                                    : grey;
+  const double sx = static_cast<double>(small.cols) / grey.cols;
+  const double sy = static_cast<double>(small.rows) / grey.rows;
+  const double cx = ring.center_x_px * sx, cy = ring.center_y_px * sy;
+  const double r0 = ring.inner_radius_px * sx, r1 = ring.outer_radius_px * sx;
+  const int sectors = c.layout_sectors, bins = c.layout_bins;
+  cv::Mat sector(small.size(), CV_32SC1, cv::Scalar(-1));
+  cv::Mat in_ring(small.size(), CV_8UC1, cv::Scalar(0));
+  for (int y = 0; y < small.rows; ++y)
+    for (int x = 0; x < small.cols; ++x) {
+      const double dx = (x + 0.5) - cx, dy = (y + 0.5) - cy;
+      const double r = std::hypot(dx, dy);
+      if (r < r0 || r > r1) continue;
+      const double turn = (std::atan2(dy, dx) + CV_PI) / (2.0 * CV_PI);  // 0..1
+      sector.at<int>(y, x) = std::min(sectors - 1, static_cast<int>(turn * sectors));
+      in_ring.at<uchar>(y, x) = 1;
+    }
+  const std::array<uchar, 256> lut = equalisation(small, in_ring);
+  std::vector<double> hist(static_cast<size_t>(sectors) * bins, 0.0), mass(sectors, 0.0);
+  for (int y = 0; y < small.rows; ++y) {
+    const uchar* g = small.ptr<uchar>(y);
+    const int* s = sector.ptr<int>(y);
+    for (int x = 0; x < small.cols; ++x) {
+      if (s[x] < 0) continue;
+      hist[s[x] * bins + lut[g[x]] * bins / 256] += 1.0;
+      mass[s[x]] += 1.0;
+    }
+  }
+  std::vector<uchar> root(hist.size());
+  storeSqrtMass(hist, mass, bins, root.data());
+  // Per level, |DFT| over the sectors: a turn of the robot shifts the sectors circularly, which
+  // changes only the phases. Frequency 0 is the level's mean; the others are scaled by 2 / S, so
+  // that a level in one sector alone has the same magnitude at every frequency.
+  const int freqs = sectors / 2 + 1;
+  cv::Mat out(1, c.length(DescriptorKind::kLayout), CV_8UC1);
+  for (int b = 0; b < bins; ++b)
+    for (int k = 0; k < freqs; ++k) {
+      double re = 0.0, im = 0.0;
+      for (int s2 = 0; s2 < sectors; ++s2) {
+        const double a = 2.0 * CV_PI * k * s2 / sectors;
+        re += root[s2 * bins + b] * std::cos(a);
+        im -= root[s2 * bins + b] * std::sin(a);
+      }
+      const double mag = std::hypot(re, im) * (k == 0 ? 1.0 : 2.0) / sectors;
+      out.at<uchar>(0, b * freqs + k) = cv::saturate_cast<uchar>(mag);
+    }
+  return out;
+}
+
+cv::Mat layout(const cv::Mat& image, const GlobalDescriptorConfig& c) {
+  const cv::Mat grey = toGrey(image);
+  return c.omni_ring.kind == MaskConfig::Kind::kNone ? layoutRegions(grey, c)
+                                                     : layoutSectors(image, grey, c);
+}
 }  // namespace
 
 std::string descriptorName(DescriptorKind k) { return kNames[static_cast<int>(k)]; }
@@ -116,7 +234,7 @@ DescriptorKind descriptorFromName(const std::string& name) {
   for (int i = 0; i < kNumDescriptorKinds; ++i)
     if (name == kNames[i]) return static_cast<DescriptorKind>(i);
   throw std::invalid_argument("unknown descriptor '" + name +
-                              "' (thumbnail, gradient, chromaticity)");
+                              "' (thumbnail, gradient, chromaticity, layout)");
 }
 
 void GlobalDescriptorConfig::validate() const {
@@ -134,6 +252,12 @@ void GlobalDescriptorConfig::validate() const {
            hog_height_px <= 2048,
        "hog_height_px must be a multiple of hog_cell_px, at least 2 cells, at most 2048");
   need(chroma_bins >= 2 && chroma_bins <= 64, "chroma_bins must be in [2, 64]");
+  need(layout_columns >= 1 && layout_columns <= 16, "layout_columns must be in [1, 16]");
+  need(layout_rows >= 1 && layout_rows <= 16, "layout_rows must be in [1, 16]");
+  need(layout_sectors >= 4 && layout_sectors <= 64 && layout_sectors % 2 == 0,
+       "layout_sectors must be even and in [4, 64]");
+  need(layout_bins >= 2 && layout_bins <= 64, "layout_bins must be in [2, 64]");
+  omni_ring.validate();
 }
 
 int GlobalDescriptorConfig::length(DescriptorKind kind) const {
@@ -146,6 +270,10 @@ int GlobalDescriptorConfig::length(DescriptorKind kind) const {
     }
     case DescriptorKind::kChromaticity:
       return 2 * chroma_bins * chroma_bins;
+    case DescriptorKind::kLayout:
+      return omni_ring.kind == MaskConfig::Kind::kNone
+                 ? layout_columns * layout_rows * layout_bins
+                 : (layout_sectors / 2 + 1) * layout_bins;
   }
   return 0;
 }
@@ -154,17 +282,28 @@ std::string GlobalDescriptorConfig::toString() const {
   return "thumbnail=" + std::to_string(thumbnail_width_px) + "x" +
          std::to_string(thumbnail_height_px) + "/" + std::to_string(patch_px) + " gradient=" +
          std::to_string(hog_width_px) + "x" + std::to_string(hog_height_px) + "/" +
-         std::to_string(hog_cell_px) + " chromaticity=" + std::to_string(chroma_bins);
+         std::to_string(hog_cell_px) + " chromaticity=" + std::to_string(chroma_bins) +
+         " layout=" +
+         (omni_ring.kind == MaskConfig::Kind::kNone
+              ? "regions" + std::to_string(layout_columns) + "x" + std::to_string(layout_rows)
+              : "sectors" + std::to_string(layout_sectors) + "@" + omni_ring.toString()) +
+         "/" + std::to_string(layout_bins);
 }
 
 void FusionWeights::validate() const {
-  for (double w : {thumbnail, gradient, chromaticity, words})
+  for (double w : {thumbnail, gradient, chromaticity, layout, words})
     if (!(std::isfinite(w) && w >= 0.0 && w <= 1000.0))
       throw std::invalid_argument("FusionWeights: each weight must be in [0, 1000]");
-  if (!(thumbnail + gradient + chromaticity > 0.0))
+  if (!(thumbnail + gradient + chromaticity + layout > 0.0))
     throw std::invalid_argument(
-        "FusionWeights: at least one of the thumbnail, gradient and chromaticity weights must be "
-        "> 0");
+        "FusionWeights: at least one of the thumbnail, gradient, chromaticity and layout weights "
+        "must be > 0");
+}
+
+GlobalDescriptorConfig descriptorConfigForMask(const MaskConfig& mask) {
+  GlobalDescriptorConfig c;
+  c.omni_ring = mask;
+  return c;
 }
 
 bool isCueName(const std::string& name) {
@@ -176,7 +315,7 @@ bool isCueName(const std::string& name) {
 
 std::array<double, kNumDescriptorKinds> cueWeights(const std::string& cue,
                                                    const FusionWeights& fusion) {
-  if (cue == "fused") return {fusion.thumbnail, fusion.gradient, fusion.chromaticity};
+  if (cue == "fused") return {fusion.thumbnail, fusion.gradient, fusion.chromaticity, fusion.layout};
   std::array<double, kNumDescriptorKinds> w{};
   w[static_cast<int>(descriptorFromName(cue))] = 1.0;
   return w;
@@ -191,6 +330,8 @@ cv::Mat computeDescriptor(const cv::Mat& image, DescriptorKind kind,
       return gradient(image, config);
     case DescriptorKind::kChromaticity:
       return chromaticity(image, config);
+    case DescriptorKind::kLayout:
+      return layout(image, config);
   }
   throw std::invalid_argument("computeDescriptor: unknown kind");
 }

@@ -24,7 +24,7 @@ void zScore(std::vector<float>& v) {
 }  // namespace
 
 const char* TraversalMatcherConfig::methodNames() {
-  return "thumbnail, gradient, chromaticity, words, fused, sequence";
+  return "thumbnail, gradient, chromaticity, layout, words, fused, sequence";
 }
 
 void TraversalMatcherConfig::validate() const {

@@ -88,6 +88,54 @@ TEST(GlobalDescriptor, GreyImagesHaveOneChromaticity) {
     EXPECT_NEAR(distance(grey1, bgr, static_cast<places::DescriptorKind>(k)), 0.0, 1e-9) << k;
 }
 
+TEST(GlobalDescriptor, LayoutIgnoresAnyMonotonicChangeOfBrightness) {
+  // Equalisation ranks the grey levels: a gamma curve and a gain (no clipping) keep every rank,
+  // so the layout hardly moves (the grey conversion and the resize round differently), while
+  // another scene's layout is far.
+  // Scenes with a large-scale layout (blurred far more than texture() does).
+  const auto scene = [](int seed) {
+    cv::Mat img = texture(seed);
+    cv::GaussianBlur(img, img, cv::Size(0, 0), 20.0);
+    cv::normalize(img, img, 30, 220, cv::NORM_MINMAX);
+    return img;
+  };
+  const cv::Mat a = scene(10), other = scene(11);
+  cv::Mat lut(1, 256, CV_8UC1);
+  for (int v = 0; v < 256; ++v)
+    lut.at<uchar>(0, v) = cv::saturate_cast<uchar>(255.0 * std::pow(v / 255.0, 1.8));
+  cv::Mat night;
+  cv::LUT(a, lut, night);
+  night.convertTo(night, -1, 0.8, 0.0);
+  const double same = distance(a, night, places::DescriptorKind::kLayout);
+  const double diff = distance(a, other, places::DescriptorKind::kLayout);
+  EXPECT_GT(diff, 5.0 * same) << same << " " << diff;
+}
+
+TEST(GlobalDescriptor, OmniLayoutIgnoresTheRobotTurning) {
+  // A ring image (square, ring about the image centre); the robot turning on the spot rotates it.
+  // A quarter turn moves every pixel onto another pixel exactly, and the 16 sectors by 4.
+  cv::Mat img = texture(12, 200, 200), other = texture(13, 200, 200);
+  places::GlobalDescriptorConfig c;
+  c.omni_ring = places::MaskConfig::parse("ring:100,100,20,95");
+  cv::Mat turned;
+  cv::rotate(img, turned, cv::ROTATE_90_CLOCKWISE);
+  const auto d = [&](const cv::Mat& x, const cv::Mat& y) -> double {
+    return places::descriptorDistances(places::computeDescriptor(x, places::DescriptorKind::kLayout, c),
+                                       places::computeDescriptor(y, places::DescriptorKind::kLayout, c))[0];
+  };
+  EXPECT_EQ(places::computeDescriptor(img, places::DescriptorKind::kLayout, c).cols,
+            (16 / 2 + 1) * 8);
+  EXPECT_LT(d(img, turned), 0.5);  // rounding of the stored bytes and of sector boundaries only
+  EXPECT_GT(d(img, other), 10.0 * std::max(0.05, d(img, turned)));
+  // The perspective regions are not built for it: a quarter turn moves them.
+  EXPECT_GT(distance(img, turned, places::DescriptorKind::kLayout), 5.0 * std::max(0.05, d(img, turned)));
+  // An omni configuration says so in its settings string (a database records it).
+  EXPECT_NE(c.toString().find("layout=sectors16@ring:"), std::string::npos) << c.toString();
+  EXPECT_NE(places::GlobalDescriptorConfig().toString().find("layout=regions4x2/8"),
+            std::string::npos);
+  EXPECT_EQ(places::descriptorConfigForMask(c.omni_ring).toString(), c.toString());
+}
+
 TEST(GlobalDescriptor, BatchDistanceIsTheMeanAbsoluteDifference) {
   cv::Mat stored(5, 37, CV_8UC1), query(1, 37, CV_8UC1);
   cv::RNG rng(9);
