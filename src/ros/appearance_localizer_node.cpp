@@ -38,6 +38,8 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
                               P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0),
                               P::loadStampOrder(pnh));
   publish_tf_ = P::get<bool>(pnh, "publish_tf", false);
+  transform_tolerance_s_ =
+      P::getInRange(pnh, "transform_tolerance", transform_tolerance_s_, 0.0, 10.0);
   map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   const int seed = P::getInRange(pnh, "seed", 1, 0, 1 << 30);
@@ -71,6 +73,8 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
   image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &AppearanceLocalizerNode::onImage, this);
   if (use_odom_)
     odom_sub_ = nh.subscribe(ros_topics::kOdom, 50, &AppearanceLocalizerNode::onOdom, this);
+  initial_pose_sub_ =
+      nh.subscribe("initialpose", 2, &AppearanceLocalizerNode::onInitialPose, this);
   global_srv_ = nh.advertiseService("global_localization",
                                     &AppearanceLocalizerNode::onGlobalLocalization, this);
   diagnostics_.setHardwareID("appearance_localizer");
@@ -90,6 +94,28 @@ AppearanceLocalizerNode::~AppearanceLocalizerNode() {
 }
 
 void AppearanceLocalizerNode::onOdom(const nav_msgs::OdometryConstPtr& msg) { odom_ = *msg; }
+
+void AppearanceLocalizerNode::onInitialPose(
+    const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg) {
+  if (msg->header.frame_id != map_frame_) {
+    ROS_WARN("appearance_localizer: initial pose in frame '%s' ignored: it must be in '%s'",
+             msg->header.frame_id.c_str(), map_frame_.c_str());
+    return;
+  }
+  const auto& k = msg->pose.covariance;  // row-major 6 x 6 over x, y, z, roll, pitch, yaw
+  Eigen::Matrix3d cov;
+  cov << k[0], k[1], k[5], k[6], k[7], k[11], k[30], k[31], k[35];
+  try {
+    mcl_->initGaussian(ros_conv::toSE2(msg->pose.pose), cov);
+  } catch (const std::invalid_argument& e) {
+    ROS_WARN("appearance_localizer: initial pose ignored: its (x, y, yaw) covariance: %s",
+             e.what());
+    return;
+  }
+  ++initial_poses_;
+  ROS_INFO("appearance_localizer: particles set around (%.2f, %.2f) from initialpose",
+           msg->pose.pose.position.x, msg->pose.pose.position.y);
+}
 
 bool AppearanceLocalizerNode::onGlobalLocalization(std_srvs::Empty::Request&,
                                                    std_srvs::Empty::Response&) {
@@ -153,7 +179,8 @@ void AppearanceLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs:
   if (publish_tf_ && odom_pose) {
     geometry_msgs::TransformStamped t =
         ros_conv::toTransform(ros_conv::mapToOdom(e.pose, world::planarToIsometry(*odom_pose)),
-                              map_frame_, odom_frame_, msg->header.stamp);
+                              map_frame_, odom_frame_,
+                              msg->header.stamp + ros::Duration(transform_tolerance_s_));
     tf_.sendTransform(t);
   }
   diagnostics_.update();
@@ -167,6 +194,7 @@ void AppearanceLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapp
   stat.add("frames", frames_);
   stat.add("classified", classified_);
   stat.add("re-initialisations", reinits_);
+  stat.add("initial poses taken", initial_poses_);
   stat.add("images dropped (bad)", gate_.badImages());
   stat.add("last room", last_room_);
 }

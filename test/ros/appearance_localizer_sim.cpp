@@ -1,5 +1,6 @@
 // rostest: appearance_localizer on a simulated run of the indoor building, scored against the
 // true pose and place.
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <map>
 #include <mutex>
+#include <string>
 
 #include "adaptive_perception/PlaceRecognition.h"
 #include "adaptive_perception/ros/msg_conversion.h"
@@ -79,6 +81,56 @@ TEST(AppearanceLocalizerSim, ClassifiesRoomsAndLocalizes) {
   EXPECT_GE(static_cast<double>(classified) / scored, min_classified);
   EXPECT_GE(static_cast<double>(right) / classified, min_accuracy);
   EXPECT_LE(median, max_median_err);
+}
+
+// After the run (the node still up): an initial pose in another frame and one with a covariance
+// that is not positive definite are refused, a good one is taken; the node's diagnostics count
+// what it took.
+TEST(AppearanceLocalizerSim, TakesAnInitialPoseOnlyInTheMapFrameWithAValidCovariance) {
+  ros::NodeHandle nh;
+  std::mutex mutex;
+  std::string taken;
+  auto diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 100, [&](const diagnostic_msgs::DiagnosticArrayConstPtr& m) {
+        for (const auto& s : m->status)
+          if (s.name.find("appearance_localizer") != std::string::npos)
+            for (const auto& kv : s.values)
+              if (kv.key == "initial poses taken") {
+                std::lock_guard<std::mutex> l(mutex);
+                taken = kv.value;
+              }
+      });
+  ros::Publisher pub = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("initialpose", 3);
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  for (int i = 0; i < 100 && pub.getNumSubscribers() == 0; ++i) ros::WallDuration(0.1).sleep();
+  ASSERT_GT(pub.getNumSubscribers(), 0u) << "appearance_localizer does not subscribe initialpose";
+  geometry_msgs::PoseWithCovarianceStamped m;
+  m.pose.pose.position.x = 2.0;
+  m.pose.pose.orientation.w = 1.0;
+  m.pose.covariance[0] = m.pose.covariance[7] = 0.25;
+  m.pose.covariance[35] = 0.07;
+  m.header.frame_id = "odom";  // not the map frame: refused
+  pub.publish(m);
+  geometry_msgs::PoseWithCovarianceStamped bad = m;
+  bad.header.frame_id = "map";
+  bad.pose.covariance[7] = -1.0;  // not positive definite: refused
+  pub.publish(bad);
+  m.header.frame_id = "map";
+  pub.publish(m);
+  std::string last;
+  for (int i = 0; i < 150; ++i) {  // the diagnostics heartbeat reports about once a second
+    {
+      std::lock_guard<std::mutex> l(mutex);
+      last = taken;
+    }
+    if (last == "1") break;
+    ros::WallDuration(0.1).sleep();
+  }
+  ros::WallDuration(2.5).sleep();  // two more reports: the count stays at one
+  std::lock_guard<std::mutex> l(mutex);
+  EXPECT_EQ(last, "1");
+  EXPECT_EQ(taken, "1");
 }
 
 int main(int argc, char** argv) {

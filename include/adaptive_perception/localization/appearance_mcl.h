@@ -80,6 +80,10 @@ class AppearanceMcl {
   void initGlobal();
   /// Particles in a circle of `radius_m` around `center` (any heading).
   void initAround(const math::SE2& center, double radius_m);
+  /// Particles drawn from N(`mean`, `covariance`) over (x_m, y_m, yaw_rad), headings wrapped: a
+  /// pose the user gives (rviz's "2D Pose Estimate", amcl's initialpose). Throws
+  /// std::invalid_argument when the covariance is not symmetric positive definite or not finite.
+  void initGaussian(const math::SE2& mean, const Eigen::Matrix3d& covariance);
 
   /// One step: motion (odometry delta of base_link, or the training run's average step), the
   /// unknown-room check, weighting by `frame_similarity` (frame index -> similarity; frames not

@@ -8,11 +8,16 @@
 //   ~max_features (200), ~candidates (30), ~translation_noise_m (0.05), ~rotation_noise_rad
 //   (0.05), ~stable_spread_m (0.5), ~stable_min_weight (0.15), ~full_reinit_after (8),
 //   ~unknown_fraction (0.25), ~known_radius_m (1.5), ~use_odom (true), ~max_rate_hz (5),
-//   ~publish_tf (false), ~map_frame (map), ~odom_frame (odom), ~seed (1).
+//   ~publish_tf (false), ~map_frame (map), ~odom_frame (odom), ~seed (1),
+//   ~transform_tolerance (s, 0.1, 0..10: map -> odom is stamped this far after the image, as
+//   amcl does, so that tf users can look up the latest poses until the next one comes).
 //   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
 //   this (or the clock jumping back) restarts (ros/stamp_order.h).
 // Subscribed: camera/image_raw (bgr8, rgb8, yuv422), odom (nav_msgs/Odometry; without it the
-//   training run's average step drives the particles).
+//   training run's average step drives the particles), initialpose
+//   (geometry_msgs/PoseWithCovarianceStamped in ~map_frame, as rviz's "2D Pose Estimate" sends it:
+//   the particles are drawn from that Gaussian; another frame or a covariance that is not
+//   positive definite is refused with a warning naming it, and the particles stay).
 // Published: appearance_localizer/pose (PoseWithCovarianceStamped in ~map_frame),
 //   appearance_localizer/particles (PoseArray), appearance_localizer/room (PlaceRecognition:
 //   place = the room, "not classified" while unstable, "unknown" for an unknown room; confidence
@@ -23,6 +28,7 @@
 // Services: global_localization (std_srvs/Empty): particles over every training pose again.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
@@ -47,6 +53,7 @@ class AppearanceLocalizerNode {
  private:
   void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
   void onOdom(const nav_msgs::OdometryConstPtr& msg);
+  void onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool onGlobalLocalization(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
@@ -59,7 +66,9 @@ class AppearanceLocalizerNode {
   std::string map_frame_, odom_frame_;
   std::optional<nav_msgs::Odometry> odom_;  // latest
   std::optional<math::SE2> last_odom_;      // at the last processed image
-  ros::Subscriber image_sub_, odom_sub_;
+  ros::Subscriber image_sub_, odom_sub_, initial_pose_sub_;
+  double transform_tolerance_s_ = 0.1;
+  long initial_poses_ = 0;
   ros::Publisher pose_pub_, particles_pub_, room_pub_;
   ros::ServiceServer global_srv_;
   tf2_ros::TransformBroadcaster tf_;

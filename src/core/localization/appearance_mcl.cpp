@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "adaptive_perception/math/angles.h"
+#include "adaptive_perception/math/gaussian.h"
 #include "adaptive_perception/math/opencv_seed.h"
 
 namespace adaptive_perception::localization {
@@ -107,6 +108,20 @@ void AppearanceMcl::initAround(const math::SE2& c, double radius_m) {
     const double r = radius_m * std::sqrt(rng_.uniform()), a = rng_.uniform(-M_PI, M_PI);
     particles_.emplace_back(c.x_m + r * std::cos(a), c.y_m + r * std::sin(a),
                             rng_.uniform(-M_PI, M_PI));
+  }
+  weights_.assign(particles_.size(), 1.0 / particles_.size());
+  similarity_.assign(particles_.size(), 0.0);
+}
+
+void AppearanceMcl::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& covariance) {
+  if (!covariance.allFinite())
+    throw std::invalid_argument("initGaussian: the covariance has a non-finite entry");
+  const math::Gaussian g(Eigen::Vector3d::Zero(), covariance);  // throws unless SPD
+  particles_.clear();
+  for (int i = 0; i < config_.particles; ++i) {
+    const Eigen::VectorXd d = g.sample(rng_);
+    particles_.emplace_back(mean.x_m + d[0], mean.y_m + d[1],
+                            math::wrapAngle(mean.yaw_rad + d[2]));
   }
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   similarity_.assign(particles_.size(), 0.0);

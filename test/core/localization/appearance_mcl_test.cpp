@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 
+#include "adaptive_perception/math/angles.h"
+
 using namespace adaptive_perception;
 using localization::AppearanceMcl;
 using localization::AppearanceMclConfig;
@@ -51,6 +53,43 @@ TEST(AppearanceMcl, AverageStepAndHeadingAwareNearestFrame) {
   EXPECT_EQ(m2.nearestFrame(math::SE2(1.1, 1, 3.0)), 1);
   EXPECT_EQ(m2.nearestFrame(math::SE2(1.1, 1, 0.2)), 0);
   EXPECT_NEAR(m2.distanceToKnown(4, 5), 5.0, 1e-5);
+}
+
+TEST(AppearanceMcl, InitialPoseDrawsTheGivenGaussian) {
+  // Monte Carlo check: 20,000 particles from a correlated covariance about a heading near +-pi
+  // (the draws wrap); their mean and covariance against the given ones, within a few standard
+  // errors (a variance's standard error with n draws is about sqrt(2 / n) of it: 1%).
+  AppearanceMclConfig cfg;
+  cfg.particles = 20000;
+  AppearanceMcl mcl(corridor(), 2, cfg, 5);
+  Eigen::Matrix3d cov;
+  cov << 0.25, 0.05, 0.0, 0.05, 0.09, 0.01, 0.0, 0.01, 0.04;
+  const math::SE2 mean(3.0, -1.0, 3.1);
+  mcl.initGaussian(mean, cov);
+  ASSERT_EQ(mcl.particles().size(), 20000u);
+  Eigen::Vector3d m = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> d;
+  for (const math::SE2& p : mcl.particles()) {
+    EXPECT_LE(std::abs(p.yaw_rad), M_PI + 1e-12);
+    d.emplace_back(p.x_m - mean.x_m, p.y_m - mean.y_m, math::angleDiff(p.yaw_rad, mean.yaw_rad));
+    m += d.back();
+  }
+  m /= d.size();
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+  for (const auto& v : d) c += (v - m) * (v - m).transpose();
+  c /= d.size() - 1;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(m[i], 0.0, 4.0 * std::sqrt(cov(i, i) / d.size())) << i;
+    for (int j = 0; j < 3; ++j)
+      EXPECT_NEAR(c(i, j), cov(i, j), 4.0 * std::sqrt((cov(i, i) * cov(j, j) + cov(i, j) * cov(i, j)) / d.size()))
+          << i << "," << j;
+  }
+  Eigen::Matrix3d not_spd = cov;
+  not_spd(0, 0) = -1.0;
+  EXPECT_THROW(mcl.initGaussian(mean, not_spd), std::invalid_argument);
+  not_spd = cov;
+  not_spd(1, 1) = std::nan("");
+  EXPECT_THROW(mcl.initGaussian(mean, not_spd), std::invalid_argument);
 }
 
 TEST(AppearanceMcl, ConvergesBecomesStableThenReinitialisesWhenLost) {
