@@ -57,7 +57,7 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       P::resolvePackagePath(P::getName(pnh, "field_file", "config/field_4legged.yaml")));
   config_.validate();
 
-  model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_model", 5);
+  model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_estimator/color_model", 5);
   classified_pub_ = nh.advertise<sensor_msgs::Image>("color_estimator/classified", 2);
   classified_color_pub_ = nh.advertise<sensor_msgs::Image>("color_estimator/classified_color", 2);
   // Two deep: an image re-sent older right after a newer one is seen, and dropped, rather than

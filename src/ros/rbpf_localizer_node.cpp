@@ -147,7 +147,7 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 
   pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("rbpf_localizer/pose", 5);
   particles_pub_ = nh.advertise<geometry_msgs::PoseArray>("rbpf_localizer/particles", 2);
-  model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_model", 5);
+  model_pub_ = nh.advertise<adaptive_perception::ColorModel>("rbpf_localizer/color_model", 5);
   classified_pub_ = nh.advertise<sensor_msgs::Image>("rbpf_localizer/classified", 2);
   classified_color_pub_ = nh.advertise<sensor_msgs::Image>("rbpf_localizer/classified_color", 2);
   // Two deep: an image re-sent older right after a newer one is seen, and dropped, rather than

@@ -44,7 +44,7 @@ class ColorEstimatorSwitching : public ::testing::Test {
                                                         classified_[m->header.stamp] = m;
                                                       }));
     subs_.push_back(nh_.subscribe<ColorModel>(
-        "color_model", 100, [this](const adaptive_perception::ColorModelConstPtr& m) {
+        "color_estimator/color_model", 100, [this](const adaptive_perception::ColorModelConstPtr& m) {
           std::lock_guard<std::mutex> l(mutex_);
           models_[m->header.stamp] = m;
         }));

@@ -47,7 +47,7 @@ class RbpfLocalizerSwitching : public ::testing::Test {
           particles_frame_ = m->header.frame_id;
         }));
     subs_.push_back(nh_.subscribe<adaptive_perception::ColorModel>(
-        "color_model", 10, [this](const adaptive_perception::ColorModelConstPtr& m) {
+        "rbpf_localizer/color_model", 10, [this](const adaptive_perception::ColorModelConstPtr& m) {
           std::lock_guard<std::mutex> l(mutex_);
           model_ = m;
         }));
@@ -115,7 +115,7 @@ TEST_F(RbpfLocalizerSwitching, GlobalStartConvergesAndPublishesEverything) {
     std::lock_guard<std::mutex> l(mutex_);
     EXPECT_EQ(particles_, 500u);
     EXPECT_EQ(particles_frame_, "map");
-    ASSERT_TRUE(model_ != nullptr) << "no color_model received";
+    ASSERT_TRUE(model_ != nullptr) << "no rbpf_localizer/color_model received";
     EXPECT_EQ(model_->mode_names.size(), 2u);
     EXPECT_EQ(model_->mean.size(), 3 * model_->color_names.size());
   }

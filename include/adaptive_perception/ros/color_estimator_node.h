@@ -17,8 +17,8 @@
 //   one arrives a 208x160 image is taken to be the AIBO ERS-7 camera), tf map -> image frame at the
 //   stamp.
 // Published (stamped with the image's stamp):
-//   color_model (adaptive_perception/ColorModel), color_estimator/classified (mono8 class ids, 255
-//   unknown), color_estimator/classified_color (bgr8), /diagnostics.
+//   color_estimator/color_model (adaptive_perception/ColorModel), color_estimator/classified
+//   (mono8 class ids, 255 unknown), color_estimator/classified_color (bgr8), /diagnostics.
 // Services:
 //   ~reset (std_srvs/Trigger): back to the priors. ~save_prior (adaptive_perception/SavePrior):
 //   writes the active mode's posterior as a prior YAML.

@@ -13,7 +13,7 @@
 //   rviz "2D Pose Estimate"), tf odom -> base_link and base_link -> image frame at the image stamp.
 // Published:
 //   rbpf_localizer/pose (geometry_msgs/PoseWithCovarianceStamped), rbpf_localizer/particles
-//   (geometry_msgs/PoseArray), tf map -> odom, color_model (adaptive_perception/ColorModel of the
+//   (geometry_msgs/PoseArray), tf map -> odom, rbpf_localizer/color_model (ColorModel of the
 //   best particle), rbpf_localizer/classified (mono8 class ids) and rbpf_localizer/classified_color
 //   (bgr8), /diagnostics (rate, effective sample size, spread, searches).
 // Services:
