@@ -29,14 +29,28 @@ std::string getFrameId(const ros::NodeHandle& nh, const std::string& name, const
   return v;
 }
 
+namespace {
+// The package's files as the running executable's location gives them: <dir>/../../share/
+// adaptive_perception, or the source tree named in its source_dir.txt (devel space only).
+std::string packageRootBesideExecutable() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return "";
+  const fs::path share = exe.parent_path().parent_path().parent_path() / "share" /
+                         "adaptive_perception";
+  std::ifstream named((share / "source_dir.txt").string());
+  std::string source;
+  if (named && std::getline(named, source) && !source.empty()) return source;
+  return fs::exists(share / "package.xml", ec) ? share.string() : "";
+}
+}  // namespace
+
 std::string resolvePackagePath(const std::string& value) {
   if (value.empty() || value[0] == '/' || std::ifstream(value).good()) return value;
-#ifdef AP_SOURCE_DIR
-  // The source tree this build came from (so tools work without a sourced workspace, and rospack is
-  // not asked, which prints errors when the package is not on ROS_PACKAGE_PATH).
-  const std::string source = std::string(AP_SOURCE_DIR) + "/" + value;
-  if (std::ifstream(source).good()) return source;
-#endif
+  // Before rospack, which prints errors when the package is not on ROS_PACKAGE_PATH.
+  static const std::string root = packageRootBesideExecutable();
+  if (!root.empty() && std::ifstream(root + "/" + value).good()) return root + "/" + value;
   const std::string share = ros::package::getPath("adaptive_perception");
   if (!share.empty() && std::ifstream(share + "/" + value).good()) return share + "/" + value;
   return value;

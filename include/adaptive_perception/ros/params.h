@@ -90,8 +90,12 @@ std::string getName(const ros::NodeHandle& nh, const std::string& name, const st
 /// only letters, digits and `_ - . /` (no spaces).
 std::string getFrameId(const ros::NodeHandle& nh, const std::string& name, const std::string& def);
 
-/// A file in the package's share directory (e.g. "config/field_4legged.yaml") when `value` is
-/// relative and not found from the current directory; `value` itself otherwise.
+/// A file of the package (e.g. "config/field_4legged.yaml") when `value` is relative and not found
+/// from the current directory; `value` itself otherwise. Looked for, in order, beside the running
+/// executable: an installed one (<prefix>/lib/adaptive_perception/) finds its share directory
+/// (<prefix>/share/adaptive_perception/), a devel-space one the source tree that the build wrote
+/// into devel/share/adaptive_perception/source_dir.txt (so that tools run without a sourced
+/// workspace); then rospack's path of the package. Nothing of the source tree is compiled in.
 std::string resolvePackagePath(const std::string& value);
 
 /// The priors a colour node runs on when ~priors / ~single_prior are not set.
