@@ -63,7 +63,7 @@ struct GlobalDescriptorConfig {
   int layout_rows = 2;     // perspective regions down, 1..16
   int layout_sectors = 16;  // omni-directional sectors, even, 4..64
   int layout_bins = 8;      // equalised grey levels per region, 2..64
-  // none: a perspective image. A ring or auto (omniDescriptorConfig sets it from the colour
+  // none: a perspective image. A ring or auto (descriptorConfigForMask sets it from the colour
   // histograms' mask): an omni-directional image, described by sectors of that ring.
   MaskConfig omni_ring;
 

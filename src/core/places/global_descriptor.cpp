@@ -76,6 +76,16 @@ cv::Mat gradient(const cv::Mat& image, const GlobalDescriptorConfig& c) {
   return out;
 }
 
+// 255 sqrt(share) of each region's histogram (`bins` values a region; `mass`: each region's
+// total), so that the L1 distance behaves like the Hellinger distance.
+void storeSqrtMass(const std::vector<double>& hist, const std::vector<double>& mass, int bins,
+                   uchar* out) {
+  for (size_t i = 0; i < hist.size(); ++i) {
+    const double m = mass[i / bins];
+    out[i] = cv::saturate_cast<uchar>(m > 0.0 ? 255.0 * std::sqrt(hist[i] / m) : 0.0);
+  }
+}
+
 cv::Mat chromaticity(const cv::Mat& image, const GlobalDescriptorConfig& c) {
   if (image.empty()) throw std::invalid_argument("computeDescriptor: empty image");
   if (image.type() != CV_8UC3 && image.type() != CV_8UC1)
@@ -103,10 +113,7 @@ cv::Mat chromaticity(const cv::Mat& image, const GlobalDescriptorConfig& c) {
     }
   }
   cv::Mat out(1, 2 * cells, CV_8UC1);
-  for (int i = 0; i < 2 * cells; ++i) {
-    const double m = mass[i / cells];
-    out.at<uchar>(0, i) = cv::saturate_cast<uchar>(m > 0.0 ? 255.0 * std::sqrt(hist[i] / m) : 0.0);
-  }
+  storeSqrtMass(hist, {mass[0], mass[1]}, cells, out.ptr<uchar>(0));
   return out;
 }
 
@@ -131,15 +138,6 @@ std::array<uchar, 256> equalisation(const cv::Mat& grey, const cv::Mat& mask) {
     below += count[v];
   }
   return lut;
-}
-
-// 255 sqrt(mass) of each region's level histogram (rows: regions, columns: levels).
-void storeSqrtMass(const std::vector<double>& hist, const std::vector<double>& mass, int bins,
-                   uchar* out) {
-  for (size_t i = 0; i < hist.size(); ++i) {
-    const double m = mass[i / bins];
-    out[i] = cv::saturate_cast<uchar>(m > 0.0 ? 255.0 * std::sqrt(hist[i] / m) : 0.0);
-  }
 }
 
 cv::Mat layoutRegions(const cv::Mat& grey, const GlobalDescriptorConfig& c) {
