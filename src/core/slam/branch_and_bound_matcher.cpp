@@ -1,0 +1,139 @@
+#include "adaptive_perception/slam/branch_and_bound_matcher.h"
+
+#include <algorithm>
+#include <functional>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
+
+namespace adaptive_perception::slam {
+
+void BranchAndBoundWindow::validate() const {
+  auto need = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("BranchAndBoundWindow: " + what);
+  };
+  need(std::isfinite(search_xy_m) && search_xy_m >= 0.0 && search_xy_m <= 200.0,
+       "search_xy_m must be in [0, 200]");
+  need(std::isfinite(search_yaw_rad) && search_yaw_rad >= 0.0 && search_yaw_rad <= M_PI,
+       "search_yaw_rad must be in [0, pi]");
+  need(std::isfinite(yaw_step_rad) && yaw_step_rad >= 1e-4 && yaw_step_rad <= 0.5,
+       "yaw_step_rad must be in [1e-4, 0.5]");
+}
+
+BranchAndBoundMatcher::BranchAndBoundMatcher(const LikelihoodField& field, int depth)
+    : origin_m_(field.origin()),
+      resolution_m_(field.resolution()),
+      rows_(field.values().rows),
+      cols_(field.values().cols) {
+  if (depth < 0 || depth > 12)
+    throw std::invalid_argument("BranchAndBoundMatcher: depth must be in [0, 12]");
+  levels_.push_back(field.values().clone());
+  for (int d = 1; d <= depth; ++d) {
+    const int w = 1 << d;
+    cv::Mat padded;
+    cv::copyMakeBorder(field.values(), padded, w - 1, w - 1, w - 1, w - 1, cv::BORDER_CONSTANT,
+                       cv::Scalar(0));
+    // dst(x, y) = max of padded over [x, x + w) x [y, y + w): the block starting at field cell
+    // (x - w + 1, y - w + 1).
+    cv::Mat pooled;
+    cv::dilate(padded, pooled, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(w, w)),
+               cv::Point(0, 0), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+    levels_.push_back(pooled(cv::Rect(0, 0, cols_ + w - 1, rows_ + w - 1)).clone());
+  }
+}
+
+namespace {
+struct Candidate {
+  int yaw_index;  // into the rotated point sets
+  int ox, oy;     // offset in cells
+  float score;    // the bound at the candidate's level (the score at level 0)
+};
+}  // namespace
+
+std::optional<ScanMatch> BranchAndBoundMatcher::match(
+    const std::vector<Eigen::Vector2d>& points_robot, const math::SE2& prior,
+    const BranchAndBoundWindow& window, double min_score, long* nodes_visited) const {
+  window.validate();
+  if (points_robot.empty()) return std::nullopt;
+  const int k = static_cast<int>(std::floor(window.search_xy_m / resolution_m_ + 1e-9));
+  const int yaw_steps = static_cast<int>(std::floor(window.search_yaw_rad / window.yaw_step_rad + 1e-9));
+  const int n_yaw = 2 * yaw_steps + 1;
+  const int n_pts = static_cast<int>(points_robot.size());
+  // The points' cells for each yaw, as (x, y) pairs.
+  std::vector<std::vector<cv::Point>> cells(n_yaw, std::vector<cv::Point>(n_pts));
+  for (int j = 0; j < n_yaw; ++j) {
+    const double yaw = prior.yaw_rad + (j - yaw_steps) * window.yaw_step_rad;
+    const double c = std::cos(yaw), s = std::sin(yaw);
+    for (int i = 0; i < n_pts; ++i) {
+      const Eigen::Vector2d& p = points_robot[i];
+      const double wx = prior.x_m + c * p.x() - s * p.y();
+      const double wy = prior.y_m + s * p.x() + c * p.y();
+      cells[j][i] = cv::Point(static_cast<int>(std::lround((wx - origin_m_.x()) / resolution_m_)),
+                              static_cast<int>(std::lround((wy - origin_m_.y()) / resolution_m_)));
+    }
+  }
+  long visited = 0;
+  const float inv_n = 1.0f / static_cast<float>(n_pts);
+  auto bound = [&](const Candidate& cand, int d) {
+    ++visited;
+    const cv::Mat& level = levels_[d];
+    const int shift = (1 << d) - 1;
+    float sum = 0.0f;
+    for (const cv::Point& c : cells[cand.yaw_index]) {
+      const int x = c.x + cand.ox + shift, y = c.y + cand.oy + shift;
+      if (x < 0 || y < 0 || x >= level.cols || y >= level.rows) continue;
+      sum += level.ptr<float>(y)[x];
+    }
+    return sum * inv_n;
+  };
+  const int top = depth();
+  const int w_top = 1 << top;
+  std::vector<Candidate> candidates;
+  for (int j = 0; j < n_yaw; ++j)
+    for (int oy = -k; oy <= k; oy += w_top)
+      for (int ox = -k; ox <= k; ox += w_top) {
+        Candidate c{j, ox, oy, 0.0f};
+        c.score = bound(c, top);
+        candidates.push_back(c);
+      }
+  auto by_score = [](const Candidate& a, const Candidate& b) { return a.score > b.score; };
+  std::sort(candidates.begin(), candidates.end(), by_score);
+
+  float best_score = static_cast<float>(min_score);
+  std::optional<Candidate> best;
+  // Depth first, best bound first; a candidate whose bound is no better than the best leaf found
+  // so far cannot hold a better one.
+  std::function<void(const std::vector<Candidate>&, int)> search =
+      [&](const std::vector<Candidate>& list, int d) {
+        for (const Candidate& c : list) {
+          if (c.score <= best_score) return;  // sorted: no later one is better
+          if (d == 0) {
+            best_score = c.score;
+            best = c;
+            continue;
+          }
+          const int h = 1 << (d - 1);
+          std::vector<Candidate> children;
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) {
+              Candidate child{c.yaw_index, c.ox + a * h, c.oy + b * h, 0.0f};
+              if (child.ox > k || child.oy > k) continue;
+              child.score = bound(child, d - 1);
+              children.push_back(child);
+            }
+          std::sort(children.begin(), children.end(), by_score);
+          search(children, d - 1);
+        }
+      };
+  search(candidates, top);
+  if (nodes_visited) *nodes_visited = visited;
+  if (!best) return std::nullopt;
+  ScanMatch m;
+  m.pose = math::SE2(prior.x_m + best->ox * resolution_m_, prior.y_m + best->oy * resolution_m_,
+                     prior.yaw_rad + (best->yaw_index - yaw_steps) * window.yaw_step_rad);
+  m.score = best->score;
+  return m;
+}
+
+}  // namespace adaptive_perception::slam

@@ -1,0 +1,133 @@
+// The branch-and-bound search against scoring every lattice pose (written here independently:
+// rotate, round each point to its cell, sum the field over the points), and a scan found again
+// far outside the local matcher's window.
+#include "adaptive_perception/slam/branch_and_bound_matcher.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "adaptive_perception/math/angles.h"
+#include "synthetic_room.h"
+
+namespace slam = adaptive_perception::slam;
+namespace math = adaptive_perception::math;
+using adaptive_perception::test::room;
+using adaptive_perception::test::scanFrom;
+
+namespace {
+
+std::vector<Eigen::Vector2d> mapPoints() {
+  std::vector<Eigen::Vector2d> pts;
+  for (const auto& s : room()) {
+    const int n = static_cast<int>((s.b - s.a).norm() / 0.02);
+    for (int k = 0; k <= n; ++k) pts.push_back(s.a + (s.b - s.a) * k / std::max(1, n));
+  }
+  return pts;
+}
+
+struct Exhaustive {
+  double score = -1.0;
+  math::SE2 pose;
+};
+
+Exhaustive exhaustive(const slam::LikelihoodField& f, const std::vector<Eigen::Vector2d>& pts,
+                      const math::SE2& prior, const slam::BranchAndBoundWindow& w) {
+  Exhaustive best;
+  const double res = f.resolution();
+  const int k = static_cast<int>(std::floor(w.search_xy_m / res + 1e-9));
+  const int J = static_cast<int>(std::floor(w.search_yaw_rad / w.yaw_step_rad + 1e-9));
+  const cv::Mat& v = f.values();
+  for (int j = -J; j <= J; ++j) {
+    const double yaw = prior.yaw_rad + j * w.yaw_step_rad;
+    for (int oy = -k; oy <= k; ++oy)
+      for (int ox = -k; ox <= k; ++ox) {
+        double s = 0.0;
+        for (const auto& p : pts) {
+          const double wx = prior.x_m + std::cos(yaw) * p.x() - std::sin(yaw) * p.y();
+          const double wy = prior.y_m + std::sin(yaw) * p.x() + std::cos(yaw) * p.y();
+          const int cx = static_cast<int>(std::lround((wx - f.origin().x()) / res)) + ox;
+          const int cy = static_cast<int>(std::lround((wy - f.origin().y()) / res)) + oy;
+          if (cx >= 0 && cy >= 0 && cx < v.cols && cy < v.rows) s += v.at<float>(cy, cx);
+        }
+        s /= pts.size();
+        if (s > best.score) best = {s, math::SE2(prior.x_m + ox * res, prior.y_m + oy * res, yaw)};
+      }
+  }
+  return best;
+}
+
+TEST(BranchAndBoundMatcher, FindsTheSameBestScoreAsScoringEveryLatticePose) {
+  // A coarse field (so that the exhaustive reference stays quick), scans from several poses with
+  // noise, priors off by up to 1.5 m and 0.2 rad, and every depth from 0 (no pruning) to 5.
+  const slam::LikelihoodField f(mapPoints(), 0.1, 0.15, 1.0);
+  std::mt19937 rng(3);
+  const slam::BranchAndBoundWindow w{2.0, 0.24, 0.04};
+  const std::vector<math::SE2> truths = {{2.0, 1.5, 0.3}, {8.0, 4.5, 2.8}, {6.0, 2.0, -1.2}};
+  const std::vector<math::SE2> offsets = {{1.5, -1.0, 0.2}, {-0.7, 1.3, -0.15}, {0.3, 0.2, 0.05}};
+  for (size_t t = 0; t < truths.size(); ++t) {
+    const auto scan = scanFrom(truths[t], &rng, 0.02);
+    const math::SE2 prior(truths[t].x_m + offsets[t].x_m, truths[t].y_m + offsets[t].y_m,
+                          truths[t].yaw_rad + offsets[t].yaw_rad);
+    const Exhaustive ref = exhaustive(f, scan, prior, w);
+    for (int depth = 0; depth <= 5; ++depth) {
+      const slam::BranchAndBoundMatcher bnb(f, depth);
+      long visited = 0;
+      const auto m = bnb.match(scan, prior, w, 0.0, &visited);
+      ASSERT_TRUE(m.has_value()) << t << " depth " << depth;
+      EXPECT_NEAR(m->score, ref.score, 1e-5) << t << " depth " << depth;
+      EXPECT_NEAR(m->pose.x_m, ref.pose.x_m, 1e-9) << t << " depth " << depth;
+      EXPECT_NEAR(m->pose.y_m, ref.pose.y_m, 1e-9) << t << " depth " << depth;
+      EXPECT_NEAR(math::angleDiff(m->pose.yaw_rad, ref.pose.yaw_rad), 0.0, 1e-9);
+      // The lattice's best is within a cell and a yaw step of the truth.
+      EXPECT_LT(std::hypot(m->pose.x_m - truths[t].x_m, m->pose.y_m - truths[t].y_m), 0.15) << t;
+      EXPECT_LT(std::fabs(math::angleDiff(m->pose.yaw_rad, truths[t].yaw_rad)), 0.041) << t;
+      if (depth >= 3) {  // the bound prunes: far fewer scores than the lattice's 41 x 41 x 13
+        EXPECT_LT(visited, 41 * 41 * 13 / 4) << t << " depth " << depth;
+      }
+    }
+  }
+}
+
+TEST(BranchAndBoundMatcher, ReturnsNothingBelowTheMinimumScore) {
+  const slam::LikelihoodField f(mapPoints(), 0.1, 0.15, 1.0);
+  const slam::BranchAndBoundMatcher bnb(f, 3);
+  const auto scan = scanFrom({3.0, 3.0, 0.0});
+  const slam::BranchAndBoundWindow w{1.0, 0.1, 0.02};
+  const auto m = bnb.match(scan, {3.0, 3.0, 0.0}, w, 0.0);
+  ASSERT_TRUE(m.has_value());
+  EXPECT_FALSE(bnb.match(scan, {3.0, 3.0, 0.0}, w, m->score + 1e-3).has_value());
+  // A scan placed entirely off the field scores 0 everywhere.
+  EXPECT_FALSE(bnb.match(scan, {100.0, 100.0, 0.0}, w, 0.0).has_value());
+}
+
+TEST(BranchAndBoundMatcher, RecoversAPoseFarOutsideTheLocalWindow) {
+  // After a long loop the estimate is metres and tens of degrees off: a 0.2 m / 0.05 cell field,
+  // the prior 3.4 m and 0.5 rad away, a 4 m x 0.6 rad window (6.5 million lattice poses).
+  const slam::LikelihoodField f(mapPoints(), 0.05, 0.1, 1.0);
+  const slam::BranchAndBoundMatcher bnb(f, 5);
+  std::mt19937 rng(5);
+  const math::SE2 truth(2.5, 4.0, -0.6);
+  const auto scan = scanFrom(truth, &rng, 0.02);
+  long visited = 0;
+  const auto m = bnb.match(scan, {5.5, 2.4, -0.1}, {4.0, 0.6, 0.01}, 0.3, &visited);
+  ASSERT_TRUE(m.has_value());
+  EXPECT_LT(std::hypot(m->pose.x_m - truth.x_m, m->pose.y_m - truth.y_m), 0.08);
+  EXPECT_LT(std::fabs(math::angleDiff(m->pose.yaw_rad, truth.yaw_rad)), 0.011);
+  EXPECT_GT(m->score, 0.7);
+  EXPECT_LT(visited, 161L * 161 * 121 / 20);
+}
+
+TEST(BranchAndBoundMatcher, RefusesBadArguments) {
+  const slam::LikelihoodField f(mapPoints(), 0.1, 0.15, 1.0);
+  EXPECT_THROW(slam::BranchAndBoundMatcher(f, -1), std::invalid_argument);
+  EXPECT_THROW(slam::BranchAndBoundMatcher(f, 13), std::invalid_argument);
+  const slam::BranchAndBoundMatcher bnb(f, 2);
+  EXPECT_THROW(bnb.match(scanFrom({3, 3, 0}), {3, 3, 0}, {1.0, 0.1, 0.0}, 0.0),
+               std::invalid_argument);
+  EXPECT_FALSE(bnb.match({}, {3, 3, 0}, {1.0, 0.1, 0.01}, 0.0).has_value());
+}
+
+}  // namespace
