@@ -24,6 +24,7 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   namespace P = ros_params;
   config_.front_end = P::get<bool>(pnh, "front_end", config_.front_end);
   config_.loop_closing = P::get<bool>(pnh, "loop_closing", config_.loop_closing);
+  config_.loop.wide_search = P::get<bool>(pnh, "wide_search", config_.loop.wide_search);
   slam::LineEkfSlamConfig& c = config_.ekf;
   try {
     c.variant = slam::parseVariant(P::get<std::string>(pnh, "variant", "standard"));
@@ -509,6 +510,8 @@ void EkfSlamMapperNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   stat.add("front end: weak matches (odometry kept)", slam_->frontEnd().weakMatchesRejected());
   stat.add("loop closing", config_.loop_closing ? "on" : "off");
   stat.add("loop closures", slam_->loopCloser().loopClosures());
+  stat.add("wide search", config_.loop.wide_search ? "on" : "off");
+  stat.add("wide loops confirmed (two edges each)", slam_->loopCloser().wideConfirmed());
   stat.add("graph nodes", slam_->loopCloser().nodes());
   stat.add("chain edges from the front end (EKF jumped)", slam_->loopCloser().chainEdgesReplaced());
   stat.add("update time last (ms)", last_update_ms_);

@@ -7,8 +7,8 @@
 //                 [--range_noise_std_m 0.01] [--max_gap_m 0.3] [--odom_noise_scale 1]
 //                 [--line_model_rho_std_m 0.02] [--line_model_alpha_std_rad 0.01]
 //                 [--merge_landmarks 1] [--share_landmarks 1] [--first_estimate_jacobians 0]
-//                 [--front_end laser_odometry|none] [--loop_closing 1|0] [--output DIR]
-//                 [--name TITLE]
+//                 [--front_end laser_odometry|none] [--loop_closing 1|0] [--wide_search 1|0]
+//                 [--output DIR] [--name TITLE]
 //
 // The mapper is slam::LaserSlam (slam/laser_slam.h), as ekf_slam_mapper runs it; the defaults are
 // its defaults, the same on every log. --front_end laser_odometry (default): each scan is first
@@ -19,6 +19,9 @@
 // keyframes of the EKF's trajectory with loop edges from scan matching (slam/pose_graph.h);
 // OUTPUT/estimate.tum then holds every scan's optimised pose (OUTPUT/ekf.tum the EKF's own), and
 // the relation keys are of the optimised trajectory (ekf_relation_trans_error_m: the EKF's).
+// --wide_search 1 (default): loops the estimate has drifted metres from are searched for by branch
+// and bound (LoopClosingConfig::wide_search; summary keys wide_attempts, wide_matches,
+// wide_confirmed).
 // `--front_end none --loop_closing 0` is the paper's filter alone, on the wheel odometry with
 // --odom_noise_scale times its noise model (the simulator's consistency checks run it so).
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
@@ -173,7 +176,7 @@ int main(int argc, char** argv) {
                    "[--max_scans N] [--range_noise_std_m S] [--max_gap_m M] [--odom_noise_scale K] "
                    "[--line_model_rho_std_m S] [--line_model_alpha_std_rad S] [--merge_landmarks "
                    "0|1] [--share_landmarks 0|1] [--first_estimate_jacobians 0|1] "
-                   "[--front_end laser_odometry|none] [--loop_closing 1|0] [--output DIR] "
+                   "[--front_end laser_odometry|none] [--loop_closing 1|0] [--wide_search 1|0] [--output DIR] "
                    "[--name TITLE]");
   const std::string bag_path = args.get("bag", "");
   slam::LaserSlamConfig slam_cfg;
@@ -199,6 +202,8 @@ int main(int argc, char** argv) {
   const double odom_scale = args.getDouble("odom_noise_scale", 1.0);
   const std::string front_end = args.get("front_end", "laser_odometry");
   slam_cfg.loop_closing = args.getInt("loop_closing", slam_cfg.loop_closing ? 1 : 0) != 0;
+  slam_cfg.loop.wide_search =
+      args.getInt("wide_search", slam_cfg.loop.wide_search ? 1 : 0) != 0;
   const bool loop_closing = slam_cfg.loop_closing;
   slam_cfg.front_end = front_end == "laser_odometry";
   for (localization::MotionModelConfig* m : {&cfg.motion, &slam_cfg.front_end_motion})
@@ -447,7 +452,8 @@ int main(int argc, char** argv) {
         "merged=%ld scans=%zu update_ms_mean=%.3f update_ms_max=%.3f realtime_factor=%.1f "
         "front_end=%s front_end_relation_trans_error_m=%.4f front_end_relation_rot_error_deg=%.3f "
         "front_end_matched=%.3f front_end_weak_matches=%ld loop_closures=%d graph_nodes=%d "
-        "ekf_relation_trans_error_m=%.4f chain_edges_replaced=%d loops_rejected_free_space=%ld grid_cells=%dx%d grid_s=%.1f\n",
+        "ekf_relation_trans_error_m=%.4f chain_edges_replaced=%d loops_rejected_free_space=%ld "
+        "wide_attempts=%ld wide_matches=%ld wide_confirmed=%ld grid_cells=%dx%d grid_s=%.1f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
         with_truth ? double(below) / with_truth : -1.0,
@@ -463,7 +469,8 @@ int main(int argc, char** argv) {
         slam.frontEnd().weakMatchesRejected(), slam.loopCloser().loopClosures(),
         slam.loopCloser().nodes(), has_rel ? ekf_rel.trans_mean_m : -1.0,
         slam.loopCloser().chainEdgesReplaced(), slam.loopCloser().freeSpaceRejections(),
-        grid.width, grid.height, grid_s);
+        slam.loopCloser().wideAttempts(), slam.loopCloser().wideMatches(),
+        slam.loopCloser().wideConfirmed(), grid.width, grid.height, grid_s);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";
     return 1;

@@ -10,6 +10,9 @@
 //   odometry with ~odom_alpha1.. (the paper's filter).
 //   ~loop_closing (bool, true): a pose graph over the EKF's keyframes with loop edges from scan
 //   matching (needs `scan`); the published pose, map -> odom, path and grid are the graph's.
+//   ~wide_search (bool, true): with ~loop_closing, loops the estimate has drifted metres from are
+//   searched for by branch and bound and taken once two matches agree
+//   (slam::LoopClosingConfig::wide_search).
 //   ~initial_map (path, default none): a line map written by ~save_map (slam/map_io.h), loaded at
 //   start-up (and again on ~reset) to localize against without extending it: its confirmed and
 //   fixed landmarks correct the pose with their covariance, no landmark is started, and loop

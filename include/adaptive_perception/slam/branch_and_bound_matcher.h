@@ -53,7 +53,6 @@ class BranchAndBoundMatcher {
   std::vector<cv::Mat> levels_;
   Eigen::Vector2d origin_m_;
   double resolution_m_;
-  int rows_, cols_;
 };
 
 }  // namespace adaptive_perception::slam

@@ -19,10 +19,13 @@
 // lies within search_radius_m of its current estimate, nearest first, at most
 // max_candidates_per_node; a match scoring at least min_loop_score adds a loop edge whose
 // information is the match's own (scan_matcher.h, matchInformation; a corridor's length is not
-// constrained), and the graph is optimised. Every scan's final pose is its last node's optimised pose composed with the local
-// motion since that node.
+// constrained), and the graph is optimised. A node that closes no loop so may close one by the
+// wide search (LoopClosingConfig::wide_search), for loops the estimate has drifted metres from.
+// Every scan's final pose is its last node's optimised pose composed with the local motion since
+// that node.
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "adaptive_perception/math/se2.h"
@@ -34,8 +37,10 @@ class PoseGraph2D {
  public:
   int addNode(const math::SE2& initial);
   /// Throws std::invalid_argument on an unknown node or a non-positive-definite information.
+  /// A loop edge goes through the Cauchy loss unless `robust` is false (a loop already confirmed
+  /// twice, whose residual before the optimisation may be hundreds of its stds).
   void addEdge(int i, int j, const math::SE2& z_ij, const Eigen::Matrix3d& information,
-               bool loop = false);
+               bool loop = false, bool robust = true);
   /// Levenberg-Marquardt with a sparse Cholesky solver; returns the final cost.
   double optimize(int max_iterations = 30);
   int numNodes() const { return static_cast<int>(x_.size()); }
@@ -49,6 +54,7 @@ class PoseGraph2D {
     math::SE2 z;
     Eigen::Matrix3d sqrt_info;
     bool loop;
+    bool robust;
   };
   std::vector<std::array<double, 3>> x_;
   std::vector<Edge> edges_;
@@ -89,6 +95,39 @@ struct LoopClosingConfig {
                                      // from the match's information, matchInformation)
   double max_range_m = 25.0;         // scan points farther than this are left out
   double connect_gap_m = 0.3;        // consecutive returns closer than this make one wall
+  // The wide search, for a loop the estimate has drifted too far from for the window above (after
+  // a kilometre of corridor the drift is tens of metres and degrees). When a node closes no loop
+  // locally, at most every wide_every_nodes nodes, its scan is matched by branch and bound
+  // (branch_and_bound_matcher.h, at coarse_resolution_m) against the scans of every older node
+  // that could hold it: node k, at least wide_min_loop_m back along the chain, is taken when it
+  // lies within r_k + max_range_m of the estimate, r_k = search_radius_m + wide_drift_per_m *
+  // (the chain's length from k to the new node), at most wide_max_xy_m; the window is the largest
+  // r_k taken, and in yaw coarse_search_yaw_rad + wide_drift_rad_per_m * the longest such length,
+  // at most wide_max_yaw_rad. A pose scoring at least wide_min_score is then matched and checked
+  // as a local candidate is (min_loop_score), against the stretch of the chain within max_range_m
+  // (along it) of the member nearest that pose: one traversal, consistent in itself, which sees
+  // what the new scan sees even where the nearest node looked the other way along a corridor. Its
+  // free-space check is against that node's own submap and allows
+  // wide_max_free_space_violations: on fr-clinic, right matches (their walls drawn on the old
+  // ones and looked at) had 0.06-0.53 of their points in front of some old return (people, doors,
+  // halls), the wrong ones 0.09-1, most above 0.5: the check alone cannot tell them apart. So a
+  // wide loop is believed only once a second
+  // one, found within wide_confirm_nodes nodes, moves the estimate the same way (within
+  // wide_confirm_m and wide_confirm_rad, plus the drift allowed over the chain between them). Both edges then enter the graph without the robust
+  // loss, which would otherwise discount a correction of hundreds of stds.
+  bool wide_search = true;
+  int wide_every_nodes = 8;           // every 4 nodes cost mit-csail 16% of its speed (28 -> 24x)
+  double wide_drift_per_m = 0.05;     // fr-clinic's estimate was 40 m off after 1.3 km (3%)
+  double wide_drift_rad_per_m = 0.001;
+  double wide_max_xy_m = 60.0;
+  double wide_max_yaw_rad = 0.6;
+  double wide_min_score = 0.5;
+  double wide_min_loop_m = 50.0;      // nearer nodes along the chain are left out: the scan sees
+                                      // them still (2 max_range_m), and would match them best
+  double wide_max_free_space_violations = 0.3;
+  int wide_confirm_nodes = 20;
+  double wide_confirm_m = 1.0;
+  double wide_confirm_rad = 0.05;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
@@ -130,14 +169,33 @@ class LoopClosingMapper {
   const std::vector<LoopEdge>& loopEdges() const { return loop_edges_; }
   /// Chain edges that took the reference's relative pose (the local estimator failed the gate).
   int chainEdgesReplaced() const { return chain_replaced_; }
+  /// The wide search: attempts, matches that passed the local checks, and pairs of them that
+  /// agreed (each pair adds two loop edges, counted in loopClosures()).
+  long wideAttempts() const { return wide_attempts_; }
+  long wideMatches() const { return wide_matches_; }
+  long wideConfirmed() const { return wide_confirmed_; }
 
  private:
   bool tryLoop(int node);
+  /// The wide search of node n (see LoopClosingConfig::wide_search); true when it closed a loop.
+  bool tryWide(int n);
+  /// The candidate k for node n with n's pose in k's frame `prior`: the coarse (unless
+  /// coarse_search is false: the prior is already a coarse match) and fine matches against the
+  /// scans of the `submap` nodes (k's frame), the score and free-space checks; the measured pose
+  /// of n in k's frame.
+  struct Verified {
+    math::SE2 n_in_k;
+    Eigen::Matrix3d information;
+    double score;
+  };
+  std::optional<Verified> verify(int n, int k, const math::SE2& prior,
+                                 const std::vector<int>& submap, double max_free_space_violations,
+                                 bool coarse_search);
   /// The free-space check of node n matched at n_in_k in the frame of node k (xk_inv: k's pose
-  /// inverted) against the submap nodes lo..hi: the share of points seen through (see
+  /// inverted) against the submap nodes: the share of points seen through (see
   /// freeSpaceViolationShare).
-  double freeSpaceShare(int n, const math::SE2& xk_inv, const math::SE2& n_in_k, int lo,
-                        int hi) const;
+  double freeSpaceShare(int n, const math::SE2& xk_inv, const math::SE2& n_in_k,
+                        const std::vector<int>& submap) const;
 
   LoopClosingConfig config_;
   PoseGraph2D graph_;
@@ -147,8 +205,17 @@ class LoopClosingMapper {
     math::SE2 reference;  // the reference pose at the node (when given)
     bool has_reference = false;
     std::vector<Eigen::Vector2d> points;
+    double path_m = 0.0;  // the chain's length from the first node
   };
   std::vector<NodeData> nodes_;
+  struct WideHypothesis {
+    int n, k;
+    Verified match;
+    math::SE2 correction;  // the graph pose of n it implies, times n's graph pose inverted
+  };
+  std::optional<WideHypothesis> wide_pending_;
+  int last_wide_node_ = -1000000;
+  long wide_attempts_ = 0, wide_matches_ = 0, wide_confirmed_ = 0;
   struct ScanRef {
     int node;
     math::SE2 offset;  // local motion since the node

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <functional>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -23,23 +22,34 @@ void BranchAndBoundWindow::validate() const {
 
 BranchAndBoundMatcher::BranchAndBoundMatcher(const LikelihoodField& field, int depth)
     : origin_m_(field.origin()),
-      resolution_m_(field.resolution()),
-      rows_(field.values().rows),
-      cols_(field.values().cols) {
+      resolution_m_(field.resolution()) {
   if (depth < 0 || depth > 12)
     throw std::invalid_argument("BranchAndBoundMatcher: depth must be in [0, 12]");
   levels_.push_back(field.values().clone());
+  // Level d from level d - 1 (h = 2^(d-1)): a block of 2h cells is the larger of its two halves,
+  // first along x, then along y. In stored indices (see levels_) that is S_d(i) =
+  // max(S_(d-1)(i - h), S_(d-1)(i)), 0 outside S_(d-1).
   for (int d = 1; d <= depth; ++d) {
-    const int w = 1 << d;
-    cv::Mat padded;
-    cv::copyMakeBorder(field.values(), padded, w - 1, w - 1, w - 1, w - 1, cv::BORDER_CONSTANT,
-                       cv::Scalar(0));
-    // dst(x, y) = max of padded over [x, x + w) x [y, y + w): the block starting at field cell
-    // (x - w + 1, y - w + 1).
-    cv::Mat pooled;
-    cv::dilate(padded, pooled, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(w, w)),
-               cv::Point(0, 0), 1, cv::BORDER_CONSTANT, cv::Scalar(0));
-    levels_.push_back(pooled(cv::Rect(0, 0, cols_ + w - 1, rows_ + w - 1)).clone());
+    const int h = 1 << (d - 1);
+    const cv::Mat& prev = levels_.back();
+    cv::Mat along_x = cv::Mat::zeros(prev.rows, prev.cols + h, CV_32F);
+    for (int y = 0; y < prev.rows; ++y) {
+      const float* p = prev.ptr<float>(y);
+      float* q = along_x.ptr<float>(y);
+      for (int i = 0; i < along_x.cols; ++i) {
+        const float a = i - h >= 0 && i - h < prev.cols ? p[i - h] : 0.0f;
+        const float b = i < prev.cols ? p[i] : 0.0f;
+        q[i] = std::max(a, b);
+      }
+    }
+    cv::Mat next = cv::Mat::zeros(prev.rows + h, prev.cols + h, CV_32F);
+    for (int j = 0; j < next.rows; ++j) {
+      const float* a = j - h >= 0 && j - h < along_x.rows ? along_x.ptr<float>(j - h) : nullptr;
+      const float* b = j < along_x.rows ? along_x.ptr<float>(j) : nullptr;
+      float* q = next.ptr<float>(j);
+      for (int i = 0; i < next.cols; ++i) q[i] = std::max(a ? a[i] : 0.0f, b ? b[i] : 0.0f);
+    }
+    levels_.push_back(next);
   }
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "adaptive_perception/math/angles.h"
+#include "adaptive_perception/slam/branch_and_bound_matcher.h"
 
 namespace adaptive_perception::slam {
 
@@ -46,13 +47,13 @@ int PoseGraph2D::addNode(const math::SE2& x) {
 }
 
 void PoseGraph2D::addEdge(int i, int j, const math::SE2& z, const Eigen::Matrix3d& info,
-                          bool loop) {
+                          bool loop, bool robust) {
   if (i < 0 || j < 0 || i >= numNodes() || j >= numNodes() || i == j)
     throw std::invalid_argument("PoseGraph2D::addEdge: unknown node");
   const Eigen::LLT<Eigen::Matrix3d> llt(info);
   if (llt.info() != Eigen::Success || !info.allFinite())
     throw std::invalid_argument("PoseGraph2D::addEdge: information not positive definite");
-  edges_.push_back({i, j, z, Eigen::Matrix3d(llt.matrixU()), loop});
+  edges_.push_back({i, j, z, Eigen::Matrix3d(llt.matrixU()), loop, robust});
 }
 
 int PoseGraph2D::numLoopEdges() const {
@@ -68,7 +69,7 @@ double PoseGraph2D::optimize(int max_iterations) {
   for (const Edge& e : edges_)
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<EdgeCost, 3, 3, 3>(new EdgeCost(e.z, e.sqrt_info)),
-        e.loop ? new ceres::CauchyLoss(1.0) : nullptr, x_[e.i].data(), x_[e.j].data());
+        e.loop && e.robust ? new ceres::CauchyLoss(1.0) : nullptr, x_[e.i].data(), x_[e.j].data());
   if (!problem.HasParameterBlock(x_[0].data())) return 0.0;
   problem.SetParameterBlockConstant(x_[0].data());
   ceres::Solver::Options options;
@@ -112,6 +113,20 @@ void LoopClosingConfig::validate() const {
   need(std::isfinite(min_loop_score) && min_loop_score >= 0.0 && min_loop_score <= 1.0,
        "min_loop_score must be in [0, 1]");
   need(std::isfinite(max_range_m) && max_range_m > 0.1, "max_range_m must be > 0.1");
+  need(wide_every_nodes >= 1, "wide_every_nodes must be >= 1");
+  for (double v : {wide_drift_per_m, wide_drift_rad_per_m, wide_confirm_m, wide_confirm_rad})
+    need(std::isfinite(v) && v >= 0.0, "the wide_drift_* and wide_confirm_* fields must be >= 0");
+  need(std::isfinite(wide_max_xy_m) && wide_max_xy_m >= 0.0 && wide_max_xy_m <= 200.0,
+       "wide_max_xy_m must be in [0, 200]");
+  need(std::isfinite(wide_max_yaw_rad) && wide_max_yaw_rad >= 0.0 && wide_max_yaw_rad <= M_PI,
+       "wide_max_yaw_rad must be in [0, pi]");
+  need(std::isfinite(wide_max_free_space_violations) && wide_max_free_space_violations >= 0.0 &&
+           wide_max_free_space_violations <= 1.0,
+       "wide_max_free_space_violations must be in [0, 1]");
+  need(std::isfinite(wide_min_score) && wide_min_score >= 0.0 && wide_min_score <= 1.0,
+       "wide_min_score must be in [0, 1]");
+  need(wide_confirm_nodes >= 1, "wide_confirm_nodes must be >= 1");
+  need(std::isfinite(wide_min_loop_m) && wide_min_loop_m >= 0.0, "wide_min_loop_m must be >= 0");
 }
 
 namespace {
@@ -199,17 +214,27 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
       info(2, 2) = 1.0 / (config_.odometry_std_rad * config_.odometry_std_rad);
       graph_.addEdge(prev, prev + 1, z, info);
     }
+    const double path_m =
+        nodes_.empty() ? 0.0
+                       : nodes_.back().path_m + std::hypot(local_pose.x_m - nodes_.back().local.x_m,
+                                                           local_pose.y_m - nodes_.back().local.y_m);
     nodes_.push_back({local_pose, static_cast<int>(scans_.size()),
                       reference_pose ? *reference_pose : math::SE2(), reference_pose != nullptr,
-                      std::move(pts)});
-    if (tryLoop(graph_.numNodes() - 1)) graph_.optimize();
+                      std::move(pts), path_m});
+    const int n = graph_.numNodes() - 1;
+    if (tryLoop(n)) {
+      graph_.optimize();
+    } else if (config_.wide_search && n - last_wide_node_ >= config_.wide_every_nodes &&
+               tryWide(n)) {
+      graph_.optimize(100);  // a correction of metres: more iterations than a local loop's
+    }
   }
   scans_.push_back({static_cast<int>(nodes_.size()) - 1,
                     math::between(nodes_.back().local, local_pose)});
 }
 
 double LoopClosingMapper::freeSpaceShare(int n, const math::SE2& xk_inv, const math::SE2& n_in_k,
-                                         int lo, int hi) const {
+                                         const std::vector<int>& submap) const {
   // The share of the new scan's points (at the matched pose) that some scan of the submap saw
   // through, among those that one of them could see; and the share of the submap's points that the
   // new scan saw through, among those it could see. The larger counts.
@@ -217,7 +242,7 @@ double LoopClosingMapper::freeSpaceShare(int n, const math::SE2& xk_inv, const m
   const BearingRanges n_view(scan);
   std::vector<int> n_state(scan.size(), 0);
   long sub_seen = 0, sub_through = 0;
-  for (int m = lo; m <= hi; ++m) {
+  for (int m : submap) {
     const math::SE2 n_in_m = (xk_inv * graph_.node(m)).inverse() * n_in_k;
     const math::SE2 m_in_n = n_in_m.inverse();
     const BearingRanges m_view(nodes_[m].points);
@@ -238,6 +263,60 @@ double LoopClosingMapper::freeSpaceShare(int n, const math::SE2& xk_inv, const m
                   sub_seen > 0 ? static_cast<double>(sub_through) / sub_seen : 0.0);
 }
 
+std::optional<LoopClosingMapper::Verified> LoopClosingMapper::verify(
+    int n, int k, const math::SE2& prior, const std::vector<int>& submap,
+    double max_free_space_violations, bool coarse_search) {
+  ++attempts_;
+  // The submap in k's frame.
+  std::vector<Eigen::Vector2d> sub;
+  const math::SE2 xk_inv = graph_.node(k).inverse();
+  for (int m : submap) {
+    const math::SE2 rel = xk_inv * graph_.node(m);
+    for (const auto& p : nodes_[m].points) sub.push_back(rel.transformPoint(p));
+  }
+  if (sub.size() < 50) return std::nullopt;
+  ScanMatcherConfig coarse;
+  coarse.resolution_m = config_.coarse_resolution_m;
+  coarse.search_xy_m = config_.coarse_search_xy_m;
+  coarse.search_yaw_rad = config_.coarse_search_yaw_rad;
+  coarse.yaw_step_rad = config_.coarse_yaw_step_rad;
+  coarse.hit_std_m = 2.0 * config_.fine.hit_std_m;
+  try {
+    ScanMatch c{prior, 0.0};
+    if (coarse_search) {
+      const LikelihoodField coarse_field(sub, coarse.resolution_m, coarse.hit_std_m,
+                                         coarse.search_xy_m + 1.0, config_.connect_gap_m);
+      c = matchScan(coarse_field, nodes_[n].points, prior, coarse);
+    }
+    const LikelihoodField fine_field(sub, config_.fine.resolution_m, config_.fine.hit_std_m,
+                                     config_.fine.search_xy_m + 1.0, config_.connect_gap_m);
+    const ScanMatch f = matchScan(fine_field, nodes_[n].points, c.pose, config_.fine);
+    if (f.score < config_.min_loop_score) return std::nullopt;
+    // The free-space check against k's own neighbours only: over a long stretch, people, doors and
+    // the stretch's own drift put some point of the new scan in front of some scan's return.
+    std::vector<int> near;
+    for (int m : submap)
+      if (std::abs(m - k) <= config_.submap_half_nodes) near.push_back(m);
+    const double share = freeSpaceShare(n, xk_inv, f.pose, near);
+    if (share > max_free_space_violations) {
+      ++free_space_rejected_;
+      return std::nullopt;
+    }
+    // The match's own information, scaled as a whole so that its best-seen translation has
+    // loop_std_m: along a corridor the scan cannot see, the loop edge says next to nothing.
+    Eigen::Matrix3d info = matchInformation(fine_field, nodes_[n].points, f.pose);
+    const double best_xy = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(info.topLeftCorner<2, 2>())
+                               .eigenvalues()
+                               .maxCoeff();
+    if (!(best_xy > 0.0)) return std::nullopt;
+    info *= 1.0 / (config_.loop_std_m * config_.loop_std_m * best_xy);
+    info += 1e-6 * Eigen::Matrix3d::Identity();  // positive definite for the solver
+    return Verified{f.pose, info, f.score};
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;  // a submap too large for a field: no match
+  }
+}
+
 bool LoopClosingMapper::tryLoop(int n) {
   if (nodes_[n].points.size() < 20) return false;
   const math::SE2 xn = graph_.node(n);
@@ -253,55 +332,114 @@ bool LoopClosingMapper::tryLoop(int n) {
   for (const auto& [d, k] : cands) {
     if (tried >= config_.max_candidates_per_node) break;
     ++tried;
-    ++attempts_;
-    // The submap of node k in k's frame.
-    std::vector<Eigen::Vector2d> sub;
-    const math::SE2 xk_inv = graph_.node(k).inverse();
-    const int lo = std::max(0, k - config_.submap_half_nodes);
-    const int hi = std::min(n - config_.min_node_gap, k + config_.submap_half_nodes);
-    for (int m = lo; m <= hi; ++m) {
-      const math::SE2 rel = xk_inv * graph_.node(m);
-      for (const auto& p : nodes_[m].points) sub.push_back(rel.transformPoint(p));
-    }
-    if (sub.size() < 50) continue;
-    const math::SE2 prior = xk_inv * xn;
-    ScanMatcherConfig coarse;
-    coarse.resolution_m = config_.coarse_resolution_m;
-    coarse.search_xy_m = config_.coarse_search_xy_m;
-    coarse.search_yaw_rad = config_.coarse_search_yaw_rad;
-    coarse.yaw_step_rad = config_.coarse_yaw_step_rad;
-    coarse.hit_std_m = 2.0 * config_.fine.hit_std_m;
-    try {
-      const LikelihoodField coarse_field(sub, coarse.resolution_m, coarse.hit_std_m,
-                                         coarse.search_xy_m + 1.0, config_.connect_gap_m);
-      const ScanMatch c = matchScan(coarse_field, nodes_[n].points, prior, coarse);
-      const LikelihoodField fine_field(sub, config_.fine.resolution_m, config_.fine.hit_std_m,
-                                       config_.fine.search_xy_m + 1.0, config_.connect_gap_m);
-      const ScanMatch f = matchScan(fine_field, nodes_[n].points, c.pose, config_.fine);
-      if (f.score < config_.min_loop_score) continue;
-      const double share = freeSpaceShare(n, xk_inv, f.pose, lo, hi);
-      if (share > config_.max_free_space_violations) {
-        ++free_space_rejected_;
-        continue;
-      }
-      // The match's own information, scaled as a whole so that its best-seen translation has
-      // loop_std_m: along a corridor the scan cannot see, the loop edge says next to nothing.
-      Eigen::Matrix3d info = matchInformation(fine_field, nodes_[n].points, f.pose);
-      const double best_xy =
-          Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(info.topLeftCorner<2, 2>())
-              .eigenvalues()
-              .maxCoeff();
-      if (!(best_xy > 0.0)) continue;
-      info *= 1.0 / (config_.loop_std_m * config_.loop_std_m * best_xy);
-      info += 1e-6 * Eigen::Matrix3d::Identity();  // positive definite for the solver
-      graph_.addEdge(k, n, f.pose, info, true);
-      loop_edges_.push_back({nodes_[k].scan, nodes_[n].scan, f.pose, f.score});
-      closed = true;
-    } catch (const std::invalid_argument&) {
-      continue;  // a submap too large for a field: no match
-    }
+    std::vector<int> submap;
+    for (int m = std::max(0, k - config_.submap_half_nodes);
+         m <= std::min(n - config_.min_node_gap, k + config_.submap_half_nodes); ++m)
+      submap.push_back(m);
+    const auto v = verify(n, k, graph_.node(k).inverse() * xn, submap,
+                          config_.max_free_space_violations, true);
+    if (!v) continue;
+    graph_.addEdge(k, n, v->n_in_k, v->information, true);
+    loop_edges_.push_back({nodes_[k].scan, nodes_[n].scan, v->n_in_k, v->score});
+    closed = true;
   }
   return closed;
+}
+
+bool LoopClosingMapper::tryWide(int n) {
+  if (nodes_[n].points.size() < 20) return false;
+  last_wide_node_ = n;
+  if (wide_pending_ && n - wide_pending_->n > config_.wide_confirm_nodes) wide_pending_.reset();
+  const math::SE2 xn = graph_.node(n);
+  // The older nodes that could hold the scan, and the window.
+  double window_m = 0.0, length_m = 0.0;
+  std::vector<int> members;
+  for (int k = 0; k + config_.min_node_gap <= n; ++k) {
+    const double along = nodes_[n].path_m - nodes_[k].path_m;
+    if (along < config_.wide_min_loop_m) continue;
+    const double r = std::min(config_.wide_max_xy_m,
+                              config_.search_radius_m + config_.wide_drift_per_m * along);
+    const math::SE2 xk = graph_.node(k);
+    if (std::hypot(xk.x_m - xn.x_m, xk.y_m - xn.y_m) > r + config_.max_range_m) continue;
+    members.push_back(k);
+    window_m = std::max(window_m, r);
+    length_m = std::max(length_m, along);
+  }
+  if (members.size() < 2 || window_m <= config_.coarse_search_xy_m) return false;
+  ++wide_attempts_;
+  std::vector<Eigen::Vector2d> map;
+  for (int k : members) {
+    const math::SE2 xk = graph_.node(k);
+    for (const auto& p : nodes_[k].points) map.push_back(xk.transformPoint(p));
+  }
+  BranchAndBoundWindow window;
+  window.search_xy_m = window_m;
+  window.search_yaw_rad = std::min(config_.wide_max_yaw_rad,
+                                   config_.coarse_search_yaw_rad +
+                                       config_.wide_drift_rad_per_m * length_m);
+  window.yaw_step_rad = config_.coarse_yaw_step_rad;
+  std::optional<ScanMatch> wide;
+  try {
+    const LikelihoodField field(map, config_.coarse_resolution_m, 2.0 * config_.fine.hit_std_m,
+                                1.0, config_.connect_gap_m);
+    // Blocks of about a quarter of the window.
+    const int cells = static_cast<int>(window_m / config_.coarse_resolution_m);
+    int depth = 0;
+    while (depth < 8 && (2 << depth) * 4 <= cells) ++depth;
+    wide = BranchAndBoundMatcher(field, depth).match(nodes_[n].points, xn, window,
+                                                     config_.wide_min_score);
+  } catch (const std::invalid_argument&) {
+    return false;  // the map is larger than a field may be
+  }
+  if (!wide) return false;
+  // The local checks against the stretch of the chain around the member nearest the pose found,
+  // as far as max_range_m along it either way (one traversal, so consistent in itself; a single
+  // node's submap may have looked the other way along a corridor); the edge to that member.
+  int k = -1;
+  double best_d = 1e18;
+  for (int m : members) {
+    const math::SE2 xm = graph_.node(m);
+    const double d = std::hypot(xm.x_m - wide->pose.x_m, xm.y_m - wide->pose.y_m);
+    if (d < best_d) {
+      best_d = d;
+      k = m;
+    }
+  }
+  if (k < 0) return false;
+  std::vector<int> submap;
+  for (int m = k; m >= 0 && nodes_[k].path_m - nodes_[m].path_m <= config_.max_range_m; --m)
+    submap.insert(submap.begin(), m);
+  for (int m = k + 1; m + config_.min_node_gap <= n &&
+                      nodes_[m].path_m - nodes_[k].path_m <= config_.max_range_m &&
+                      nodes_[n].path_m - nodes_[m].path_m >= config_.wide_min_loop_m;
+       ++m)
+    submap.push_back(m);
+  const math::SE2 xk = graph_.node(k);
+  const auto v = verify(n, k, xk.inverse() * wide->pose, submap,
+                        config_.wide_max_free_space_violations, false);
+  if (!v) return false;
+  ++wide_matches_;
+  const WideHypothesis h{n, k, *v, (xk * v->n_in_k) * xn.inverse()};
+  if (wide_pending_) {
+    // The two corrections agree within the tolerance plus the drift allowed between them.
+    const math::SE2 d = wide_pending_->correction.inverse() * h.correction;
+    const double between_m = nodes_[n].path_m - nodes_[wide_pending_->n].path_m;
+    if (std::hypot(d.x_m, d.y_m) <= config_.wide_confirm_m + config_.wide_drift_per_m * between_m &&
+        std::fabs(math::wrapAngle(d.yaw_rad)) <=
+            config_.wide_confirm_rad + config_.wide_drift_rad_per_m * between_m) {
+      const WideHypothesis first = *wide_pending_;
+      for (const WideHypothesis* e : {&first, &h}) {
+        graph_.addEdge(e->k, e->n, e->match.n_in_k, e->match.information, true, false);
+        loop_edges_.push_back({nodes_[e->k].scan, nodes_[e->n].scan, e->match.n_in_k,
+                               e->match.score});
+      }
+      ++wide_confirmed_;
+      wide_pending_.reset();
+      return true;
+    }
+  }
+  wide_pending_ = h;
+  return false;
 }
 
 std::vector<math::SE2> LoopClosingMapper::trajectory() const {

@@ -1,7 +1,7 @@
 // The pose graph against cases with known optima (a consistent chain stays put, a loop edge
 // spreads a closing error along the chain as the least-squares solution does, a wrong loop edge is
 // held off by the robust loss), and the loop-closing mapper closing a drifting square in a
-// synthetic room.
+// synthetic room, by its local search and, beyond that search's window, by the wide search.
 #include "adaptive_perception/slam/pose_graph.h"
 
 #include <gtest/gtest.h>
@@ -132,6 +132,72 @@ TEST(LoopClosingMapper, ClosesADriftingLoopInASyntheticRoom) {
   EXPECT_GT(worst_in, 0.5);
   EXPECT_GE(mapper.loopClosures(), 1);
   EXPECT_LT(worst_out, 0.25 * worst_in);
+}
+
+// The same room driven round three times with a local estimator that turns 0.5 degrees too much
+// per metre: when the first lap ends (20.4 m) it is 10 degrees and 2 m off, beyond the local
+// window (coarse_search_xy_m). The local search is switched off (in this small room it would close
+// the loop bit by bit before the drift grew), so only the wide search can close it: each loop
+// edge it adds holds the true relative pose (within what the drift bends the stretch of chain it
+// is matched against: 0.5 degrees a metre over +-max_range_m), they come in agreeing pairs, and
+// the last lap is pulled most of the way back; without it the laps stay where the estimator put
+// them.
+TEST(LoopClosingMapper, TheWideSearchClosesALoopBeyondTheLocalWindow) {
+  std::vector<math::SE2> truth = rectangleLaps(3);
+  auto run = [&](bool wide, slam::LoopClosingMapper* out_mapper) {
+    slam::LoopClosingConfig c;
+    c.max_candidates_per_node = 0;  // no local loop closing
+    c.wide_search = wide;
+    c.wide_min_loop_m = 15.0;      // the room's laps are 20.4 m
+    c.wide_drift_per_m = 0.2;      // this estimator drifts far faster than a laser odometry
+    c.wide_drift_rad_per_m = 0.01;
+    c.max_range_m = 12.0;
+    slam::LoopClosingMapper mapper(c);
+    std::mt19937 rng(8);
+    math::SE2 local = truth.front();
+    std::vector<math::SE2> locals{local};
+    mapper.add(adaptive_perception::test::scanFrom(truth.front(), &rng, 0.01), local);
+    for (size_t i = 1; i < truth.size(); ++i) {
+      const math::SE2 d = math::between(truth[i - 1], truth[i]);
+      const double turn_bias = 0.5 * M_PI / 180.0 * std::hypot(d.x_m, d.y_m);
+      local = local * math::SE2(d.x_m, d.y_m, d.yaw_rad + turn_bias);
+      locals.push_back(local);
+      mapper.add(adaptive_perception::test::scanFrom(truth[i], &rng, 0.01), local);
+    }
+    const std::vector<math::SE2> traj = mapper.trajectory();
+    // The last lap's worst position error, after aligning the first pose (node 0 is fixed at the
+    // estimator's first pose, which is the truth's).
+    double worst = 0.0, worst_local = 0.0;
+    for (size_t i = 2 * truth.size() / 3; i < truth.size(); ++i) {
+      worst = std::max(worst, std::hypot(traj[i].x_m - truth[i].x_m, traj[i].y_m - truth[i].y_m));
+      worst_local = std::max(
+          worst_local, std::hypot(locals[i].x_m - truth[i].x_m, locals[i].y_m - truth[i].y_m));
+    }
+    if (out_mapper) *out_mapper = mapper;
+    return std::make_pair(worst, worst_local);
+  };
+  slam::LoopClosingMapper with_mapper, without_mapper;
+  const auto [with_wide, local_err] = run(true, &with_mapper);
+  const auto [without_wide, local_err2] = run(false, &without_mapper);
+  std::printf("wide search: last lap worst error %.3f m (local estimator %.3f m, without the wide "
+              "search %.3f m); %ld attempts, %ld matches, %ld confirmed, %d loop edges\n",
+              with_wide, local_err, without_wide, with_mapper.wideAttempts(),
+              with_mapper.wideMatches(), with_mapper.wideConfirmed(), with_mapper.loopClosures());
+  EXPECT_GT(local_err, 1.5);  // beyond the local window
+  EXPECT_GE(with_mapper.wideConfirmed(), 1);
+  EXPECT_EQ(with_mapper.loopClosures(), 2 * with_mapper.wideConfirmed());
+  for (const auto& e : with_mapper.loopEdges()) {
+    const math::SE2 t = math::between(truth[e.scan_from], truth[e.scan_to]);
+    std::printf("wide loop edge %d -> %d: off by %.3f m, %.4f rad\n", e.scan_from, e.scan_to,
+                std::hypot(e.relative.x_m - t.x_m, e.relative.y_m - t.y_m),
+                math::angleDiff(e.relative.yaw_rad, t.yaw_rad));
+    EXPECT_LT(std::hypot(e.relative.x_m - t.x_m, e.relative.y_m - t.y_m), 0.05) << e.scan_to;
+    EXPECT_LT(std::fabs(math::angleDiff(e.relative.yaw_rad, t.yaw_rad)), 0.03) << e.scan_to;
+  }
+  // Between the loop edges the chain still turns 0.5 degrees a metre: not exact.
+  EXPECT_LT(with_wide, 0.25 * without_wide);
+  EXPECT_EQ(without_mapper.loopClosures(), 0);
+  EXPECT_GT(without_wide, 1.5);
 }
 
 // One lap of the rectangle; the local estimator (the EKF) is exact but for one jump of 0.2 rad
