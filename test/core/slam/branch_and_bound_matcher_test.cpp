@@ -14,19 +14,10 @@
 
 namespace slam = adaptive_perception::slam;
 namespace math = adaptive_perception::math;
-using adaptive_perception::test::room;
+using adaptive_perception::test::roomPoints;
 using adaptive_perception::test::scanFrom;
 
 namespace {
-
-std::vector<Eigen::Vector2d> mapPoints() {
-  std::vector<Eigen::Vector2d> pts;
-  for (const auto& s : room()) {
-    const int n = static_cast<int>((s.b - s.a).norm() / 0.02);
-    for (int k = 0; k <= n; ++k) pts.push_back(s.a + (s.b - s.a) * k / std::max(1, n));
-  }
-  return pts;
-}
 
 struct Exhaustive {
   double score = -1.0;
@@ -62,7 +53,7 @@ Exhaustive exhaustive(const slam::LikelihoodField& f, const std::vector<Eigen::V
 TEST(BranchAndBoundMatcher, FindsTheSameBestScoreAsScoringEveryLatticePose) {
   // A coarse field (so that the exhaustive reference stays quick), scans from several poses with
   // noise, priors off by up to 1.5 m and 0.2 rad, and every depth from 0 (no pruning) to 5.
-  const slam::LikelihoodField f(mapPoints(), 0.1, 0.15, 1.0);
+  const slam::LikelihoodField f(roomPoints(), 0.1, 0.15, 1.0);
   std::mt19937 rng(3);
   const slam::BranchAndBoundWindow w{2.0, 0.24, 0.04};
   const std::vector<math::SE2> truths = {{2.0, 1.5, 0.3}, {8.0, 4.5, 2.8}, {6.0, 2.0, -1.2}};
@@ -92,7 +83,7 @@ TEST(BranchAndBoundMatcher, FindsTheSameBestScoreAsScoringEveryLatticePose) {
 }
 
 TEST(BranchAndBoundMatcher, ReturnsNothingBelowTheMinimumScore) {
-  const slam::LikelihoodField f(mapPoints(), 0.1, 0.15, 1.0);
+  const slam::LikelihoodField f(roomPoints(), 0.1, 0.15, 1.0);
   const slam::BranchAndBoundMatcher bnb(f, 3);
   const auto scan = scanFrom({3.0, 3.0, 0.0});
   const slam::BranchAndBoundWindow w{1.0, 0.1, 0.02};
@@ -106,7 +97,7 @@ TEST(BranchAndBoundMatcher, ReturnsNothingBelowTheMinimumScore) {
 TEST(BranchAndBoundMatcher, RecoversAPoseFarOutsideTheLocalWindow) {
   // After a long loop the estimate is metres and tens of degrees off: a 0.2 m / 0.05 cell field,
   // the prior 3.4 m and 0.5 rad away, a 4 m x 0.6 rad window (6.5 million lattice poses).
-  const slam::LikelihoodField f(mapPoints(), 0.05, 0.1, 1.0);
+  const slam::LikelihoodField f(roomPoints(), 0.05, 0.1, 1.0);
   const slam::BranchAndBoundMatcher bnb(f, 5);
   std::mt19937 rng(5);
   const math::SE2 truth(2.5, 4.0, -0.6);
@@ -121,7 +112,7 @@ TEST(BranchAndBoundMatcher, RecoversAPoseFarOutsideTheLocalWindow) {
 }
 
 TEST(BranchAndBoundMatcher, RefusesBadArguments) {
-  const slam::LikelihoodField f(mapPoints(), 0.1, 0.15, 1.0);
+  const slam::LikelihoodField f(roomPoints(), 0.1, 0.15, 1.0);
   EXPECT_THROW(slam::BranchAndBoundMatcher(f, -1), std::invalid_argument);
   EXPECT_THROW(slam::BranchAndBoundMatcher(f, 13), std::invalid_argument);
   const slam::BranchAndBoundMatcher bnb(f, 2);

@@ -100,6 +100,25 @@ std::vector<math::SE2> rectangleLaps(int laps) {
   return out;
 }
 
+// Feeds `mapper` a scan from every pose of `truth` with a local estimator that turns
+// turn_bias_deg_per_m too much per metre driven; returns the estimator's poses.
+std::vector<math::SE2> driveWithTurnBias(const std::vector<math::SE2>& truth,
+                                         double turn_bias_deg_per_m, unsigned seed,
+                                         slam::LoopClosingMapper* mapper) {
+  std::mt19937 rng(seed);
+  math::SE2 local = truth.front();
+  std::vector<math::SE2> locals{local};
+  mapper->add(adaptive_perception::test::scanFrom(truth.front(), &rng, 0.01), local);
+  for (size_t i = 1; i < truth.size(); ++i) {
+    const math::SE2 d = math::between(truth[i - 1], truth[i]);
+    const double turn_bias = turn_bias_deg_per_m * M_PI / 180.0 * std::hypot(d.x_m, d.y_m);
+    local = local * math::SE2(d.x_m, d.y_m, d.yaw_rad + turn_bias);
+    locals.push_back(local);
+    mapper->add(adaptive_perception::test::scanFrom(truth[i], &rng, 0.01), local);
+  }
+  return locals;
+}
+
 // The robot drives a rectangle in the synthetic room twice, at 0.1 m a scan; the local poses it
 // is given turn 0.3 degrees too much per metre, so the second lap lies up to about a metre off
 // the first. The mapper closes the loop at the first lap's nodes and pulls the second lap back.
@@ -107,17 +126,7 @@ TEST(LoopClosingMapper, ClosesADriftingLoopInASyntheticRoom) {
   std::vector<math::SE2> truth = rectangleLaps(2);
   truth.push_back(truth.front());
   slam::LoopClosingMapper mapper;
-  std::mt19937 rng(3);
-  math::SE2 local = truth.front();
-  std::vector<math::SE2> locals{local};
-  mapper.add(adaptive_perception::test::scanFrom(truth.front(), &rng, 0.01), local);
-  for (size_t i = 1; i < truth.size(); ++i) {
-    const math::SE2 d = math::between(truth[i - 1], truth[i]);
-    const double turn_bias = 0.3 * M_PI / 180.0 * std::hypot(d.x_m, d.y_m);
-    local = local * math::SE2(d.x_m, d.y_m, d.yaw_rad + turn_bias);
-    locals.push_back(local);
-    mapper.add(adaptive_perception::test::scanFrom(truth[i], &rng, 0.01), local);
-  }
+  const std::vector<math::SE2> locals = driveWithTurnBias(truth, 0.3, 3, &mapper);
   const std::vector<math::SE2> out = mapper.trajectory();
   ASSERT_EQ(out.size(), truth.size());
   double worst_in = 0.0, worst_out = 0.0;
@@ -153,17 +162,7 @@ TEST(LoopClosingMapper, TheWideSearchClosesALoopBeyondTheLocalWindow) {
     c.wide_drift_rad_per_m = 0.01;
     c.max_range_m = 12.0;
     slam::LoopClosingMapper mapper(c);
-    std::mt19937 rng(8);
-    math::SE2 local = truth.front();
-    std::vector<math::SE2> locals{local};
-    mapper.add(adaptive_perception::test::scanFrom(truth.front(), &rng, 0.01), local);
-    for (size_t i = 1; i < truth.size(); ++i) {
-      const math::SE2 d = math::between(truth[i - 1], truth[i]);
-      const double turn_bias = 0.5 * M_PI / 180.0 * std::hypot(d.x_m, d.y_m);
-      local = local * math::SE2(d.x_m, d.y_m, d.yaw_rad + turn_bias);
-      locals.push_back(local);
-      mapper.add(adaptive_perception::test::scanFrom(truth[i], &rng, 0.01), local);
-    }
+    const std::vector<math::SE2> locals = driveWithTurnBias(truth, 0.5, 8, &mapper);
     const std::vector<math::SE2> traj = mapper.trajectory();
     // The last lap's worst position error, after aligning the first pose (node 0 is fixed at the
     // estimator's first pose, which is the truth's).

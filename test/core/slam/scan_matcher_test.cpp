@@ -15,19 +15,10 @@
 
 namespace slam = adaptive_perception::slam;
 namespace math = adaptive_perception::math;
-using adaptive_perception::test::room;
+using adaptive_perception::test::roomPoints;
 using adaptive_perception::test::scanFrom;
 
 namespace {
-
-std::vector<Eigen::Vector2d> mapPoints() {
-  std::vector<Eigen::Vector2d> pts;
-  for (const auto& s : room()) {
-    const int n = static_cast<int>((s.b - s.a).norm() / 0.02);
-    for (int k = 0; k <= n; ++k) pts.push_back(s.a + (s.b - s.a) * k / std::max(1, n));
-  }
-  return pts;
-}
 
 TEST(LikelihoodField, MatchesTheGaussianOfTheDistance) {
   // One map point at the origin: the field at distance d is exp(-d^2 / (2 s^2)).
@@ -75,7 +66,7 @@ TEST(LikelihoodField, EqualsTheBruteForceFieldOfTheNearestMapCell) {
 }
 
 TEST(ScanMatcher, RecoversAKnownOffset) {
-  const slam::LikelihoodField field(mapPoints(), 0.05, 0.1, 1.0);
+  const slam::LikelihoodField field(roomPoints(), 0.05, 0.1, 1.0);
   const math::SE2 truth(2.3, 1.7, 0.4);
   const std::vector<Eigen::Vector2d> scan = scanFrom(truth);
   ASSERT_GT(scan.size(), 150u);

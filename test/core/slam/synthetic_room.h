@@ -21,6 +21,16 @@ inline std::vector<Segment> room() {
           {{7, 6}, {7, 4}}};
 }
 
+/// The walls of room() sampled every 2 cm: a map for a likelihood field.
+inline std::vector<Eigen::Vector2d> roomPoints() {
+  std::vector<Eigen::Vector2d> pts;
+  for (const auto& s : room()) {
+    const int n = static_cast<int>((s.b - s.a).norm() / 0.02);
+    for (int k = 0; k <= n; ++k) pts.push_back(s.a + (s.b - s.a) * k / std::max(1, n));
+  }
+  return pts;
+}
+
 /// Ray-casts 181 beams over 180 degrees from `pose` against `walls`: the hit points (robot
 /// frame) closer than max_range_m.
 inline std::vector<Eigen::Vector2d> scanOf(const std::vector<Segment>& walls, const math::SE2& pose,
