@@ -355,11 +355,11 @@ int main(int argc, char** argv) {
     const std::map<double, math::SE2> ekf_estimate = estimate;
     if (loop_closing) {
       std::ofstream loops(fs::path(output) / "loop_edges.csv");
-      loops << "t_from,t_to,dx_m,dy_m,dyaw_rad,score\n";
+      loops << "t_from,t_to,dx_m,dy_m,dyaw_rad,score,wide\n";
       for (const auto& e : slam.loopCloser().loopEdges())
         loops << std::fixed << scan_stamps.at(e.scan_from) << "," << scan_stamps.at(e.scan_to)
               << "," << e.relative.x_m << "," << e.relative.y_m << "," << e.relative.yaw_rad << ","
-              << e.score << "\n";
+              << e.score << "," << (e.wide ? 1 : 0) << "\n";
       const std::vector<math::SE2> final_poses = slam.trajectory();
       for (size_t i = 0; i < scan_stamps.size(); ++i) estimate[scan_stamps[i]] = final_poses[i];
       est_path.points_m.clear();

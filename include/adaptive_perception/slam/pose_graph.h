@@ -160,11 +160,13 @@ class LoopClosingMapper {
   /// Matches above min_loop_score that the free-space check rejected.
   long freeSpaceRejections() const { return free_space_rejected_; }
   /// Each loop edge as found: the scans (indices in the order added) of its two nodes, the
-  /// measured relative pose of the newer in the older's frame, and the fine match's score.
+  /// measured relative pose of the newer in the older's frame, the fine match's score, and
+  /// whether the wide search found it.
   struct LoopEdge {
     int scan_from, scan_to;
     math::SE2 relative;
     double score;
+    bool wide = false;
   };
   const std::vector<LoopEdge>& loopEdges() const { return loop_edges_; }
   /// Chain edges that took the reference's relative pose (the local estimator failed the gate).

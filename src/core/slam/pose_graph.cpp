@@ -431,7 +431,7 @@ bool LoopClosingMapper::tryWide(int n) {
       for (const WideHypothesis* e : {&first, &h}) {
         graph_.addEdge(e->k, e->n, e->match.n_in_k, e->match.information, true, false);
         loop_edges_.push_back({nodes_[e->k].scan, nodes_[e->n].scan, e->match.n_in_k,
-                               e->match.score});
+                               e->match.score, true});
       }
       ++wide_confirmed_;
       wide_pending_.reset();
