@@ -453,7 +453,7 @@ int main(int argc, char** argv) {
         "front_end=%s front_end_relation_trans_error_m=%.4f front_end_relation_rot_error_deg=%.3f "
         "front_end_matched=%.3f front_end_weak_matches=%ld loop_closures=%d graph_nodes=%d "
         "ekf_relation_trans_error_m=%.4f chain_edges_replaced=%d loops_rejected_free_space=%ld "
-        "wide_attempts=%ld wide_matches=%ld wide_confirmed=%ld grid_cells=%dx%d grid_s=%.1f\n",
+        "wide_attempts=%ld wide_matches=%ld wide_confirmed=%ld wide_s=%.1f grid_cells=%dx%d grid_s=%.1f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
         with_truth ? double(below) / with_truth : -1.0,
@@ -470,7 +470,7 @@ int main(int argc, char** argv) {
         slam.loopCloser().nodes(), has_rel ? ekf_rel.trans_mean_m : -1.0,
         slam.loopCloser().chainEdgesReplaced(), slam.loopCloser().freeSpaceRejections(),
         slam.loopCloser().wideAttempts(), slam.loopCloser().wideMatches(),
-        slam.loopCloser().wideConfirmed(), grid.width, grid.height, grid_s);
+        slam.loopCloser().wideConfirmed(), slam.loopCloser().wideSeconds(), grid.width, grid.height, grid_s);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";
     return 1;

@@ -176,6 +176,8 @@ class LoopClosingMapper {
   long wideAttempts() const { return wide_attempts_; }
   long wideMatches() const { return wide_matches_; }
   long wideConfirmed() const { return wide_confirmed_; }
+  /// Wall-clock seconds spent in the wide search (its cost, for the tools' summaries).
+  double wideSeconds() const { return wide_seconds_; }
 
  private:
   bool tryLoop(int node);
@@ -218,6 +220,7 @@ class LoopClosingMapper {
   std::optional<WideHypothesis> wide_pending_;
   int last_wide_node_ = -1000000;
   long wide_attempts_ = 0, wide_matches_ = 0, wide_confirmed_ = 0;
+  double wide_seconds_ = 0.0;
   struct ScanRef {
     int node;
     math::SE2 offset;  // local motion since the node

@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -347,6 +348,14 @@ bool LoopClosingMapper::tryLoop(int n) {
 }
 
 bool LoopClosingMapper::tryWide(int n) {
+  const auto start = std::chrono::steady_clock::now();
+  struct AddTime {
+    std::chrono::steady_clock::time_point start;
+    double* total_s;
+    ~AddTime() {
+      *total_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+  } add_time{start, &wide_seconds_};
   if (nodes_[n].points.size() < 20) return false;
   last_wide_node_ = n;
   if (wide_pending_ && n - wide_pending_->n > config_.wide_confirm_nodes) wide_pending_.reset();
@@ -382,12 +391,19 @@ bool LoopClosingMapper::tryWide(int n) {
   try {
     const LikelihoodField field(map, config_.coarse_resolution_m, 2.0 * config_.fine.hit_std_m,
                                 1.0, config_.connect_gap_m);
-    // Blocks of about a quarter of the window.
+    // Blocks of about a quarter of the window, at most 64 cells (each level is a copy of the
+    // field; a finer top level costs fewer bytes than it costs bounds).
     const int cells = static_cast<int>(window_m / config_.coarse_resolution_m);
     int depth = 0;
-    while (depth < 8 && (2 << depth) * 4 <= cells) ++depth;
-    wide = BranchAndBoundMatcher(field, depth).match(nodes_[n].points, xn, window,
-                                                     config_.wide_min_score);
+    while (depth < 6 && (2 << depth) * 4 <= cells) ++depth;
+    // At most kWidePoints of the scan's points, evenly spread: the proposal is matched again
+    // with every point (verify).
+    constexpr size_t kWidePoints = 180;
+    const std::vector<Eigen::Vector2d>& scan = nodes_[n].points;
+    std::vector<Eigen::Vector2d> sparse;
+    const size_t stride = (scan.size() + kWidePoints - 1) / kWidePoints;
+    for (size_t i = 0; i < scan.size(); i += stride) sparse.push_back(scan[i]);
+    wide = BranchAndBoundMatcher(field, depth).match(sparse, xn, window, config_.wide_min_score);
   } catch (const std::invalid_argument&) {
     return false;  // the map is larger than a field may be
   }
