@@ -34,9 +34,9 @@ struct BranchAndBoundWindow {
 
 class BranchAndBoundMatcher {
  public:
-  /// Precomputes levels 0..depth of `field` (depth in [0, 12]; a block of 2^depth cells should be
-  /// about an eighth of the window for the search to prune well). Keeps a reference to nothing:
-  /// the levels are copies.
+  /// Precomputes levels 0..depth of `field` (depth in [0, 12]; each level is a copy of the field,
+  /// and a top block of about a quarter of the window prunes well). Keeps no reference to
+  /// `field`.
   BranchAndBoundMatcher(const LikelihoodField& field, int depth);
 
   /// The best lattice pose of `points_robot` within the window around `prior` whose score is

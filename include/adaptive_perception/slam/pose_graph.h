@@ -111,10 +111,10 @@ struct LoopClosingConfig {
   // wide_max_free_space_violations: on fr-clinic, right matches (their walls drawn on the old
   // ones and looked at) had 0.06-0.53 of their points in front of some old return (people, doors,
   // halls), the wrong ones 0.09-1, most above 0.5: the check alone cannot tell them apart. So a
-  // wide loop is believed only once a second
-  // one, found within wide_confirm_nodes nodes, moves the estimate the same way (within
-  // wide_confirm_m and wide_confirm_rad, plus the drift allowed over the chain between them). Both edges then enter the graph without the robust
-  // loss, which would otherwise discount a correction of hundreds of stds.
+  // wide loop is believed only once a second one, found within wide_confirm_nodes nodes, moves
+  // the estimate the same way (within wide_confirm_m and wide_confirm_rad, plus the drift allowed
+  // over the chain between them). Both edges then enter the graph without the robust loss, which
+  // would otherwise discount a correction of hundreds of stds.
   bool wide_search = true;
   int wide_every_nodes = 8;           // every 4 nodes cost mit-csail 16% of its speed (28 -> 24x)
   double wide_drift_per_m = 0.05;     // fr-clinic's estimate was 40 m off after 1.3 km (3%)
@@ -128,6 +128,9 @@ struct LoopClosingConfig {
   int wide_confirm_nodes = 20;
   double wide_confirm_m = 1.0;
   double wide_confirm_rad = 0.05;
+  /// The coarse stage's matcher: coarse_* at twice the fine field's width (the local search's
+  /// first stage, and the wide search's field).
+  ScanMatcherConfig coarseMatcher() const;
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

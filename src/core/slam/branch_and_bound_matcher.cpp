@@ -1,8 +1,8 @@
 #include "adaptive_perception/slam/branch_and_bound_matcher.h"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 

@@ -86,6 +86,16 @@ double PoseGraph2D::optimize(int max_iterations) {
   return summary.final_cost;
 }
 
+ScanMatcherConfig LoopClosingConfig::coarseMatcher() const {
+  ScanMatcherConfig coarse;
+  coarse.resolution_m = coarse_resolution_m;
+  coarse.search_xy_m = coarse_search_xy_m;
+  coarse.search_yaw_rad = coarse_search_yaw_rad;
+  coarse.yaw_step_rad = coarse_yaw_step_rad;
+  coarse.hit_std_m = 2.0 * fine.hit_std_m;
+  return coarse;
+}
+
 void LoopClosingConfig::validate() const {
   need(std::isfinite(node_translation_m) && node_translation_m > 0.0,
        "node_translation_m must be > 0");
@@ -104,12 +114,7 @@ void LoopClosingConfig::validate() const {
   need(std::isfinite(search_radius_m) && search_radius_m >= 0.0, "search_radius_m must be >= 0");
   need(max_candidates_per_node >= 0, "max_candidates_per_node must be >= 0");
   need(submap_half_nodes >= 0, "submap_half_nodes must be >= 0");
-  ScanMatcherConfig coarse;
-  coarse.resolution_m = coarse_resolution_m;
-  coarse.search_xy_m = coarse_search_xy_m;
-  coarse.search_yaw_rad = coarse_search_yaw_rad;
-  coarse.yaw_step_rad = coarse_yaw_step_rad;
-  coarse.validate();
+  coarseMatcher().validate();
   fine.validate();
   need(std::isfinite(min_loop_score) && min_loop_score >= 0.0 && min_loop_score <= 1.0,
        "min_loop_score must be in [0, 1]");
@@ -225,9 +230,11 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
     const int n = graph_.numNodes() - 1;
     if (tryLoop(n)) {
       graph_.optimize();
-    } else if (config_.wide_search && n - last_wide_node_ >= config_.wide_every_nodes &&
-               tryWide(n)) {
-      graph_.optimize(100);  // a correction of metres: more iterations than a local loop's
+    } else if (config_.wide_search && n - last_wide_node_ >= config_.wide_every_nodes) {
+      const auto start = std::chrono::steady_clock::now();
+      if (tryWide(n)) graph_.optimize(100);  // a correction of metres: more iterations
+      wide_seconds_ +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
   }
   scans_.push_back({static_cast<int>(nodes_.size()) - 1,
@@ -276,12 +283,7 @@ std::optional<LoopClosingMapper::Verified> LoopClosingMapper::verify(
     for (const auto& p : nodes_[m].points) sub.push_back(rel.transformPoint(p));
   }
   if (sub.size() < 50) return std::nullopt;
-  ScanMatcherConfig coarse;
-  coarse.resolution_m = config_.coarse_resolution_m;
-  coarse.search_xy_m = config_.coarse_search_xy_m;
-  coarse.search_yaw_rad = config_.coarse_search_yaw_rad;
-  coarse.yaw_step_rad = config_.coarse_yaw_step_rad;
-  coarse.hit_std_m = 2.0 * config_.fine.hit_std_m;
+  const ScanMatcherConfig coarse = config_.coarseMatcher();
   try {
     ScanMatch c{prior, 0.0};
     if (coarse_search) {
@@ -348,14 +350,6 @@ bool LoopClosingMapper::tryLoop(int n) {
 }
 
 bool LoopClosingMapper::tryWide(int n) {
-  const auto start = std::chrono::steady_clock::now();
-  struct AddTime {
-    std::chrono::steady_clock::time_point start;
-    double* total_s;
-    ~AddTime() {
-      *total_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
-  } add_time{start, &wide_seconds_};
   if (nodes_[n].points.size() < 20) return false;
   last_wide_node_ = n;
   if (wide_pending_ && n - wide_pending_->n > config_.wide_confirm_nodes) wide_pending_.reset();
@@ -389,8 +383,9 @@ bool LoopClosingMapper::tryWide(int n) {
   window.yaw_step_rad = config_.coarse_yaw_step_rad;
   std::optional<ScanMatch> wide;
   try {
-    const LikelihoodField field(map, config_.coarse_resolution_m, 2.0 * config_.fine.hit_std_m,
-                                1.0, config_.connect_gap_m);
+    const ScanMatcherConfig coarse = config_.coarseMatcher();
+    const LikelihoodField field(map, coarse.resolution_m, coarse.hit_std_m, 1.0,
+                                config_.connect_gap_m);
     // Blocks of about a quarter of the window, at most 64 cells (each level is a copy of the
     // field; a finer top level costs fewer bytes than it costs bounds).
     const int cells = static_cast<int>(window_m / config_.coarse_resolution_m);
