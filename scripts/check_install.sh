@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The package as another package sees it: installs it (catkin_make install into the workspace's
-# install space, .ws/install) and checks that
+# The package as another package sees it: installs it into a temporary directory (catkin_make
+# install with DESTDIR, removed at the end: an install space left inside the package tree would make
+# `rosrun adaptive_perception <node>` ambiguous) and checks that
 #   1. a downstream catkin package (test/install/ap_downstream) builds against the install space
 #      alone, using a message, a service and the core library, and runs;
 #   2. the installed scripts keep their execute bit;
@@ -15,9 +16,14 @@ fail() { echo "check_install: FAILED: $*"; exit 1; }
 cd "$AP_WS" || fail "no workspace at $AP_WS (run scripts/setup.sh)"
 set +u; source devel/setup.bash; set -u
 JOBS="${AP_JOBS:-$(nproc)}"
-catkin_make -j"$JOBS" install > "$AP_WS/install.log" 2>&1 \
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+prefix="$(sed -n 's/^CMAKE_INSTALL_PREFIX:PATH=//p' build/CMakeCache.txt)"
+[ -n "$prefix" ] || fail "no CMAKE_INSTALL_PREFIX in $AP_WS/build/CMakeCache.txt"
+DESTDIR="$tmp/dest" catkin_make -j"$JOBS" install > "$AP_WS/install.log" 2>&1 \
   || { tail -n 30 "$AP_WS/install.log"; fail "catkin_make install (log: $AP_WS/install.log)"; }
-INSTALL="$AP_WS/install"
+INSTALL="$tmp/dest$prefix"
+[ -f "$INSTALL/setup.bash" ] || fail "catkin_make install wrote no $INSTALL/setup.bash"
 SHARE="$INSTALL/share/adaptive_perception"
 
 # 2. Execute bits.
@@ -32,8 +38,6 @@ for dir in "$AP_ROOT" "$(readlink -f "$AP_WS/src/adaptive_perception")" "$AP_WS/
 done
 
 # 1. A downstream package against the install space only.
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$tmp/ws/src"
 cp -r "$AP_ROOT/test/install/ap_downstream" "$tmp/ws/src/"
 (
