@@ -98,7 +98,11 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("ekf_slam_mapper/pose", 5);
   map_pub_ = nh.advertise<visualization_msgs::MarkerArray>("ekf_slam_mapper/map", 1, true);
   path_pub_ = nh.advertise<nav_msgs::Path>("ekf_slam_mapper/path", 1, true);
-  lines_sub_ = nh.subscribe("lines", 20, &EkfSlamMapperNode::onLines, this);
+  // Queues long enough to ride out a slow update (a loop closure's optimisation, a loaded CPU):
+  // a scan dropped here leaves its lines without points, and the front end then follows the
+  // wheel odometry for that scan. 100 messages are 10 s of a 10 Hz laser at 1x, 2.5 s at 4x.
+  constexpr uint32_t kInputQueue = 100;
+  lines_sub_ = nh.subscribe("lines", kInputQueue, &EkfSlamMapperNode::onLines, this);
   if (config_.ekf.variant == slam::Variant::kExternal)
     external_sub_ = nh.subscribe("external_pose", 20, &EkfSlamMapperNode::onExternalPose, this);
   save_srv_ =
@@ -106,7 +110,7 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   reset_srv_ =
       service_queue_.handle(pnh).advertiseService("reset", &EkfSlamMapperNode::onReset, this);
   if (map_update_interval_s_ > 0.0 || config_.front_end || config_.loop_closing)
-    scan_sub_ = nh.subscribe(ros_topics::kScan, 20, &EkfSlamMapperNode::onScan, this);
+    scan_sub_ = nh.subscribe(ros_topics::kScan, kInputQueue, &EkfSlamMapperNode::onScan, this);
   if (map_update_interval_s_ > 0.0) {
     grid_pub_ = nh.advertise<nav_msgs::OccupancyGrid>("map", 1, true);
     grid_meta_pub_ = nh.advertise<nav_msgs::MapMetaData>("map_metadata", 1, true);
@@ -143,10 +147,31 @@ void EkfSlamMapperNode::reset(const char* why) {
   grid_scan_index_.clear();
   grid_mount_.clear();
   recent_scans_.clear();
+  waiting_lines_.clear();
   ++resets_;
 }
 
 void EkfSlamMapperNode::onLines(const ros::MessageEvent<const LineSegmentArray>& event) {
+  std::vector<ros::MessageEvent<const LineSegmentArray>> ready;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const ros::Time stamp = event.getConstMessage()->header.stamp;
+    const bool scan_due = scan_sub_ && scan_sub_.getNumPublishers() > 0 &&
+                          (recent_scans_.empty() || recent_scans_.back()->header.stamp < stamp);
+    if (scan_due || !waiting_lines_.empty()) waiting_lines_.push_back(event);
+    if (!scan_due) {
+      ready.assign(waiting_lines_.begin(), waiting_lines_.end());
+      waiting_lines_.clear();
+    } else if (waiting_lines_.size() > kMaxWaitingLines) {
+      ready.push_back(waiting_lines_.front());  // its scan is not coming
+      waiting_lines_.pop_front();
+    }
+    if (ready.empty() && !scan_due) ready.push_back(event);
+  }
+  for (const auto& e : ready) processLines(e);
+}
+
+void EkfSlamMapperNode::processLines(const ros::MessageEvent<const LineSegmentArray>& event) {
   const boost::shared_ptr<const LineSegmentArray> msg = event.getConstMessage();
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -233,9 +258,18 @@ void EkfSlamMapperNode::onLines(const ros::MessageEvent<const LineSegmentArray>&
 }
 
 void EkfSlamMapperNode::onScan(const sensor_msgs::LaserScanConstPtr& msg) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  recent_scans_.push_back(msg);
-  while (recent_scans_.size() > 100) recent_scans_.pop_front();  // lines that never came
+  std::vector<ros::MessageEvent<const LineSegmentArray>> ready;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    recent_scans_.push_back(msg);
+    while (recent_scans_.size() > 200) recent_scans_.pop_front();  // lines that never came
+    while (!waiting_lines_.empty() &&
+           waiting_lines_.front().getConstMessage()->header.stamp <= msg->header.stamp) {
+      ready.push_back(waiting_lines_.front());
+      waiting_lines_.pop_front();
+    }
+  }
+  for (const auto& e : ready) processLines(e);
 }
 
 bool EkfSlamMapperNode::renderGrid(nav_msgs::OccupancyGrid* out, slam::OccupancyGrid* grid_out) {

@@ -93,7 +93,11 @@ class EkfSlamMapperNode {
   EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh);
 
  private:
+  // Lines are processed with the scan they came from: lines that arrive before their scan (the
+  // extractor can answer before the mapper's own copy of the scan is delivered) wait for it, and
+  // go on without it once a later scan has come or kMaxWaitingLines are waiting.
   void onLines(const ros::MessageEvent<const LineSegmentArray>& event);
+  void processLines(const ros::MessageEvent<const LineSegmentArray>& event);
   void onExternalPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   void onScan(const sensor_msgs::LaserScanConstPtr& msg);
   bool onSaveMap(SaveMap::Request& req, SaveMap::Response& res);
@@ -125,6 +129,8 @@ class EkfSlamMapperNode {
   slam::OccupancyGridConfig grid_config_;
   double map_update_interval_s_ = 5.0;
   std::deque<sensor_msgs::LaserScanConstPtr> recent_scans_;  // awaiting their lines
+  std::deque<ros::MessageEvent<const LineSegmentArray>> waiting_lines_;  // awaiting their scans
+  static constexpr size_t kMaxWaitingLines = 10;
   std::unique_ptr<slam::GridKeyframes> keyframes_;
   // Per grid keyframe: its scan's index in slam_ and the laser mount, so that the grid is drawn
   // at the loop closer's latest poses.
