@@ -22,7 +22,7 @@ for log in $LOGS; do
   "$BIN/carmen_to_bag" --input "$AP_ROOT/data/laser/$log.clf.bz2" --output "$OUT/$log.bag" --overwrite --max_issues 3 \
     2> "$OUT/$log.issues.txt" | tee -a "$summary"
   "$BIN/evaluate_lines" --bag "$OUT/$log.bag" --output "$OUT/$log" --name "$log" | tail -n 1 | sed "s/^/$log /" | tee -a "$summary"
-  "$BIN/evaluate_slam" --bag "$OUT/$log.bag" --retire_after "$RETIRE_AFTER" \
+  "$BIN/evaluate_slam" --bag "$OUT/$log.bag" --retire_after_updates "$RETIRE_AFTER" \
     --odom_noise_scale "$ODOM_NOISE_SCALE" --output "$OUT/$log/slam" \
     --name "$log (retire after $RETIRE_AFTER)" | tail -n 1 | sed "s/^/$log /" | tee -a "$summary"
   rm -f "$OUT/$log.bag"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Monte Carlo consistency of the line-landmark EKF SLAM (the paper's filter alone: evaluate_slam
-# --front_end none --loop_closing 0) on the simulator's loop world: for each seed,
+# --front_end 0 --loop_closing 0) on the simulator's loop world: for each seed,
 # simulate a 120 s loop bag, run evaluate_slam for each variant, and average the share of scans whose
 # pose NEES lies inside the 95% interval, the ATE and the real-time factor. Writes
 # results/slam/consistency.csv and prints one summary line per variant:
@@ -25,7 +25,7 @@ for seed in $(seq "$FIRST_SEED" $((FIRST_SEED + SEEDS - 1))); do
   "$BIN/simulate_laser" --world "$AP_ROOT/config/worlds/loop.yaml" --duration_s 120 --seed "$seed" \
     --output "$TMP/loop.bag" --overwrite > /dev/null
   for v in $VARIANTS; do
-    line="$("$BIN/evaluate_slam" --bag "$TMP/loop.bag" --variant "$v" --seed "$seed" --front_end none --loop_closing 0 --output "$TMP/$v" | tail -n 1)"
+    line="$("$BIN/evaluate_slam" --bag "$TMP/loop.bag" --variant "$v" --seed "$seed" --front_end 0 --loop_closing 0 --output "$TMP/$v" | tail -n 1)"
     get() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
     echo "$seed,$v,$(get nees_in_bounds),$(get nees_mean),$(get ate_m),$(get final_position_error_m),$(get landmarks),$(get realtime_factor),$(get nees_below_bounds),$(get nis_per_dof),$(get merged)" >> "$csv"
   done

@@ -13,33 +13,51 @@
 
 namespace adaptive_perception {
 
+namespace {
+// The node's own parameters' defaults (the algorithm's are in its two configs).
+constexpr char kDefaultDatabase[] = "places.sqlite";
+constexpr double kMaxRate_hz = 5.0, kTransformTolerance_s = 0.1;
+std::string real(double v) { return config::formatValue(config::Kind::kDouble, v); }
+}  // namespace
+
+std::vector<config::ParameterDoc> AppearanceLocalizerNode::parameters() {
+  std::vector<config::ParameterDoc> rows = {
+      {"database", "string", kDefaultDatabase, "",
+       "a place database with SIFT training frames and their poses (train_places --features)"}};
+  for (const auto& table :
+       {config::describe(places::RoomClassifierConfig::fields(), places::RoomClassifierConfig()),
+        config::describe(localization::AppearanceMclConfig::fields(),
+                         localization::AppearanceMclConfig())})
+    rows.insert(rows.end(), table.begin(), table.end());
+  const std::vector<config::ParameterDoc> node = {
+      {"use_odom", "bool", "true", "",
+       "move the particles by odom; else by the training run's average step"},
+      {"max_rate_hz", "double", real(kMaxRate_hz), "[0.01, 1000]",
+       "images processed per second of image time at most"},
+      {"publish_tf", "bool", "false", "", "broadcast map -> odom (needs odom)"},
+      {"transform_tolerance", "double", real(kTransformTolerance_s), "[0, 10]",
+       "map -> odom is stamped this far after its image (s), as amcl does"},
+      {"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
+      {"odom_frame", "string", ros_topics::kOdomFrame, "", "the odometry frame"},
+      {"seed", "int", "1", "[0, 1073741824]", "the particles' random seed"}};
+  rows.insert(rows.end(), node.begin(), node.end());
+  rows.push_back(ros_params::stampOrderParameter());
+  return rows;
+}
+
 AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   namespace P = ros_params;
-  const std::string path = P::getName(pnh, "database", "places.sqlite");
-  places::RoomClassifierConfig& c = classifier_config_;
-  c.best_frames = P::getInRange(pnh, "best_frames", c.best_frames, 1, 1000);
-  c.min_share = P::getInRange(pnh, "min_share", c.min_share, 0.0, 0.999);
-  c.sift.max_features = P::getInRange(pnh, "max_features", c.sift.max_features, 10, 5000);
-  c.index.candidates = P::getInRange(pnh, "candidates", c.index.candidates, 1, 10000);
-  c.structure.weight = P::getInRange(pnh, "structure_weight", c.structure.weight, 0.0, 1.0);
-  c.structure.floor = P::getInRange(pnh, "structure_floor", c.structure.floor, 0.0, 0.999);
+  const std::string path = P::getName(pnh, "database", kDefaultDatabase);
+  P::loadFields(pnh, places::RoomClassifierConfig::fields(), &classifier_config_);
   localization::AppearanceMclConfig m;
-  m.particles = P::getInRange(pnh, "particles", m.particles, 10, 100000);
-  m.translation_noise_m =
-      P::getInRange(pnh, "translation_noise_m", m.translation_noise_m, 0.0, 10.0);
-  m.rotation_noise_rad = P::getInRange(pnh, "rotation_noise_rad", m.rotation_noise_rad, 0.0, 3.0);
-  m.stable_spread_m = P::getInRange(pnh, "stable_spread_m", m.stable_spread_m, 0.01, 100.0);
-  m.stable_min_weight = P::getInRange(pnh, "stable_min_weight", m.stable_min_weight, 0.0, 1.0);
-  m.full_reinit_after = P::getInRange(pnh, "full_reinit_after", m.full_reinit_after, 1, 100000);
-  m.unknown_fraction = P::getInRange(pnh, "unknown_fraction", m.unknown_fraction, 0.01, 1.0);
-  m.known_radius_m = P::getInRange(pnh, "known_radius_m", m.known_radius_m, 0.01, 100.0);
+  P::loadFields(pnh, localization::AppearanceMclConfig::fields(), &m);
   use_odom_ = P::get<bool>(pnh, "use_odom", true);
   gate_ = ros_conv::ImageGate("appearance_localizer",
-                              P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0),
+                              P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
                               P::loadStampOrder(pnh));
   publish_tf_ = P::get<bool>(pnh, "publish_tf", false);
   transform_tolerance_s_ =
-      P::getInRange(pnh, "transform_tolerance", transform_tolerance_s_, 0.0, 10.0);
+      P::getInRange(pnh, "transform_tolerance", kTransformTolerance_s, 0.0, 10.0);
   map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   const int seed = P::getInRange(pnh, "seed", 1, 0, 1 << 30);
@@ -50,7 +68,7 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
         "appearance_localizer: %s: a write that was interrupted (a killed train_places?) "
         "was rolled back; the database is as it was before that write",
         path.c_str());
-  classifier_ = std::make_unique<places::RoomClassifier>(c);
+  classifier_ = std::make_unique<places::RoomClassifier>(classifier_config_);
   classifier_->setFrames(db.loadFrames());
   std::vector<localization::PosedFrame> posed;
   for (const auto& f : classifier_->frames()) {

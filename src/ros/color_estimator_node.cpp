@@ -18,43 +18,55 @@ namespace adaptive_perception {
 namespace fs = std::filesystem;
 using ros_params::ParamError;
 
+namespace {
+// The node's own parameters' defaults (the algorithm's are in color::ColorEstimatorConfig).
+constexpr char kDefaultObservationNoise[] = "pixel_over_count", kDefaultMixing[] = "best_mode";
+constexpr char kFieldFile[] = "config/field_4legged.yaml";
+constexpr double kTfTimeout_s = 0.1;
+}  // namespace
+
+std::vector<config::ParameterDoc> ColorEstimatorNode::parameters() {
+  std::vector<config::ParameterDoc> rows =
+      config::describe(color::ColorEstimatorConfig::fields(), color::ColorEstimatorConfig());
+  const std::vector<config::ParameterDoc> node = {
+      {"observation_noise", "string", kDefaultObservationNoise, "pixel, pixel_over_count",
+       "noise of an image's colour mean: pixel (nu, as eq. 5) or pixel_over_count (nu / n + "
+       "~observation_noise_floor_var)"},
+      {"mixing", "string", kDefaultMixing, "best_mode, imm",
+       "best_mode: only the mode that best explains the image is updated (the paper); imm"},
+      {"field_file", "string", kFieldFile, "", "the field map"},
+      {"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
+      {"tf_timeout_s", "double", config::formatValue(config::Kind::kDouble, kTfTimeout_s),
+       "[0, 5]", "wall-clock wait for map -> camera at an image's stamp before it is skipped (s)"}};
+  rows.insert(rows.end(), node.begin(), node.end());
+  const std::vector<config::ParameterDoc> priors = ros_params::lightingPriorParameters();
+  rows.insert(rows.end(), priors.begin(), priors.end());
+  rows.push_back(ros_params::stampOrderParameter());
+  return rows;
+}
+
 ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
   namespace P = ros_params;
-  color::ColorModelConfig& m = config_.model;
-  m.drift_std_per_sqrt_s =
-      P::getInRange(pnh, "drift_std_per_sqrt_s", m.drift_std_per_sqrt_s, 0.0, 100.0);
-  m.observation_noise_floor_var =
-      P::getInRange(pnh, "observation_noise_floor_var", m.observation_noise_floor_var, 0.0, 1e4);
-  m.min_pixels_per_color =
-      P::getInRange(pnh, "min_pixels_per_color", m.min_pixels_per_color, 1, 1000000);
-  m.unknown_mahalanobis =
-      P::getInRange(pnh, "unknown_mahalanobis", m.unknown_mahalanobis, 0.5, 1e9);
-  const std::string noise = P::get<std::string>(pnh, "observation_noise", "pixel_over_count");
+  P::loadFields(pnh, color::ColorEstimatorConfig::fields(), &config_);
+  const std::string noise = P::get<std::string>(pnh, "observation_noise", kDefaultObservationNoise);
   try {
-    m.observation_noise = color::parseObservationNoise(noise);
+    config_.model.observation_noise = color::parseObservationNoise(noise);
     config_.switching.mixing =
-        color::parseModeMixing(P::get<std::string>(pnh, "mixing", "best_mode"));
+        color::parseModeMixing(P::get<std::string>(pnh, "mixing", kDefaultMixing));
   } catch (const std::invalid_argument& e) {
     throw ParamError(std::string("parameter ") + pnh.resolveName("observation_noise/mixing") +
                      ": " + e.what());
   }
-  config_.switching.mode_stay_probability = P::getInRange(
-      pnh, "mode_stay_probability", config_.switching.mode_stay_probability, 1e-3, 1.0);
-  config_.switching.imm_prior_pull_per_s = P::getInRange(
-      pnh, "imm_prior_pull_per_s", config_.switching.imm_prior_pull_per_s, 0.0, 100.0);
-  config_.edge_margin_px = P::getInRange(pnh, "edge_margin_px", config_.edge_margin_px, 0, 20);
-  config_.lut_rebuild_sigma =
-      P::getInRange(pnh, "lut_rebuild_sigma", config_.lut_rebuild_sigma, 0.0, 5.0);
   map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
-  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", tf_timeout_s_, 0.0, 5.0);
+  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", kTfTimeout_s, 0.0, 5.0);
   gate_ = ros_conv::ImageGate("color_estimator", 0.0, P::loadStampOrder(pnh),
                               ros_conv::ImageGate::Output::kYuv);
 
   std::string filter, dir;
   priors_ = P::loadLightingPriors(pnh, &filter, &dir);
   map_ = world::FieldMap::loadYaml(
-      P::resolvePackagePath(P::getName(pnh, "field_file", "config/field_4legged.yaml")));
+      P::resolvePackagePath(P::getName(pnh, "field_file", kFieldFile)));
   config_.validate();
 
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_estimator/color_model", 5);
@@ -79,8 +91,8 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       std::make_unique<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>(
           reconfigure_mutex_, service_nh);
   adaptive_perception::ColorEstimatorConfig initial;
-  initial.drift_std_per_sqrt_s = m.drift_std_per_sqrt_s;
-  initial.unknown_mahalanobis = m.unknown_mahalanobis;
+  initial.drift_std_per_sqrt_s = config_.model.drift_std_per_sqrt_s;
+  initial.unknown_mahalanobis = config_.model.unknown_mahalanobis;
   initial.mode_stay_probability = config_.switching.mode_stay_probability;
   initial.lut_rebuild_sigma = config_.lut_rebuild_sigma;
   reconfigure_->updateConfig(initial);

@@ -12,45 +12,69 @@
 
 namespace adaptive_perception {
 
+namespace {
+// The node's own parameters' defaults (the trackers' are in their configs).
+constexpr char kDefaultMode[] = "box", kDefaultColorSpace[] = "opponent";
+constexpr double kMaxRate_hz = 30.0;
+std::string real(double v) { return config::formatValue(config::Kind::kDouble, v); }
+}  // namespace
+
+std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
+  std::vector<config::ParameterDoc> rows = {
+      {"mode", "string", kDefaultMode, "box, condensation, ellipse",
+       "box: CONDENSATION over the target's box (colours against the surroundings and a "
+       "correlation filter; the tracker for real video); condensation: CONDENSATION + affine "
+       "snake (the paper's 3.3); ellipse: the paper's 3.2 alone"}};
+  for (const auto& table :
+       {config::describe(tracking::BoxTrackerConfig::fields(), tracking::BoxTrackerConfig()),
+        config::describe(tracking::CondensationConfig::fields(), tracking::CondensationConfig()),
+        config::describe(tracking::EllipseTrackerConfig::fields(),
+                         tracking::EllipseTrackerConfig())})
+    rows.insert(rows.end(), table.begin(), table.end());
+  const std::vector<config::ParameterDoc> node = {
+      {"color_space", "string", kDefaultColorSpace, "opponent, rgb",
+       "modes condensation and ellipse: opponent = (B-G, G-R, R+G+B), as in the paper's later "
+       "experiments, or rgb"},
+      {"dynamics", "string", "", "",
+       "YAML of A1, A0, d, B from learn_tracking_dynamics; empty: the default model"},
+      {"initial_roi", "list", "[]", "",
+       "[x, y, w, h] pixels in the first image; empty: wait for ~set_target or the target topic"},
+      {"max_rate_hz", "double", real(kMaxRate_hz), "[0.01, 1000]",
+       "images faster than this (by stamp) are skipped"},
+      {"publish_overlay", "bool", "true", "",
+       "condensation_tracker/overlay (only computed with a subscriber)"},
+      {"seed", "int", "1", "[0, 1073741824]", "sampling seed"}};
+  rows.insert(rows.end(), node.begin(), node.end());
+  rows.push_back(ros_params::stampOrderParameter());
+  return rows;
+}
+
 CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   namespace P = ros_params;
-  const std::string mode = P::get<std::string>(pnh, "mode", "box");
+  const std::string mode = P::get<std::string>(pnh, "mode", kDefaultMode);
   if (mode != "box" && mode != "condensation" && mode != "ellipse")
     throw P::ParamError("parameter " + pnh.resolveName("mode") + " = '" + mode +
                         "' must be box, condensation or ellipse");
   mode_ = mode == "box" ? Mode::kBox : mode == "condensation" ? Mode::kCondensation : Mode::kEllipse;
-  tracking::BoxTrackerConfig& b = box_config_;
-  b.samples = P::getInRange(pnh, "box_samples", b.samples, 10, 100000);
-  b.filter_gain = P::getInRange(pnh, "box_filter_gain", b.filter_gain, 0.0, 1e4);
-  b.peak_fraction = P::getInRange(pnh, "box_peak_fraction", b.peak_fraction, 0.0, 0.99);
-  b.lost_score = P::getInRange(pnh, "box_lost_score", b.lost_score, -1.0, 1.0);
-  b.validate();
+  P::loadFields(pnh, tracking::BoxTrackerConfig::fields(), &box_config_);
+  box_config_.validate();
   tracking::CondensationConfig& c = config_;
-  c.samples = P::getInRange(pnh, "samples", c.samples, 1, 100000);
+  P::loadFields(pnh, tracking::CondensationConfig::fields(), &c);
   try {
     c.quantizer.space =
-        tracking::parseColorSpace(P::get<std::string>(pnh, "color_space", "opponent"));
+        tracking::parseColorSpace(P::get<std::string>(pnh, "color_space", kDefaultColorSpace));
   } catch (const std::invalid_argument& e) {
     throw P::ParamError("parameter " + pnh.resolveName("color_space") + ": " + e.what());
   }
-  c.quantizer.bins = P::getInRange(pnh, "bins", c.quantizer.bins, 2, 64);
-  c.contour_points = P::getInRange(pnh, "contour_points", c.contour_points, 8, 1000);
-  c.sigma = P::getInRange(pnh, "sigma", c.sigma, 1e-3, 100.0);
-  c.lost_weight = P::getInRange(pnh, "lost_weight", c.lost_weight, 0.0, 0.999);
-  c.roi_margin = P::getInRange(pnh, "roi_margin", c.roi_margin, 0.0, 20.0);
   const std::string dynamics = P::get<std::string>(pnh, "dynamics", "");
   if (!dynamics.empty()) c.dynamics = tracking::Ar2Model::loadYaml(P::resolvePackagePath(dynamics));
   c.validate();
-  tracking::EllipseTrackerConfig& e = ellipse_config_;
-  e.quantizer.space = c.quantizer.space;
-  e.search_radius_px = P::getInRange(pnh, "ellipse_search_radius_px", e.search_radius_px, 1, 200);
-  e.update_rate = P::getInRange(pnh, "ellipse_update_rate", e.update_rate, 0.0, 1.0);
-  e.update_threshold = P::getInRange(pnh, "ellipse_update_threshold", e.update_threshold, 0.0, 1.0);
-  e.lost_threshold = P::getInRange(pnh, "ellipse_lost_threshold", e.lost_threshold, 0.0, 1.0);
-  e.validate();
+  P::loadFields(pnh, tracking::EllipseTrackerConfig::fields(), &ellipse_config_);
+  ellipse_config_.quantizer = c.quantizer;
+  ellipse_config_.validate();
   publish_overlay_ = P::get<bool>(pnh, "publish_overlay", true);
   gate_ = ros_conv::ImageGate("condensation_tracker",
-                              P::getInRange(pnh, "max_rate_hz", 30.0, 0.01, 1000.0),
+                              P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
                               P::loadStampOrder(pnh));
   seed_ = static_cast<std::uint64_t>(P::getInRange(pnh, "seed", 1, 0, 1 << 30));
   const std::vector<double> roi = P::getNumbers(pnh, "initial_roi", {});
@@ -77,7 +101,8 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   diagnostics_.add("tracking", this, &CondensationTrackerNode::diagnose);
   diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
   ROS_INFO("condensation_tracker: mode %s, %d samples, colour space %s, %s", mode.c_str(),
-           mode_ == Mode::kBox ? b.samples : c.samples, tracking::colorSpaceName(c.quantizer.space).c_str(),
+           mode_ == Mode::kBox ? box_config_.samples : c.samples,
+           tracking::colorSpaceName(c.quantizer.space).c_str(),
            pending_target_ ? "target from ~initial_roi" : "waiting for a target");
 }
 

@@ -19,39 +19,75 @@ namespace adaptive_perception {
 namespace fs = std::filesystem;
 using ros_params::ParamError;
 
+namespace {
+// The node's own parameters' defaults (the algorithm's are in slam::LaserSlamConfig).
+constexpr char kDefaultVariant[] = "standard", kDefaultAssociation[] = "jcbb";
+constexpr char kDefaultMapFile[] = "line_map.yaml";
+const std::vector<double> kInitialPoseStd = {1e-3, 1e-3, 1e-3};
+constexpr double kExternalGate = 0.999, kTransformTolerance_s = 0.1, kTfTimeout_s = 0.2;
+constexpr double kMapUpdateInterval_s = 5.0;
+constexpr double kGridKeyframeDistance_m = 0.1, kGridKeyframeAngle_rad = 0.1;
+constexpr int kPathMaxPoses = 20000;
+std::string real(double v) { return config::formatValue(config::Kind::kDouble, v); }
+}  // namespace
+
+std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
+  std::vector<config::ParameterDoc> rows =
+      config::describe(slam::LaserSlamConfig::fields(), slam::LaserSlamConfig());
+  const slam::OccupancyGridConfig grid;
+  const std::vector<config::ParameterDoc> node = {
+      {"variant", "string", kDefaultVariant, "standard, anchor, external",
+       "standard; anchor: two non-parallel lines fixed; external: absolute poses on external_pose"},
+      {"association", "string", kDefaultAssociation, "jcbb, nn",
+       "jcbb: joint compatibility branch and bound; nn: nearest neighbour"},
+      {"initial_map", "string", "", "",
+       "a line map written by ~save_map: localize against it, never extend it (loop closing "
+       "off); empty: map"},
+      {"initial_pose", "list", "[]", "", "[x_m, y_m, yaw_rad] at the first scan; empty: the origin"},
+      {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
+       "its standard deviations (m, m, rad)"},
+      {"external_gate_probability", "double", real(kExternalGate), "[0.5, 0.999999]",
+       "external poses whose innovation fails this chi-square gate are rejected"},
+      {"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
+      {"odom_frame", "string", ros_topics::kOdomFrame, "", "the odometry frame"},
+      {"base_frame", "string", ros_topics::kBaseFrame, "", "the robot's frame"},
+      {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
+      {"transform_tolerance_s", "double", real(kTransformTolerance_s), "[0, 10]",
+       "map -> odom is future-dated by this (s), as amcl does"},
+      {"tf_timeout_s", "double", real(kTfTimeout_s), "[0, 5]",
+       "wall-clock wait for odom -> base_link at a scan's stamp before it is skipped (s)"},
+      {"map_file", "string", kDefaultMapFile, "",
+       "~save_map's default path (relative to the node's working directory)"},
+      {"path_max_poses", "int", std::to_string(kPathMaxPoses), "[1, 10000000]",
+       "ekf_slam_mapper/path keeps the newest poses"},
+      {"map_update_interval_s", "double", real(kMapUpdateInterval_s), "[0, 3600]",
+       "seconds between occupancy-grid renders (gmapping's map_update_interval); 0: no grid"},
+      {"grid_resolution_m", "double", real(grid.resolution_m), "[0.005, 10]",
+       "the grid's cell side (m)"},
+      {"grid_max_range_m", "double", real(grid.max_range_m), "[0.1, 1000]",
+       "beams are used up to here; no-returns clear up to here (m)"},
+      {"grid_keyframe_distance_m", "double", real(kGridKeyframeDistance_m), "[0, 100]",
+       "the grid keeps a scan after this much motion (m)"},
+      {"grid_keyframe_angle_rad", "double", real(kGridKeyframeAngle_rad), "[0, 3.14159]",
+       "... or this much turning (rad)"}};
+  rows.insert(rows.end(), node.begin(), node.end());
+  rows.push_back(ros_params::stampOrderParameter());
+  return rows;
+}
+
 EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : tf_listener_(tf_buffer_) {
   namespace P = ros_params;
-  config_.front_end = P::get<bool>(pnh, "front_end", config_.front_end);
-  config_.loop_closing = P::get<bool>(pnh, "loop_closing", config_.loop_closing);
-  config_.loop.wide_search = P::get<bool>(pnh, "wide_search", config_.loop.wide_search);
+  P::loadFields(pnh, slam::LaserSlamConfig::fields(), &config_);
   slam::LineEkfSlamConfig& c = config_.ekf;
   try {
-    c.variant = slam::parseVariant(P::get<std::string>(pnh, "variant", "standard"));
-    c.association = slam::parseAssociation(P::get<std::string>(pnh, "association", "jcbb"));
+    c.variant = slam::parseVariant(P::get<std::string>(pnh, "variant", kDefaultVariant));
+    c.association =
+        slam::parseAssociation(P::get<std::string>(pnh, "association", kDefaultAssociation));
   } catch (const std::invalid_argument& e) {
     throw ParamError(std::string("ekf_slam_mapper parameters: ") + e.what());
   }
-  c.retire_after_updates =
-      P::getInRange(pnh, "retire_after_updates", c.retire_after_updates, 0, 1000000);
-  c.anchor_min_angle_rad =
-      P::getInRange(pnh, "anchor_min_angle_rad", c.anchor_min_angle_rad, 0.0, M_PI / 2);
-  c.gate_probability = P::getInRange(pnh, "gate_probability", c.gate_probability, 0.5, 0.999999);
-  c.confirm_sightings = P::getInRange(pnh, "confirm_sightings", c.confirm_sightings, 1, 1000);
-  c.tentative_timeout_scans =
-      P::getInRange(pnh, "tentative_timeout_scans", c.tentative_timeout_scans, 1, 100000);
-  c.min_new_line_length_m =
-      P::getInRange(pnh, "min_new_line_length_m", c.min_new_line_length_m, 0.0, 100.0);
-  c.line_model_rho_std_m =
-      P::getInRange(pnh, "line_model_rho_std_m", c.line_model_rho_std_m, 0.0, 10.0);
-  c.line_model_alpha_std_rad =
-      P::getInRange(pnh, "line_model_alpha_std_rad", c.line_model_alpha_std_rad, 0.0, 1.0);
-  c.merge_landmarks = P::get<bool>(pnh, "merge_landmarks", c.merge_landmarks);
-  c.share_landmarks = P::get<bool>(pnh, "share_landmarks", c.share_landmarks);
-  c.first_estimate_jacobians =
-      P::get<bool>(pnh, "first_estimate_jacobians", c.first_estimate_jacobians);
-  P::loadMotionModel(pnh, &c.motion);
-  P::loadInitialPose(pnh, {1e-3, 1e-3, 1e-3}, &initial_pose_, &initial_cov_);
+  P::loadInitialPose(pnh, kInitialPoseStd, &initial_pose_, &initial_cov_);
   initial_map_ = P::get<std::string>(pnh, "initial_map", "");
   if (!initial_map_.empty()) {
     try {
@@ -62,26 +98,26 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     c.extend_map = false;  // localize against the loaded map, never extend it
     config_.loop_closing = false;
   }
-  external_gate_ = P::getInRange(pnh, "external_gate_probability", external_gate_, 0.5, 0.999999);
+  external_gate_ = P::getInRange(pnh, "external_gate_probability", kExternalGate, 0.5, 0.999999);
   map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   base_frame_ = P::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
   publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
   transform_tolerance_s_ =
-      P::getInRange(pnh, "transform_tolerance_s", transform_tolerance_s_, 0.0, 10.0);
-  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", tf_timeout_s_, 0.0, 5.0);
+      P::getInRange(pnh, "transform_tolerance_s", kTransformTolerance_s, 0.0, 10.0);
+  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", kTfTimeout_s, 0.0, 5.0);
   stamp_order_ = ros_conv::StampOrder("ekf_slam_mapper", "lines", P::loadStampOrder(pnh));
-  map_file_ = P::get<std::string>(pnh, "map_file", "line_map.yaml");
-  path_max_poses_ = P::getInRange(pnh, "path_max_poses", path_max_poses_, 1, 10000000);
+  map_file_ = P::get<std::string>(pnh, "map_file", kDefaultMapFile);
+  path_max_poses_ = P::getInRange(pnh, "path_max_poses", kPathMaxPoses, 1, 10000000);
   grid_config_.resolution_m =
       P::getInRange(pnh, "grid_resolution_m", grid_config_.resolution_m, 0.005, 10.0);
   grid_config_.max_range_m =
       P::getInRange(pnh, "grid_max_range_m", grid_config_.max_range_m, 0.1, 1000.0);
   map_update_interval_s_ =
-      P::getInRange(pnh, "map_update_interval_s", map_update_interval_s_, 0.0, 3600.0);
+      P::getInRange(pnh, "map_update_interval_s", kMapUpdateInterval_s, 0.0, 3600.0);
   keyframes_ = std::make_unique<slam::GridKeyframes>(
-      P::getInRange(pnh, "grid_keyframe_distance_m", 0.1, 0.0, 100.0),
-      P::getInRange(pnh, "grid_keyframe_angle_rad", 0.1, 0.0, M_PI));
+      P::getInRange(pnh, "grid_keyframe_distance_m", kGridKeyframeDistance_m, 0.0, 100.0),
+      P::getInRange(pnh, "grid_keyframe_angle_rad", kGridKeyframeAngle_rad, 0.0, M_PI));
   try {
     config_.validate();
     grid_config_.validate();

@@ -108,9 +108,20 @@ visualization_msgs::MarkerArray fieldMapMarkers(const world::FieldMap& map,
   return out;
 }
 
+namespace {
+constexpr char kFieldFile[] = "config/field_4legged.yaml";
+}  // namespace
+
+std::vector<config::ParameterDoc> FieldMapPublisherNode::parameters() {
+  return {{"field_file", "string", kFieldFile, "",
+           "the field's dimensions (YAML); a relative path is looked up in the current "
+           "directory, then in the package"},
+          {"frame_id", "string", ros_topics::kMapFrame, "", "the frame of the markers"}};
+}
+
 FieldMapPublisherNode::FieldMapPublisherNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
-  const std::string file = ros_params::resolvePackagePath(
-      ros_params::getName(pnh, "field_file", "config/field_4legged.yaml"));
+  const std::string file =
+      ros_params::resolvePackagePath(ros_params::getName(pnh, "field_file", kFieldFile));
   const std::string frame = ros_params::getFrameId(pnh, "frame_id", ros_topics::kMapFrame);
   const world::FieldMap map = world::FieldMap::loadYaml(file);
   pub_ = nh.advertise<visualization_msgs::MarkerArray>(ros_topics::kFieldMap, 1, /*latch=*/true);

@@ -12,51 +12,76 @@
 
 namespace adaptive_perception {
 
+namespace {
+// The node's own parameters' defaults (the recognizer's are in places::PlaceRecognizerConfig).
+constexpr char kDefaultDatabase[] = "places.sqlite", kDefaultMode[] = "recognise";
+constexpr char kDefaultSpaces[] = "all", kDefaultMask[] = "none";
+constexpr double kMaxRate_hz = 5.0;
+constexpr int kTrainBatch = 15, kTrainEveryN = 1;
+}  // namespace
+
+std::vector<config::ParameterDoc> HistogramPlaceRecognizerNode::parameters() {
+  const places::PlaceRecognizerConfig rc;
+  std::vector<config::ParameterDoc> rows = {
+      {"database", "string", kDefaultDatabase, "",
+       "the SQLite place database (train_places builds one)"},
+      {"create_if_missing", "bool", "true", "", "start an empty database when the file is missing"},
+      {"mode", "string", kDefaultMode, "recognise, train",
+       "train: images labelled by ground_truth/place are stored"},
+      {"bins", "int", std::to_string(places::HistogramConfig().bins), "[2, 256]",
+       "a new database's histogram bins per band (an existing one must match when set)"},
+      {"spaces", "string", kDefaultSpaces, "", "a new database's colour spaces (histogram.h)"},
+      {"mask", "string", kDefaultMask, "", "a new database's image mask (MaskConfig::parse)"},
+      {"cue", "string", rc.cue, "fused, thumbnail, gradient, chromaticity, layout, histogram",
+       "what images are compared by"},
+      {"color_space", "string", rc.color_space, "",
+       "histogram cue: auto (the paper's most confident space) or a space name"},
+      {"method", "string", rc.method, "",
+       "histogram cue: auto (the most confident of chi_square, jeffrey, ks) or one distance"}};
+  const auto table = config::describe(places::PlaceRecognizerConfig::fields(), rc);
+  rows.insert(rows.end(), table.begin(), table.end());
+  const std::vector<config::ParameterDoc> node = {
+      {"max_rate_hz", "double", config::formatValue(config::Kind::kDouble, kMaxRate_hz),
+       "[0.01, 1000]", "images processed per second of image time at most"},
+      {"train_batch", "int", std::to_string(kTrainBatch), "[1, 100000]",
+       "train mode: images per place per transaction"},
+      {"train_every_n", "int", std::to_string(kTrainEveryN), "[1, 100000]",
+       "train mode: keep one labelled image in N"}};
+  rows.insert(rows.end(), node.begin(), node.end());
+  rows.push_back(ros_params::stampOrderParameter());
+  return rows;
+}
+
 HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
                                                            ros::NodeHandle pnh) {
   namespace P = ros_params;
-  const std::string path = P::getName(pnh, "database", "places.sqlite");
+  const std::string path = P::getName(pnh, "database", kDefaultDatabase);
   const bool create = P::get<bool>(pnh, "create_if_missing", true);
   places::HistogramConfig hc;
   hc.bins = P::getInRange(pnh, "bins", hc.bins, 2, 256);
   const bool explicit_settings =
       pnh.hasParam("bins") || pnh.hasParam("spaces") || pnh.hasParam("mask");
   try {
-    hc.spaces = places::parseSpaces(P::get<std::string>(pnh, "spaces", "all"));
-    hc.mask = places::MaskConfig::parse(P::get<std::string>(pnh, "mask", "none"));
+    hc.spaces = places::parseSpaces(P::get<std::string>(pnh, "spaces", kDefaultSpaces));
+    hc.mask = places::MaskConfig::parse(P::get<std::string>(pnh, "mask", kDefaultMask));
   } catch (const std::invalid_argument& e) {
     throw P::ParamError(std::string("parameter ~spaces / ~mask: ") + e.what());
   }
-  const std::string mode = P::get<std::string>(pnh, "mode", "recognise");
+  const std::string mode = P::get<std::string>(pnh, "mode", kDefaultMode);
   if (mode != "recognise" && mode != "recognize" && mode != "train")
     throw P::ParamError("parameter " + pnh.resolveName("mode") + " is '" + mode +
                         "'; allowed: recognise, train");
   train_mode_ = mode == "train";
   places::PlaceRecognizerConfig rc;
   rc.cue = P::get<std::string>(pnh, "cue", rc.cue);
-  rc.fusion.thumbnail = P::getInRange(pnh, "thumbnail_weight", rc.fusion.thumbnail, 0.0, 1000.0);
-  rc.fusion.gradient = P::getInRange(pnh, "gradient_weight", rc.fusion.gradient, 0.0, 1000.0);
-  rc.fusion.chromaticity =
-      P::getInRange(pnh, "chromaticity_weight", rc.fusion.chromaticity, 0.0, 1000.0);
-  rc.fusion.layout = P::getInRange(pnh, "layout_weight", rc.fusion.layout, 0.0, 1000.0);
   rc.color_space = P::get<std::string>(pnh, "color_space", rc.color_space);
   rc.method = P::get<std::string>(pnh, "method", rc.method);
-  rc.window = P::getInRange(pnh, "window", rc.window, 1, 1000);
-  rc.use_filter = P::get<bool>(pnh, "use_filter", rc.use_filter);
-  rc.filter.stay_probability =
-      P::getInRange(pnh, "stay_probability", rc.filter.stay_probability, 0.0, 1.0);
-  rc.filter.teleport_probability =
-      P::getInRange(pnh, "teleport_probability", rc.filter.teleport_probability, 0.0, 1.0);
-  rc.filter.likelihood_sharpness =
-      P::getInRange(pnh, "likelihood_sharpness", rc.filter.likelihood_sharpness, 1e-3, 1e3);
-  rc.use_sequence = P::get<bool>(pnh, "use_sequence", rc.use_sequence);
-  rc.sequence.sequence_frames =
-      P::getInRange(pnh, "sequence_frames", rc.sequence.sequence_frames, 1, 1000);
+  P::loadFields(pnh, places::PlaceRecognizerConfig::fields(), &rc);
   gate_ = ros_conv::ImageGate("histogram_place_recognizer",
-                              P::getInRange(pnh, "max_rate_hz", 5.0, 0.01, 1000.0),
+                              P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
                               P::loadStampOrder(pnh));
-  train_batch_ = P::getInRange(pnh, "train_batch", train_batch_, 1, 100000);
-  train_every_n_ = P::getInRange(pnh, "train_every_n", train_every_n_, 1, 100000);
+  train_batch_ = P::getInRange(pnh, "train_batch", kTrainBatch, 1, 100000);
+  train_every_n_ = P::getInRange(pnh, "train_every_n", kTrainEveryN, 1, 100000);
   try {
     rc.validate();
     recognizer_ = std::make_unique<places::PlaceRecognizer>(rc);

@@ -34,6 +34,8 @@ visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const
 
 namespace {
 
+constexpr char kDefaultSplitMethod[] = "recursive";
+
 /// `cfg` showing the settings of `c` (what dynamic_reconfigure reports as in force).
 void showConfig(const laser::LineExtractionConfig& c, const std::string& split_method,
                 adaptive_perception::LineExtractorConfig* cfg) {
@@ -48,21 +50,21 @@ void showConfig(const laser::LineExtractionConfig& c, const std::string& split_m
 
 }  // namespace
 
+std::vector<config::ParameterDoc> LineExtractorNode::parameters() {
+  std::vector<config::ParameterDoc> rows =
+      config::describe(laser::LineExtractionConfig::fields(), laser::LineExtractionConfig());
+  rows.push_back({"split_method", "string", kDefaultSplitMethod, "recursive, hull_tree",
+                  "recursive: Table 2's linear farthest-point scan; hull_tree: O(log^2 n) "
+                  "queries over convex hulls, the same output"});
+  rows.push_back(ros_params::stampOrderParameter());
+  return rows;
+}
+
 LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   namespace P = ros_params;
   laser::LineExtractionConfig c;
-  c.min_range_m = P::getInRange(pnh, "min_range_m", c.min_range_m, 0.0, 100.0);
-  c.range_noise_std_m = P::getInRange(pnh, "range_noise_std_m", c.range_noise_std_m, 0.0, 0.99);
-  c.bearing_noise_std_rad =
-      P::getInRange(pnh, "bearing_noise_std_rad", c.bearing_noise_std_rad, 0.0, 0.099);
-  c.breakpoint_lambda_rad =
-      P::getInRange(pnh, "breakpoint_lambda_rad", c.breakpoint_lambda_rad, 0.01, 1.4);
-  c.max_gap_m = P::getInRange(pnh, "max_gap_m", c.max_gap_m, 0.01, 10.0);
-  c.split_threshold_m = P::getInRange(pnh, "split_threshold_m", c.split_threshold_m, 0.001, 1.0);
-  c.merge_collinear = P::get<bool>(pnh, "merge_collinear", c.merge_collinear);
-  c.min_points = P::getInRange(pnh, "min_points", c.min_points, 2, 1000);
-  c.min_length_m = P::getInRange(pnh, "min_length_m", c.min_length_m, 0.0, 10.0);
-  const std::string method = P::get<std::string>(pnh, "split_method", "recursive");
+  P::loadFields(pnh, laser::LineExtractionConfig::fields(), &c);
+  const std::string method = P::get<std::string>(pnh, "split_method", kDefaultSplitMethod);
   try {
     c.split_method = laser::parseSplitMethod(method);
   } catch (const std::invalid_argument& e) {

@@ -2,12 +2,26 @@
 
 #include <stdexcept>
 
+#include "adaptive_perception/ros/appearance_localizer_node.h"
+#include "adaptive_perception/ros/color_estimator_node.h"
+#include "adaptive_perception/ros/condensation_tracker_node.h"
+#include "adaptive_perception/ros/ekf_slam_mapper_node.h"
+#include "adaptive_perception/ros/field_map_publisher_node.h"
+#include "adaptive_perception/ros/histogram_place_recognizer_node.h"
+#include "adaptive_perception/ros/line_extractor_node.h"
 #include "adaptive_perception/ros/rbpf_localizer_node.h"
 
 namespace adaptive_perception::ros_params {
 
 const std::map<std::string, std::vector<config::ParameterDoc>>& nodeParameters() {
   static const std::map<std::string, std::vector<config::ParameterDoc>> nodes = {
+      {"appearance_localizer", AppearanceLocalizerNode::parameters()},
+      {"color_estimator", ColorEstimatorNode::parameters()},
+      {"condensation_tracker", CondensationTrackerNode::parameters()},
+      {"ekf_slam_mapper", EkfSlamMapperNode::parameters()},
+      {"field_map_publisher", FieldMapPublisherNode::parameters()},
+      {"histogram_place_recognizer", HistogramPlaceRecognizerNode::parameters()},
+      {"line_extractor", LineExtractorNode::parameters()},
       {"rbpf_localizer", RbpfLocalizerNode::parameters()}};
   return nodes;
 }

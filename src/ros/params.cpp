@@ -56,9 +56,24 @@ std::string resolvePackagePath(const std::string& value) {
   return value;
 }
 
+namespace {
+constexpr char kDefaultFilter[] = "switching", kDefaultPriorsDir[] = "config/color_priors";
+}  // namespace
+
+std::vector<config::ParameterDoc> lightingPriorParameters() {
+  return {{"filter", "string", kDefaultFilter, "switching, single",
+           "the lighting filter: switching between ~priors (a jump Markov model), or one "
+           "~single_prior"},
+          {"priors", "list", config::formatList(kDefaultSwitchingPriors), "",
+           "the switching filter's lighting priors (names)"},
+          {"single_prior", "string", kDefaultSinglePrior, "", "the single filter's prior"},
+          {"priors_dir", "string", kDefaultPriorsDir, "",
+           "where prior NAME is NAME.yaml (relative: the current directory, then the package)"}};
+}
+
 std::vector<color::LightingPrior> loadLightingPriors(const ros::NodeHandle& pnh,
                                                      std::string* filter, std::string* dir) {
-  *filter = get<std::string>(pnh, "filter", "switching");
+  *filter = get<std::string>(pnh, "filter", kDefaultFilter);
   std::vector<std::string> names;
   if (*filter == "switching") {
     names = get<std::vector<std::string>>(pnh, "priors", kDefaultSwitchingPriors);
@@ -70,16 +85,12 @@ std::vector<color::LightingPrior> loadLightingPriors(const ros::NodeHandle& pnh,
   }
   if (names.empty())
     throw ParamError("parameter " + pnh.resolveName("priors") + " must name at least one prior");
-  *dir = resolvePackagePath(getName(pnh, "priors_dir", "config/color_priors"));
+  *dir = resolvePackagePath(getName(pnh, "priors_dir", kDefaultPriorsDir));
   std::vector<color::LightingPrior> priors;
   for (const auto& n : names)
     priors.push_back(
         color::LightingPrior::loadYaml((std::filesystem::path(*dir) / (n + ".yaml")).string()));
   return priors;
-}
-
-void loadMotionModel(const ros::NodeHandle& pnh, localization::MotionModelConfig* m) {
-  loadFields(pnh, localization::MotionModelConfig::fields(), m);
 }
 
 std::vector<double> getNumbers(const ros::NodeHandle& nh, const std::string& name,
@@ -139,11 +150,25 @@ bool loadInitialPose(const ros::NodeHandle& pnh, const std::vector<double>& defa
   return true;
 }
 
+namespace {
+constexpr double kMinRestartBack_s = 0.01, kMaxRestartBack_s = 3600.0;
+}
+
 ros_conv::StampOrderConfig loadStampOrder(const ros::NodeHandle& pnh) {
   ros_conv::StampOrderConfig c;
-  c.restart_after_back_s =
-      getInRange(pnh, "time_back_restart_s", c.restart_after_back_s, 0.01, 3600.0);
+  c.restart_after_back_s = getInRange(pnh, "time_back_restart_s", c.restart_after_back_s,
+                                      kMinRestartBack_s, kMaxRestartBack_s);
   return c;
+}
+
+config::ParameterDoc stampOrderParameter() {
+  const config::Range range = config::closed(kMinRestartBack_s, kMaxRestartBack_s);
+  return {"time_back_restart_s", "double",
+          config::formatValue(config::Kind::kDouble,
+                              ros_conv::StampOrderConfig().restart_after_back_s),
+          range.text(),
+          "an input older than the last is dropped; older by more than this (s), or the clock "
+          "jumping back (a looped bag), restarts the node's estimate"};
 }
 
 }  // namespace adaptive_perception::ros_params

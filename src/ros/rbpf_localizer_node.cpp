@@ -62,18 +62,6 @@ constexpr const char* kFieldFile = "config/field_4legged.yaml";
 const std::vector<double> kInitialPoseStd = {0.2, 0.2, 0.17};
 constexpr double kTransformTolerance_s = 0.1, kTfTimeout_s = 0.1;
 
-std::string list(const std::vector<std::string>& v) {
-  std::string out = "[";
-  for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + v[i];
-  return out + "]";
-}
-
-std::string numbers(const std::vector<double>& v) {
-  std::string out = "[";
-  for (size_t i = 0; i < v.size(); ++i)
-    out += (i ? ", " : "") + config::formatValue(config::Kind::kDouble, v[i]);
-  return out + "]";
-}
 }  // namespace
 
 std::vector<config::ParameterDoc> RbpfLocalizerNode::parameters() {
@@ -84,15 +72,9 @@ std::vector<config::ParameterDoc> RbpfLocalizerNode::parameters() {
   const std::vector<config::ParameterDoc> node = {
       {"threads", "int", "0", "[0, 256]", "threads for the particles (0: all cores)"},
       {"seed", "int", "1", "[0, 1073741824]", "random seed (the same seed replays the same run)"},
-      {"filter", "string", "switching", "switching, single",
-       "each particle's lighting filter: switching between ~priors, or one ~single_prior"},
-      {"priors", "list", list(ros_params::kDefaultSwitchingPriors), "",
-       "the switching filter's lighting priors (names)"},
-      {"single_prior", "string", ros_params::kDefaultSinglePrior, "", "the single filter's prior"},
-      {"priors_dir", "string", "config/color_priors", "", "where prior NAME is NAME.yaml"},
       {"field_file", "string", kFieldFile, "", "the field map"},
       {"initial_pose", "list", "[]", "", "[x_m, y_m, yaw_rad]; empty: global localization"},
-      {"initial_pose_std", "list", numbers(kInitialPoseStd), "",
+      {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
        "its standard deviations (m, m, rad)"},
       {"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
       {"odom_frame", "string", ros_topics::kOdomFrame, "", "the odometry frame"},
@@ -101,12 +83,11 @@ std::vector<config::ParameterDoc> RbpfLocalizerNode::parameters() {
       {"transform_tolerance_s", "double", formatValue(Kind::kDouble, kTransformTolerance_s),
        "[0, 10]", "map -> odom is future-dated by this (s), as amcl does"},
       {"tf_timeout_s", "double", formatValue(Kind::kDouble, kTfTimeout_s), "[0, 5]",
-       "wall-clock wait for the image's tf before the frame is skipped (s)"},
-      {"time_back_restart_s", "double",
-       formatValue(Kind::kDouble, ros_conv::StampOrderConfig().restart_after_back_s),
-       "[0.01, 3600]",
-       "an input this much older than the last (a looped bag) restarts the filter (s)"}};
+       "wall-clock wait for the image's tf before the frame is skipped (s)"}};
   rows.insert(rows.end(), node.begin(), node.end());
+  const std::vector<config::ParameterDoc> priors = ros_params::lightingPriorParameters();
+  rows.insert(rows.end(), priors.begin(), priors.end());
+  rows.push_back(ros_params::stampOrderParameter());
   return rows;
 }
 

@@ -6,6 +6,7 @@
 //       [--unobserved COLOUR] [--priors_dir config/color_priors] [--modes dark,bright] [--single
 //       all]
 //       [--mixing best_mode|imm] [--output results/evaluate_color_estimation] [--name LABEL]
+//       [--<color_estimator parameter> V ...]   (its table: docs/nodes/color_estimator.md)
 //
 // switching: one mode per prior in --modes; single: one Kalman filter from the prior --single.
 // independent: the same priors with every cross-colour covariance zeroed. --unobserved withholds
@@ -26,6 +27,7 @@
 #include "adaptive_perception/color/color_estimator.h"
 #include "adaptive_perception/ros/bag_frames.h"
 #include "adaptive_perception/ros/params.h"
+#include "config_args.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -36,7 +38,7 @@ int main(int argc, char** argv) {
                    "evaluate_color_estimation --bag FILE [--filter switching|single] [--prior "
                    "joint|independent] "
                    "[--unobserved COLOUR] [--priors_dir DIR] [--modes dark,bright] [--single all] "
-                   "[--mixing best_mode|imm] [--edge_margin_px N] [--unknown_mahalanobis D] "
+                   "[--mixing best_mode|imm] [--<color_estimator parameter> V ...] "
                    "[--output DIR] [--name LABEL] [--no_plot]");
   const std::string bag = args.get("bag", "");
   const std::string filter = args.get("filter", "switching");
@@ -49,12 +51,11 @@ int main(int argc, char** argv) {
   const std::string output = args.get("output", "results/evaluate_color_estimation");
   const std::string name = args.get("name", fs::path(bag).stem().string());
   const bool plot = !args.has("no_plot");
-  // Scored as the node classifies: maximum likelihood behind the "unknown" gate. A large value
-  // (1e9) gives the paper's plain maximum likelihood over the map colours.
-  const double unknown_mahalanobis =
-      args.getDouble("unknown_mahalanobis", color::ColorModelConfig().unknown_mahalanobis);
-  const int edge_margin_px =
-      static_cast<int>(args.getInt("edge_margin_px", color::ColorEstimatorConfig().edge_margin_px));
+  // color_estimator's parameters (color::ColorEstimatorConfig::fields(), the same names and
+  // ranges). Scored as the node classifies: maximum likelihood behind the "unknown" gate;
+  // --unknown_mahalanobis 1e9 gives the paper's plain maximum likelihood over the map colours.
+  color::ColorEstimatorConfig cfg;
+  tools::applyFields(args, color::ColorEstimatorConfig::fields(), &cfg);
   args.finish();
   if (bag.empty()) args.fail("--bag FILE is required");
   if (filter != "switching" && filter != "single")
@@ -63,10 +64,7 @@ int main(int argc, char** argv) {
     args.fail("--prior must be joint or independent");
 
   try {
-    color::ColorEstimatorConfig cfg;
     cfg.switching.mixing = color::parseModeMixing(mixing);
-    cfg.edge_margin_px = edge_margin_px;
-    cfg.model.unknown_mahalanobis = unknown_mahalanobis;
     if (!unobserved.empty()) {
       const auto c = world::parseColorClass(unobserved);
       if (!c || *c == world::kBackground)

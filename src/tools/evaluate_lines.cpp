@@ -3,8 +3,9 @@
 // reports speed. Either way it draws one scan with its segments (PNG).
 //
 //   evaluate_lines --bag FILE [--output results/evaluate_lines] [--split_method
-//                  recursive|hull_tree] [--range_noise_std_m S] [--plot_scan N] [--name LABEL]
-// --range_noise_std_m: the laser's range noise assumed by the extractor (its default when absent).
+//                  recursive|hull_tree] [--<field> V ...] [--plot_scan N] [--name LABEL]
+// --<field>: any of line_extractor's parameters (laser::LineExtractionConfig::fields(), the same
+// names and ranges), e.g. --range_noise_std_m, the laser's range noise the extractor assumes.
 //
 // Scoring: laser/line_evaluation.h (wall pieces in view, matching within 0.1 m and 5 degrees).
 // Writes OUTPUT/results.yaml, OUTPUT/scan.png. Last line:
@@ -29,6 +30,7 @@
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
+#include "config_args.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -37,20 +39,20 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "evaluate_lines --bag FILE [--output DIR] [--split_method recursive|hull_tree] "
-                   "[--range_noise_std_m S] [--plot_scan N] [--name LABEL] [--no_plot]");
+                   "[--<line_extractor parameter> V ...] [--plot_scan N] [--name LABEL] "
+                   "[--no_plot]");
   const std::string bag_path = args.get("bag", "");
   const std::string output = args.get("output", "results/evaluate_lines");
   const std::string method = args.get("split_method", "recursive");
   const long plot_scan = args.getInt("plot_scan", -1);
-  const double range_noise = args.getDouble("range_noise_std_m", -1.0);
+  laser::LineExtractionConfig cfg;
+  tools::applyFields(args, laser::LineExtractionConfig::fields(), &cfg);
   const std::string name = args.get("name", fs::path(bag_path).stem().string());
   const bool plot = !args.has("no_plot");
   args.finish();
   if (bag_path.empty()) args.fail("--bag FILE is required");
   try {
-    laser::LineExtractionConfig cfg;
     cfg.split_method = laser::parseSplitMethod(method);
-    if (range_noise > 0.0) cfg.range_noise_std_m = range_noise;
     laser::LineExtractor extractor(cfg);
     rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
     std::vector<sensor_msgs::LaserScanConstPtr> scans;

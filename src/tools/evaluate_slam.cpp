@@ -1,17 +1,17 @@
 // evaluate_slam: line extraction + line-landmark EKF SLAM offline over a laser bag (simulator or a
 // converted CARMEN log), against ground_truth/pose when the bag has it.
 //
-//   evaluate_slam --bag FILE [--variant standard|anchor|external] [--retire_after N]
-//                 [--association jcbb|nn] [--gate_probability 0.99] [--relations FILE]
-//                 [--make_relations FILE] [--external_std_m 0.1] [--seed N] [--max_scans N]
-//                 [--range_noise_std_m 0.01] [--max_gap_m 0.3] [--odom_noise_scale 1]
-//                 [--line_model_rho_std_m 0.02] [--line_model_alpha_std_rad 0.01]
-//                 [--merge_landmarks 1] [--share_landmarks 1] [--first_estimate_jacobians 0]
-//                 [--front_end laser_odometry|none] [--loop_closing 1|0] [--wide_search 1|0]
-//                 [--output DIR] [--name TITLE]
+//   evaluate_slam --bag FILE [--variant standard|anchor|external] [--association jcbb|nn]
+//                 [--relations FILE] [--make_relations FILE] [--external_std_m 0.1] [--seed N]
+//                 [--max_scans N] [--odom_noise_scale 1] [--output DIR] [--name TITLE]
+//                 [--<ekf_slam_mapper parameter> V ...] [--<line_extractor parameter> V ...]
+// The mapper's and the extractor's parameters are their config tables' fields, with the nodes'
+// names and ranges (slam::LaserSlamConfig::fields(), laser::LineExtractionConfig::fields(); the
+// tables in docs/nodes/ekf_slam_mapper.md and line_extractor.md), e.g. --front_end 0,
+// --loop_closing 0, --retire_after_updates 50, --gate_probability 0.95, --max_gap_m 0.5.
 //
 // The mapper is slam::LaserSlam (slam/laser_slam.h), as ekf_slam_mapper runs it; the defaults are
-// its defaults, the same on every log. --front_end laser_odometry (default): each scan is first
+// its defaults, the same on every log. --front_end 1 (default): each scan is first
 // matched against the last keyframes (slam/scan_matcher.h), and the matched pose stands in for the
 // wheel odometry in the EKF's prediction, with the front end's noise; its own trajectory goes to
 // OUTPUT/laser_odometry.tum and its relation error to the summary
@@ -22,7 +22,7 @@
 // --wide_search 1 (default): loops the estimate has drifted metres from are searched for by branch
 // and bound (LoopClosingConfig::wide_search; summary keys wide_attempts, wide_matches,
 // wide_confirmed).
-// `--front_end none --loop_closing 0` is the paper's filter alone, on the wheel odometry with
+// `--front_end 0 --loop_closing 0` is the paper's filter alone, on the wheel odometry with
 // --odom_noise_scale times its noise model (the simulator's consistency checks run it so).
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
 // /tf_static (identity when absent). The external variant simulates an absolute position sensor
@@ -79,6 +79,8 @@
 #include "adaptive_perception/slam/occupancy_grid.h"
 #include "adaptive_perception/slam/relations.h"
 #include "adaptive_perception/world/camera_model.h"
+#include "config_args.h"
+#include "progress.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -171,20 +173,19 @@ math::SE2 anchorFrame(const slam::LineEkfSlam& ekf, const std::vector<slam::Line
 int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "evaluate_slam --bag FILE [--variant standard|anchor|external] "
-                   "[--retire_after N] [--association jcbb|nn] [--gate_probability P] "
-                   "[--relations FILE] [--make_relations FILE] [--external_std_m S] [--seed N] "
-                   "[--max_scans N] [--range_noise_std_m S] [--max_gap_m M] [--odom_noise_scale K] "
-                   "[--line_model_rho_std_m S] [--line_model_alpha_std_rad S] [--merge_landmarks "
-                   "0|1] [--share_landmarks 0|1] [--first_estimate_jacobians 0|1] "
-                   "[--front_end laser_odometry|none] [--loop_closing 1|0] [--wide_search 1|0] [--output DIR] "
-                   "[--name TITLE]");
+                   "[--association jcbb|nn] [--relations FILE] [--make_relations FILE] "
+                   "[--external_std_m S] [--seed N] [--max_scans N] [--odom_noise_scale K] "
+                   "[--output DIR] [--name TITLE] [--<ekf_slam_mapper parameter> V ...] "
+                   "[--<line_extractor parameter> V ...] (the parameter tables: "
+                   "docs/nodes/ekf_slam_mapper.md, docs/nodes/line_extractor.md)");
   const std::string bag_path = args.get("bag", "");
   slam::LaserSlamConfig slam_cfg;
   slam::LineEkfSlamConfig& cfg = slam_cfg.ekf;
   const std::string association = args.get("association", "jcbb");
   const std::string variant = args.get("variant", "standard");
-  cfg.retire_after_updates = static_cast<int>(args.getInt("retire_after", 0));
-  cfg.gate_probability = args.getDouble("gate_probability", cfg.gate_probability);
+  // Every field of the node's table (slam::LaserSlamConfig::fields(): the same names and ranges as
+  // ekf_slam_mapper's parameters), e.g. --retire_after_updates 50, --loop_closing 0.
+  tools::applyFields(args, slam::LaserSlamConfig::fields(), &slam_cfg);
   const std::string relations_path = args.get("relations", "");
   const std::string make_relations = args.get("make_relations", "");
   const double external_std = args.getDouble("external_std_m", 0.1);
@@ -192,31 +193,16 @@ int main(int argc, char** argv) {
   const long long max_scans = args.getInt("max_scans", 0);
   const std::string output = args.get("output", "results/evaluate_slam");
   const std::string name = args.get("name", fs::path(bag_path).stem().string());
-  cfg.line_model_rho_std_m = args.getDouble("line_model_rho_std_m", cfg.line_model_rho_std_m);
-  cfg.line_model_alpha_std_rad =
-      args.getDouble("line_model_alpha_std_rad", cfg.line_model_alpha_std_rad);
-  cfg.merge_landmarks = args.getInt("merge_landmarks", cfg.merge_landmarks ? 1 : 0) != 0;
-  cfg.share_landmarks = args.getInt("share_landmarks", cfg.share_landmarks ? 1 : 0) != 0;
-  cfg.first_estimate_jacobians =
-      args.getInt("first_estimate_jacobians", cfg.first_estimate_jacobians ? 1 : 0) != 0;
   const double odom_scale = args.getDouble("odom_noise_scale", 1.0);
-  const std::string front_end = args.get("front_end", "laser_odometry");
-  slam_cfg.loop_closing = args.getInt("loop_closing", slam_cfg.loop_closing ? 1 : 0) != 0;
-  slam_cfg.loop.wide_search =
-      args.getInt("wide_search", slam_cfg.loop.wide_search ? 1 : 0) != 0;
   const bool loop_closing = slam_cfg.loop_closing;
-  slam_cfg.front_end = front_end == "laser_odometry";
   for (localization::MotionModelConfig* m : {&cfg.motion, &slam_cfg.front_end_motion})
     for (double* a : {&m->alpha1, &m->alpha2, &m->alpha3, &m->alpha4, &m->min_translation_std_m,
                       &m->min_rotation_std_rad})
       *a *= odom_scale;
   laser::LineExtractionConfig lines;
-  lines.range_noise_std_m = args.getDouble("range_noise_std_m", lines.range_noise_std_m);
-  lines.max_gap_m = args.getDouble("max_gap_m", lines.max_gap_m);
+  tools::applyFields(args, laser::LineExtractionConfig::fields(), &lines);
   args.finish();
   if (bag_path.empty()) args.fail("--bag FILE is required");
-  if (front_end != "none" && front_end != "laser_odometry")
-    args.fail("--front_end must be none or laser_odometry");
   try {
     cfg.association = slam::parseAssociation(association);
     cfg.variant = slam::parseVariant(variant);
@@ -287,13 +273,15 @@ int main(int argc, char** argv) {
     std::vector<double> scan_stamps;
     std::vector<std::pair<double, laser::LaserScan2D>> kept_scans;  // for the occupancy grid
     std::ofstream front_tum;
-    if (front_end == "laser_odometry") front_tum.open(fs::path(output) / "laser_odometry.tum");
+    if (slam_cfg.front_end) front_tum.open(fs::path(output) / "laser_odometry.tum");
     std::vector<std::pair<math::SE2, Eigen::Matrix3d>> est_cov;
     std::vector<math::SE2> truth_at_scan;
     slam::MapTrajectory est_path{"estimate", cv::Scalar(0, 0, 220), {}},
         truth_path{"ground truth", cv::Scalar(0, 160, 0), {}},
         odom_path{"odometry", cv::Scalar(160, 160, 160), {}};
+    tools::Progress progress("evaluate_slam", static_cast<long>(scans.size()), "scans");
     for (const auto& s : scans) {
+      progress.update(static_cast<long>(&s - scans.data()) + 1);
       const math::SE2* o = nearest(odom, s->header.stamp);
       const math::SE2* g = nearest(truth, s->header.stamp);
       if (prev_odom) dead_reckoning = dead_reckoning * math::between(*prev_odom, *o);
@@ -461,7 +449,7 @@ int main(int argc, char** argv) {
         has_rel ? rel.trans_std_m : -1.0, has_rel ? math::radToDeg(rel.rot_mean_rad) : -1.0,
         has_rel ? math::radToDeg(rel.rot_std_rad) : -1.0, rel.used, confirmed,
         ekf.numFixedLandmarks(), merged, scans.size(), 1e3 * compute_s / scans.size(), 1e3 * max_update_s,
-        duration / std::max(compute_s, 1e-9), front_end.c_str(),
+        duration / std::max(compute_s, 1e-9), slam_cfg.front_end ? "laser_odometry" : "none",
         has_rel && !front_estimate.empty() ? front_rel.trans_mean_m : -1.0,
         has_rel && !front_estimate.empty() ? math::radToDeg(front_rel.rot_mean_rad) : -1.0,
         slam.frontEnd().scans() ? double(slam.frontEnd().matched()) / slam.frontEnd().scans()

@@ -4,8 +4,8 @@
 //
 //   evaluate_tracking (--sequence DIR | --bag FILE | --video FILE [--ground_truth CSV])
 //       [--init x,y,w,h] [--mode box|condensation|ellipse] [--peers csrt,kcf,camshift|none]
-//       [--samples N] [--color_space rgb|opponent] [--bins 16] [--dynamics FILE.yaml] [--seed 1]
-//       [--start_frame 0] [--max_frames N] [--output DIR] [--video_out]
+//       [--color_space rgb|opponent] [--dynamics FILE.yaml] [--seed 1] [--start_frame 0]
+//       [--max_frames N] [--output DIR] [--video_out] [--<condensation_tracker parameter> V ...]
 //
 // --sequence reads an OTB or VOT folder as the benchmarks ship it (io/benchmark_sequence.h); what
 // it skipped or cut is printed as `evaluate_tracking: note: ...`, and an image that cannot be read
@@ -14,7 +14,9 @@
 // re-initialised. Modes: box (the default: CONDENSATION over the target's region weighted by its
 // colours against the background's and a grey template, tracking/box_condensation_tracker.h),
 // condensation (the paper's: over the colour distribution, with the affine snake), ellipse (the
-// head tracker). --samples, --color_space, --bins and --dynamics apply to condensation and ellipse.
+// head tracker). The trackers' settings are condensation_tracker's parameters, the same names and
+// ranges (docs/nodes/condensation_tracker.md: --box_samples, --samples, --bins, --ellipse_*, ...);
+// --color_space and --dynamics apply to condensation and ellipse.
 //
 // Scores (tracking/benchmark_metrics.h, OTB one-pass evaluation): every frame with a true box,
 // the first included (its box is the start), IoU with the tracker's box: success rate (IoU >= 0.5),
@@ -53,6 +55,8 @@
 #include "adaptive_perception/tracking/box_condensation_tracker.h"
 #include "adaptive_perception/tracking/condensation_tracker.h"
 #include "adaptive_perception/tracking/ellipse_tracker.h"
+#include "config_args.h"
+#include "progress.h"
 #include "tool_args.h"
 #include "tracking_sequence.h"
 
@@ -74,7 +78,7 @@ class Contender {
 
 class BoxContender : public Contender {
  public:
-  explicit BoxContender(std::uint64_t seed) : tracker_(tracking::BoxTrackerConfig{}, seed) {}
+  BoxContender(const tracking::BoxTrackerConfig& c, std::uint64_t seed) : tracker_(c, seed) {}
   void init(const cv::Mat& bgr, const cv::Rect2d& box) override { tracker_.init(bgr, box); }
   cv::Rect2d track(const cv::Mat& bgr, bool* lost, double* confidence,
                    tracking::Contour* contour) override {
@@ -237,9 +241,9 @@ int main(int argc, char** argv) {
   tools::Args args(argc, argv,
                    "evaluate_tracking (--sequence DIR | --bag FILE | --video FILE "
                    "[--ground_truth CSV]) [--init x,y,w,h] [--mode box|condensation|ellipse] "
-                   "[--peers csrt,kcf,camshift|none] [--samples N] [--color_space rgb|opponent] "
-                   "[--bins N] [--dynamics FILE.yaml] [--seed N] [--start_frame N] "
-                   "[--max_frames N] [--output DIR] [--video_out]");
+                   "[--peers csrt,kcf,camshift|none] [--color_space rgb|opponent] "
+                   "[--dynamics FILE.yaml] [--seed N] [--start_frame N] [--max_frames N] "
+                   "[--output DIR] [--video_out] [--<condensation_tracker parameter> V ...]");
   const std::string sequence = args.get("sequence", "");
   const std::string bag = args.get("bag", "");
   const std::string video = args.get("video", "");
@@ -247,9 +251,13 @@ int main(int argc, char** argv) {
   const std::string init_arg = args.get("init", "");
   const std::string mode = args.get("mode", "box");
   const std::string peers_arg = args.get("peers", "csrt,kcf,camshift");
-  const long samples = args.getInt("samples", 100);
   const std::string space = args.get("color_space", "opponent");
-  const long bins = args.getInt("bins", 16);
+  tracking::BoxTrackerConfig bc;
+  tracking::CondensationConfig cc;
+  tracking::EllipseTrackerConfig ec;
+  tools::applyFields(args, tracking::BoxTrackerConfig::fields(), &bc);
+  tools::applyFields(args, tracking::CondensationConfig::fields(), &cc);
+  tools::applyFields(args, tracking::EllipseTrackerConfig::fields(), &ec);
   const std::string dynamics = args.get("dynamics", "");
   const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
   const long start_frame = args.getInt("start_frame", 0);
@@ -279,19 +287,15 @@ int main(int argc, char** argv) {
   if (!init_arg.empty() && !(init = parseBox(init_arg)))
     args.fail("--init must be x,y,w,h with w, h >= 4 pixels, got '" + init_arg + "'");
   try {
-    tracking::CondensationConfig cc;
-    cc.samples = static_cast<int>(samples);
     cc.quantizer.space = tracking::parseColorSpace(space);
-    cc.quantizer.bins = static_cast<int>(bins);
     if (!dynamics.empty()) cc.dynamics = tracking::Ar2Model::loadYaml(dynamics);
     cc.validate();
-    tracking::EllipseTrackerConfig ec;
-    ec.quantizer.space = cc.quantizer.space;
+    ec.quantizer = cc.quantizer;
 
     std::vector<Run> runs;
     runs.emplace_back("ours", nullptr, cv::Scalar(0, 220, 0));
     if (mode == "box")
-      runs.back().tracker = std::make_unique<BoxContender>(seed);
+      runs.back().tracker = std::make_unique<BoxContender>(bc, seed);
     else if (mode == "condensation")
       runs.back().tracker = std::make_unique<CondensationContender>(cc, seed);
     else
@@ -328,9 +332,11 @@ int main(int argc, char** argv) {
     std::vector<cv::Mat> overlays;
     long frames = 0;
     const long last_frame = max_frames > 0 ? start_frame + max_frames : 0;
+    tools::Progress progress("evaluate_tracking", max_frames, "frames");
     auto onFrame = [&](const tools::TrackingFrameIn& f) {
       if (f.index < start_frame) return;
       ++frames;
+      progress.update(frames);
       truth.push_back(f.truth);
       cv::Mat over = f.bgr.clone();
       if (f.truth) cv::rectangle(over, cv::Rect(*f.truth), cv::Scalar(255, 255, 255), 1);
@@ -403,6 +409,7 @@ int main(int argc, char** argv) {
     } else {
       tools::forEachTrackingFrame(bag, video, truth_csv, static_cast<int>(last_frame), onFrame);
     }
+    progress.finish();
     if (frames < 2) throw std::runtime_error("fewer than two frames from --start_frame on");
 
     // Scores, curves, summary.

@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 
 #include "adaptive_perception/color/color_lut.h"
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/color/color_model.h"
 #include "adaptive_perception/color/switching_color_filter.h"
 #include "adaptive_perception/world/label_renderer.h"
@@ -27,6 +28,10 @@ struct ColorEstimatorConfig {
   int edge_margin_px = 1;
   /// A class id (0..5) whose observations are withheld from the filter (the Table 1 experiment); -1: none.
   int withheld_class = -1;
+  /// The tunable fields (config/fields.h), color_estimator's parameters: the colour model's and
+  /// the switching filter's numbers, edge_margin_px, lut_rebuild_sigma. The enums
+  /// (observation_noise, mixing) and withheld_class (an experiment's) aside.
+  static const config::Fields<ColorEstimatorConfig>& fields();
   void validate() const;
 };
 

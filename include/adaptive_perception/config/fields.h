@@ -37,6 +37,9 @@ inline Range belowOne() { return {0.0, 1.0, false, true}; }           // [0, 1)
 /// A value as it reads in a message or a table: integers without a decimal point, booleans as
 /// true / false, reals in the shortest form that reads back the same.
 std::string formatValue(Kind kind, double v);
+/// A list as a table shows it: "[a, b]" (numbers as formatValue writes reals).
+std::string formatList(const std::vector<std::string>& items);
+std::string formatList(const std::vector<double>& numbers);
 
 template <class C>
 struct Field {
@@ -75,6 +78,14 @@ class Fields {
         std::move(name), std::is_same_v<T, int> ? Kind::kInt : Kind::kDouble, range, std::move(doc),
         [sub, m](const C& c) { return static_cast<double>(c.*sub.*m); },
         [sub, m](C& c, double v) { c.*sub.*m = static_cast<T>(v); });
+  }
+  /// A boolean member of a member.
+  template <class S>
+  Fields& add(std::string name, S C::*sub, bool S::*m, std::string doc) {
+    return push(
+        std::move(name), Kind::kBool, closed(0, 1), std::move(doc),
+        [sub, m](const C& c) { return c.*sub.*m ? 1.0 : 0.0; },
+        [sub, m](C& c, double v) { c.*sub.*m = v != 0.0; });
   }
   /// Every field of a nested config's table.
   template <class S>

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/laser/line_fit.h"
 #include "adaptive_perception/laser/polyline_split.h"
 #include "adaptive_perception/laser/scan.h"
@@ -26,6 +27,8 @@ struct LineExtractionConfig {
   double min_length_m = 0.3;        // ... and this length between its projected endpoints
   SplitMethod split_method = SplitMethod::kRecursive;
 
+  /// The tunable fields (config/fields.h), split_method aside (an enum: parseSplitMethod).
+  static const config::Fields<LineExtractionConfig>& fields();
   void validate() const;  // throws std::invalid_argument naming the field, value and allowed range
 };
 

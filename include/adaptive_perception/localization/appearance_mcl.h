@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/places/feature_index.h"
@@ -49,6 +50,8 @@ struct AppearanceMclConfig {
   int full_reinit_after = 8;          // unstable frames in a row before a full re-initialisation
   double unknown_fraction = 0.25;     // share of particles outside the known rooms
   double known_radius_m = 1.5;        // a particle farther from every training pose is outside
+  /// The fields appearance_localizer sets (config/fields.h).
+  static const config::Fields<AppearanceMclConfig>& fields();
   void validate() const;              // throws std::invalid_argument naming the bad field
 };
 

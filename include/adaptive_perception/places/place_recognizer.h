@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/places/place_descriptor_index.h"
 #include "adaptive_perception/places/place_filter.h"
 #include "adaptive_perception/places/place_matcher.h"
@@ -40,6 +41,9 @@ struct PlaceRecognizerConfig {
   bool use_sequence = false;
   SequenceMatcherConfig sequence;
 
+  /// The numbers and switches histogram_place_recognizer sets (config/fields.h); the names
+  /// (cue, color_space, method) aside.
+  static const config::Fields<PlaceRecognizerConfig>& fields();
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/places/feature_index.h"
 #include "adaptive_perception/places/line_structure.h"
 #include "adaptive_perception/places/place_database.h"
@@ -20,6 +21,9 @@ struct RoomClassifierConfig {
   double min_share = 0.6;         // the leading room needs more than this share of the vote, [0, 1)
   LineStructureConfig lines;      // the structural descriptor (must match the training's)
   StructureVoteConfig structure;  // its vote; weight 0 (the default) leaves it out
+  /// The fields appearance_localizer sets (config/fields.h): best_frames, min_share,
+  /// max_features, candidates, structure_weight, structure_floor.
+  static const config::Fields<RoomClassifierConfig>& fields();
   void validate() const;          // throws std::invalid_argument naming the bad field
 };
 

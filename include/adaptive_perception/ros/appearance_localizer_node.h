@@ -3,16 +3,9 @@
 // (papers/002) against the training frames of a place database (train_places --features, from a
 // bag with ground_truth/pose).
 //
-// Parameters (private; config/appearance_localizer.yaml documents defaults and ranges):
-//   ~database (path, required), ~particles (100), ~best_frames (20), ~min_share (0.6),
-//   ~max_features (200), ~candidates (30), ~translation_noise_m (0.05), ~rotation_noise_rad
-//   (0.05), ~stable_spread_m (0.5), ~stable_min_weight (0.15), ~full_reinit_after (8),
-//   ~unknown_fraction (0.25), ~known_radius_m (1.5), ~use_odom (true), ~max_rate_hz (5),
-//   ~publish_tf (false), ~map_frame (map), ~odom_frame (odom), ~seed (1),
-//   ~transform_tolerance (s, 0.1, 0..10: map -> odom is stamped this far after the image, as
-//   amcl does, so that tf users can look up the latest poses until the next one comes).
-//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
-//   this (or the clock jumping back) restarts (ros/stamp_order.h).
+// Parameters (private): the table in docs/nodes/appearance_localizer.md, made from parameters()
+//   (~database, the room classifier's and the Monte Carlo localizer's config tables, and the
+//   node's own: odometry, rate, tf, frames, seed).
 // Subscribed: camera/image_raw (bgr8, rgb8, yuv422), odom (nav_msgs/Odometry; without it the
 //   training run's average step drives the particles), initialpose
 //   (geometry_msgs/PoseWithCovarianceStamped in ~map_frame, as rviz's "2D Pose Estimate" sends it:
@@ -39,6 +32,7 @@
 #include <memory>
 #include <optional>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/localization/appearance_mcl.h"
 #include "adaptive_perception/places/room_classifier.h"
 #include "adaptive_perception/ros/image_gate.h"
@@ -48,6 +42,8 @@ namespace adaptive_perception {
 class AppearanceLocalizerNode {
  public:
   AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads (its doc page's table).
+  static std::vector<config::ParameterDoc> parameters();
   ~AppearanceLocalizerNode();
 
  private:
@@ -67,7 +63,7 @@ class AppearanceLocalizerNode {
   std::optional<nav_msgs::Odometry> odom_;  // latest
   std::optional<math::SE2> last_odom_;      // at the last processed image
   ros::Subscriber image_sub_, odom_sub_, initial_pose_sub_;
-  double transform_tolerance_s_ = 0.1;
+  double transform_tolerance_s_ = 0.0;  // from ~transform_tolerance
   long initial_poses_ = 0;
   ros::Publisher pose_pub_, particles_pub_, room_pub_;
   ros::ServiceServer global_srv_;

@@ -2,16 +2,9 @@
 // color_estimator: adaptive colour classification with the hierarchical Bayesian colour model and a
 // switching Kalman filter over lighting (Schulz & Fox 2004, section III), given the camera pose.
 //
-// Parameters (private; see config/color_estimator.yaml for defaults and ranges):
-//   ~priors_dir (string): folder of lighting prior YAMLs (relative: current directory, then
-//   package). ~filter (string, switching | single), ~priors (string list, switching modes),
-//   ~single_prior (string). ~mixing (string, best_mode | imm), ~mode_stay_probability (double,
-//   0..1], ~imm_prior_pull_per_s. ~drift_std_per_sqrt_s, ~observation_noise (pixel |
-//   pixel_over_count), ~observation_noise_floor_var, ~min_pixels_per_color, ~unknown_mahalanobis,
-//   ~edge_margin_px, ~lut_rebuild_sigma. ~field_file (string), ~map_frame (string, map),
-//   ~tf_timeout_s (double, 0..5).
-//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
-//   this (or the clock jumping back) restarts (ros/stamp_order.h).
+// Parameters (private): the table in docs/nodes/color_estimator.md, made from parameters() (the
+//   core's color::ColorEstimatorConfig::fields() plus the node's own: the lighting priors, the
+//   field map, the frame and the tf timeout).
 // Subscribed:
 //   camera/image_raw (sensor_msgs/Image: yuv422 | bgr8 | rgb8), camera/camera_info (optional; until
 //   one arrives a 208x160 image is taken to be the AIBO ERS-7 camera), tf map -> image frame at the
@@ -38,6 +31,7 @@
 #include <mutex>
 #include <optional>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/ColorEstimatorConfig.h"
 #include "adaptive_perception/SavePrior.h"
 #include "adaptive_perception/color/color_estimator.h"
@@ -52,6 +46,8 @@ class ColorEstimatorNode {
  public:
   /// Throws ros_params::ParamError / std::runtime_error (bad prior file) with a clear message.
   ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads (its doc page's table).
+  static std::vector<config::ParameterDoc> parameters();
 
  private:
   void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
@@ -70,7 +66,7 @@ class ColorEstimatorNode {
   ros_conv::CameraModelSource camera_{"color_estimator"};
   std::unique_ptr<color::ColorEstimator> estimator_;
   std::string map_frame_;
-  double tf_timeout_s_ = 0.1;
+  double tf_timeout_s_ = 0.0;  // from ~tf_timeout_s
   ros_conv::ImageGate gate_{"color_estimator", 0.0, {}, ros_conv::ImageGate::Output::kYuv};
 
   tf2_ros::Buffer tf_buffer_;

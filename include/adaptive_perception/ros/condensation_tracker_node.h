@@ -5,17 +5,9 @@
 // video, tracking/box_condensation_tracker.h), the paper's CONDENSATION over the distribution
 // fused with an affine snake (mode condensation), or the elliptical head tracker alone (ellipse).
 //
-// Parameters (private; config/condensation_tracker.yaml documents defaults and ranges):
-//   ~mode (box | condensation | ellipse), ~box_samples (300), ~box_filter_gain (60),
-//   ~box_peak_fraction (0.2), ~box_lost_score (0.05) (mode box);
-//   ~samples (100), ~color_space (opponent | rgb), ~bins (16),
-//   ~contour_points (48), ~sigma (0.35), ~lost_weight (0.1), ~roi_margin (0.75),
-//   ~dynamics (YAML from learn_tracking_dynamics; empty = the default model), ~initial_roi
-//   ([x, y, w, h] pixels of the first image; empty = wait for a target), ~ellipse_search_radius_px
-//   (10), ~ellipse_update_rate (0.1), ~ellipse_update_threshold (0.65), ~ellipse_lost_threshold
-//   (0.35), ~max_rate_hz (30), ~publish_overlay (true), ~seed (1).
-//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
-//   this (or the clock jumping back) restarts (ros/stamp_order.h).
+// Parameters (private): the table in docs/nodes/condensation_tracker.md, made from parameters()
+//   (~mode, the trackers' config tables and the node's own: colour space, dynamics, first box,
+//   rate, overlay, seed).
 // Subscribed: camera/image_raw (bgr8, rgb8, mono8, yuv422; any size), condensation_tracker/target
 //   (geometry_msgs/PolygonStamped: the box of its points becomes the target on the next image).
 // Published: tracked_object (TrackedObject; in mode box the contour is the box's corners and the
@@ -37,6 +29,7 @@
 #include <memory>
 #include <optional>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/SetTarget.h"
 #include "adaptive_perception/ros/image_gate.h"
 #include "adaptive_perception/tracking/box_condensation_tracker.h"
@@ -48,6 +41,8 @@ namespace adaptive_perception {
 class CondensationTrackerNode {
  public:
   CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads (its doc page's table).
+  static std::vector<config::ParameterDoc> parameters();
   ~CondensationTrackerNode();
 
  private:

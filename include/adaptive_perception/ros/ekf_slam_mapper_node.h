@@ -4,38 +4,13 @@
 // evaluate_slam runs; this node feeds it line_extractor's segments, the scans they came from and
 // the odometry from tf, and publishes the robot pose, map -> odom and the map.
 //
-// Parameters (private; defaults and ranges in config/ekf_slam_mapper.yaml):
-//   ~front_end (bool, true): predict the EKF from laser odometry matched on each scan (needs
-//   `scan`), with slam::LaserSlamConfig::front_end_motion as its noise; false: from the wheel
-//   odometry with ~odom_alpha1.. (the paper's filter).
-//   ~loop_closing (bool, true): a pose graph over the EKF's keyframes with loop edges from scan
-//   matching (needs `scan`); the published pose, map -> odom, path and grid are the graph's.
-//   ~wide_search (bool, true): with ~loop_closing, loops the estimate has drifted metres from are
-//   searched for by branch and bound and taken once two matches agree
-//   (slam::LoopClosingConfig::wide_search).
-//   ~initial_map (path, default none): a line map written by ~save_map (slam/map_io.h), loaded at
-//   start-up (and again on ~reset) to localize against without extending it: its confirmed and
-//   fixed landmarks correct the pose with their covariance, no landmark is started, and loop
-//   closing is off (the map is already global). A file that cannot be read or parsed stops the
-//   node with the file and line. ~save_map never replaces it unless asked (overwrite).
-//   ~variant (standard | anchor | external), ~retire_after_updates (int, 0 = off; the paper: 50),
-//   ~anchor_min_angle_rad.
-//   ~association (jcbb | nn), ~gate_probability, ~confirm_sightings, ~tentative_timeout_scans,
-//   ~min_new_line_length_m, ~line_model_rho_std_m, ~line_model_alpha_std_rad, ~merge_landmarks,
-//   ~share_landmarks, ~first_estimate_jacobians.
-//   ~odom_alpha1..4, ~odom_min_translation_std_m, ~odom_min_rotation_std_rad: the wheel
-//   odometry's motion noise (used with ~front_end false).
-//   ~initial_pose ([x_m, y_m, yaw_rad], default the origin), ~initial_pose_std ([m, m, rad]).
-//   ~external_gate_probability: external poses whose innovation fails this chi-square gate are
-//   rejected (outliers).
-//   ~map_frame, ~odom_frame, ~base_frame, ~publish_tf (bool), ~transform_tolerance_s,
-//   ~tf_timeout_s, ~map_file (save_map's default path), ~path_max_poses.
-//   ~grid_resolution_m (0.05), ~grid_max_range_m (30), ~map_update_interval_s (5; 0: no grid),
-//   ~grid_keyframe_distance_m (0.1), ~grid_keyframe_angle_rad (0.1): the occupancy grid
-//   (slam/occupancy_grid.h), rendered from the scans kept after that much motion, each at the
-//   pose the filter gave it.
-//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
-//   this (or the clock jumping back) restarts (ros/stamp_order.h).
+// Parameters (private): the table in docs/nodes/ekf_slam_mapper.md, made from parameters() (the
+//   core's slam::LaserSlamConfig::fields() plus the node's own). The ones to know first:
+//   ~front_end (laser odometry on `scan` predicts the EKF; false: the wheel odometry, the
+//   paper's filter), ~loop_closing and ~wide_search (a pose graph over the EKF's keyframes),
+//   ~initial_map (a map written by ~save_map: localize against it without extending it; a file
+//   that cannot be read stops the node naming the file and line), ~variant, ~association,
+//   ~map_update_interval_s (the occupancy grid; 0: none).
 // Subscribed:
 //   lines (adaptive_perception/LineSegmentArray from line_extractor, in the laser frame),
 //   scan (sensor_msgs/LaserScan: the scans the lines came from, matched by stamp: the front end's
@@ -78,6 +53,7 @@
 #include <mutex>
 
 #include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/SaveMap.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
@@ -91,6 +67,8 @@ class EkfSlamMapperNode {
  public:
   /// Throws ros_params::ParamError with a clear message on a bad parameter.
   EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads (its doc page's table).
+  static std::vector<config::ParameterDoc> parameters();
 
  private:
   // Lines are processed with the scan they came from: lines that arrive before their scan (the
@@ -121,13 +99,13 @@ class EkfSlamMapperNode {
   std::vector<slam::FixedLandmark> known_map_;  // its landmarks
   std::string map_frame_, odom_frame_, base_frame_, map_file_;
   bool publish_tf_ = true;
-  double transform_tolerance_s_ = 0.1, tf_timeout_s_ = 0.2, external_gate_ = 0.999;
-  int path_max_poses_ = 20000;
+  double transform_tolerance_s_ = 0.0, tf_timeout_s_ = 0.0, external_gate_ = 0.0;  // from params
+  int path_max_poses_ = 0;
   ros::Time last_stamp_;
   ros_conv::StampOrder stamp_order_{"ekf_slam_mapper", "lines"};
   nav_msgs::Path path_;
   slam::OccupancyGridConfig grid_config_;
-  double map_update_interval_s_ = 5.0;
+  double map_update_interval_s_ = 0.0;
   std::deque<sensor_msgs::LaserScanConstPtr> recent_scans_;  // awaiting their lines
   std::deque<ros::MessageEvent<const LineSegmentArray>> waiting_lines_;  // awaiting their scans
   static constexpr size_t kMaxWaitingLines = 10;

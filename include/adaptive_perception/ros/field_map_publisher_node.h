@@ -1,11 +1,8 @@
 #pragma once
 // field_map_publisher: publishes the 3-D field map for rviz.
 //
-// Parameters (private):
-//   ~field_file (string, default "config/field_4legged.yaml"): field dimensions YAML; a relative
-//   path is
-//       looked up in the current directory, then in the package.
-//   ~frame_id (string, default "map"): frame of the markers.
+// Parameters (private): ~field_file, ~frame_id (the table in docs/nodes/field_map_publisher.md,
+//   made from parameters()).
 // Published:
 //   field_map (visualization_msgs/MarkerArray, latched): carpet, lines, centre circle, walls,
 //   goals,
@@ -13,6 +10,7 @@
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/world/field_map.h"
 
 namespace adaptive_perception {
@@ -26,6 +24,8 @@ class FieldMapPublisherNode {
  public:
   /// Throws ros_params::ParamError or std::runtime_error (bad field file) with a clear message.
   FieldMapPublisherNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads (its doc page's table).
+  static std::vector<config::ParameterDoc> parameters();
 
  private:
   ros::Publisher pub_;

@@ -5,19 +5,11 @@
 // places/global_descriptor.h), which hold across a change of light; ~cue histogram gives the
 // paper's colour-histogram correlation.
 //
-// Parameters (private; config/histogram_place_recognizer.yaml documents defaults and ranges):
-//   ~database (path, required), ~create_if_missing (true), ~bins (256), ~spaces ("all"), ~mask
-//   ("none" | "auto" | "ring:cx,cy,r_in,r_out") -- the last three build a new database; given
-//   for an existing one they must match it or the node refuses to start --, ~mode (recognise |
-//   train), ~cue ("fused" | "thumbnail" | "gradient" | "chromaticity" | "histogram"; a database
-//   stored before the cues existed needs "histogram" or training again), ~thumbnail_weight (1),
-//   ~gradient_weight (1), ~chromaticity_weight (0) (the fused cue's), and for the histogram cue
-//   ~color_space ("auto" or a space), ~method ("auto" or a distance); ~window (5),
-//   ~use_filter (true), ~stay_probability (0.8), ~teleport_probability (0.02),
-//   ~likelihood_sharpness (4), ~max_rate_hz (5; images beyond it are dropped), ~train_batch (15),
-//   ~train_every_n (1).
-//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
-//   this (or the clock jumping back) restarts (ros/stamp_order.h).
+// Parameters (private): the table in docs/nodes/histogram_place_recognizer.md, made from
+//   parameters() (the node's own and places::PlaceRecognizerConfig::fields()). ~bins, ~spaces
+//   and ~mask build a new database; given for an existing one they must match it or the node
+//   refuses to start. A database stored before the cues existed needs ~cue histogram or training
+//   again.
 // Subscribed: camera/image_raw (bgr8, rgb8, yuv422); ground_truth/place (std_msgs/String; train
 //   mode labels each image with the latest one).
 // Published: place (adaptive_perception/PlaceRecognition, per image, over the last ~window
@@ -41,6 +33,7 @@
 #include <optional>
 #include <set>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/AddPlaceImages.h"
 #include "adaptive_perception/PlaceRecognition.h"
 #include "adaptive_perception/RemovePlace.h"
@@ -54,6 +47,8 @@ namespace adaptive_perception {
 class HistogramPlaceRecognizerNode {
  public:
   HistogramPlaceRecognizerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads (its doc page's table).
+  static std::vector<config::ParameterDoc> parameters();
   ~HistogramPlaceRecognizerNode();
 
  private:
@@ -76,7 +71,7 @@ class HistogramPlaceRecognizerNode {
   std::unique_ptr<places::PlaceRecognizer> recognizer_;
   bool train_mode_ = false;
   ros_conv::ImageGate gate_{"histogram_place_recognizer", 5.0};
-  int train_batch_ = 15, train_every_n_ = 1;
+  int train_batch_ = 0, train_every_n_ = 0;  // from ~train_batch, ~train_every_n
   long train_seen_ = 0;
   std::string label_;  // latest ground_truth/place
   // Images being collected, per place.

@@ -1,12 +1,8 @@
 #pragma once
 // line_extractor: wall segments from laser scans (split-and-merge, perception paper section 2.1).
 //
-// Parameters (private; config/line_extractor.yaml documents defaults and ranges): ~min_range_m,
-//   ~range_noise_std_m, ~bearing_noise_std_rad, ~breakpoint_lambda_rad, ~max_gap_m,
-//   ~split_threshold_m, ~merge_collinear, ~min_points, ~min_length_m, ~split_method (recursive |
-//   hull_tree).
-//   ~time_back_restart_s (s): an input older than the last is dropped; older by more than
-//   this (or the clock jumping back) restarts (ros/stamp_order.h).
+// Parameters (private): the table in docs/nodes/line_extractor.md, made from parameters() (the
+//   core's LineExtractionConfig::fields() plus ~split_method and ~time_back_restart_s).
 // Subscribed: scan (sensor_msgs/LaserScan).
 // Published: lines (adaptive_perception/LineSegmentArray, the scan's stamp and frame),
 //   lines/markers (visualization_msgs/MarkerArray, only computed when subscribed), /diagnostics.
@@ -26,16 +22,12 @@
 
 #include "adaptive_perception/LineExtractorConfig.h"
 #include "adaptive_perception/LineSegmentArray.h"
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/ros/stamp_order.h"
 
 namespace adaptive_perception {
 
-/// The core scan of a LaserScan message.
-laser::LaserScan2D fromLaserScan(const sensor_msgs::LaserScan& msg);
-/// Message of a scan's segments.
-LineSegmentArray toLineSegmentArray(const std::vector<laser::LineSegment>& segments,
-                                    const std_msgs::Header& header);
 /// rviz markers: one LINE_LIST of all segments plus their normals' feet (`ns` names the namespace).
 visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const std::string& ns,
                                             float r, float g, float b);
@@ -43,6 +35,8 @@ visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const
 class LineExtractorNode {
  public:
   LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads (its doc page's table).
+  static std::vector<config::ParameterDoc> parameters();
 
  private:
   void onScan(const ros::MessageEvent<const sensor_msgs::LaserScan>& event);

@@ -108,10 +108,6 @@ inline const std::string kDefaultSinglePrior = "all";
 std::vector<color::LightingPrior> loadLightingPriors(const ros::NodeHandle& pnh,
                                                      std::string* filter, std::string* dir);
 
-/// The odometry motion noise from ~odom_alpha1..4, ~odom_min_translation_std_m and
-/// ~odom_min_rotation_std_rad, each defaulting to *motion's value (ranges 0..10 and 0..1).
-void loadMotionModel(const ros::NodeHandle& pnh, localization::MotionModelConfig* motion);
-
 /// The planar pose ~initial_pose ([x_m, y_m, yaw_rad]) and ~initial_pose_std (three positive
 /// standard deviations). Returns false when ~initial_pose is empty or unset (then *pose is left);
 /// throws ParamError on a wrong length or a non-positive deviation.
@@ -120,5 +116,10 @@ bool loadInitialPose(const ros::NodeHandle& pnh, const std::vector<double>& defa
 
 /// ~time_back_restart_s (ros_conv::StampOrderConfig: how far back a stamp must go to restart).
 ros_conv::StampOrderConfig loadStampOrder(const ros::NodeHandle& pnh);
+/// Its row in a node's parameter table (ros/parameter_docs.h).
+config::ParameterDoc stampOrderParameter();
+/// The rows of the parameters loadLightingPriors reads (~filter, ~priors, ~single_prior,
+/// ~priors_dir).
+std::vector<config::ParameterDoc> lightingPriorParameters();
 
 }  // namespace adaptive_perception::ros_params

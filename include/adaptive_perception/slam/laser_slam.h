@@ -43,6 +43,9 @@ struct LaserSlamConfig {
   localization::MotionModelConfig front_end_motion{0.025, 0.0125, 0.02, 0.0025, 0.00025, 0.00025};
   LineEkfSlamConfig ekf;
   LoopClosingConfig loop;
+  /// The fields a node or tool sets (config/fields.h): front_end, loop_closing, wide_search and
+  /// LineEkfSlamConfig's table.
+  static const config::Fields<LaserSlamConfig>& fields();
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

@@ -40,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/math/se2.h"
@@ -102,7 +103,10 @@ struct LineEkfSlamConfig {
   bool first_estimate_jacobians = false;
   // JCBB search budget per scan (tree nodes); past it the best hypothesis found so far is used.
   long jcbb_max_nodes = 20000;
-  void validate() const;
+  /// The tunable fields (config/fields.h; the motion model's as ~odom_*), association and variant
+  /// aside (enums: parseAssociation, parseVariant). Defined in line_ekf_slam_config.cpp.
+  static const config::Fields<LineEkfSlamConfig>& fields();
+  void validate() const;  // throws std::invalid_argument naming the first field out of range
 };
 
 struct Landmark {

@@ -34,6 +34,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/tracking/correlation_filter.h"
 
@@ -92,6 +93,9 @@ struct BoxTrackerConfig {
   // AUC 0.534 -> 0.635 (the colours' preference for a box that takes in the neighbouring pixels
   // of the target's colours no longer sets its size); from the first frame 0.827 -> 0.840.
   double filter_scale_share = 1.0;  // [0, 1]
+  /// The fields condensation_tracker sets (config/fields.h: ~box_samples, ~box_filter_gain,
+  /// ~box_peak_fraction, ~box_lost_score); defined in tracker_configs.cpp.
+  static const config::Fields<BoxTrackerConfig>& fields();
   void validate() const;       // throws std::invalid_argument naming the field
 };
 

@@ -30,6 +30,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/tracking/affine_snake.h"
 #include "adaptive_perception/tracking/color_distribution.h"
@@ -70,6 +71,9 @@ struct CondensationConfig {
   int local_lost_frames = 5;  // lost: search around the last contour this long first
   Ar2Model dynamics = defaultDynamics();
   AffineSnakeConfig snake;
+  /// The fields condensation_tracker sets (config/fields.h: ~samples, ~bins, ~contour_points,
+  /// ~sigma, ~lost_weight, ~roi_margin); defined in tracker_configs.cpp.
+  static const config::Fields<CondensationConfig>& fields();
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 

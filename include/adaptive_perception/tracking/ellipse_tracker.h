@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/tracking/color_histogram.h"
 
 namespace adaptive_perception::tracking {
@@ -64,6 +65,9 @@ struct EllipseTrackerConfig {
   double lost_threshold = 0.35;    // below this intersection the target is reported lost, [0, 1]
   double lost_search_gain = 3.0;   // the search radius grows by this factor while lost, >= 1
   double min_axis_px = 4.0;        // smallest semi-axis searched, > 0
+  /// The fields condensation_tracker sets (config/fields.h: ~ellipse_*); defined in
+  /// tracker_configs.cpp.
+  static const config::Fields<EllipseTrackerConfig>& fields();
   void validate() const;           // throws std::invalid_argument naming the bad field
 };
 

@@ -7,12 +7,41 @@
 
 namespace adaptive_perception::color {
 
+const config::Fields<ColorEstimatorConfig>& ColorEstimatorConfig::fields() {
+  using C = ColorEstimatorConfig;
+  using config::closed;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("drift_std_per_sqrt_s", &C::model, &ColorModelConfig::drift_std_per_sqrt_s,
+               closed(0, 100), "lighting drift R (eq. 6) (8-bit levels per sqrt(s))")
+          .add("observation_noise_floor_var", &C::model,
+               &ColorModelConfig::observation_noise_floor_var, closed(0, 1e4),
+               "pixel_over_count: added to the variance of an image's colour mean (levels^2)")
+          .add("min_pixels_per_color", &C::model, &ColorModelConfig::min_pixels_per_color,
+               closed(1, 1000000), "a colour enters the update only with this many labelled pixels")
+          .add("unknown_mahalanobis", &C::model, &ColorModelConfig::unknown_mahalanobis,
+               closed(0.5, 1e9),
+               "pixels farther (Mahalanobis) than this from every colour are unknown (255)")
+          .add("mode_stay_probability", &C::switching,
+               &SwitchingFilterConfig::mode_stay_probability, closed(1e-3, 1),
+               "probability that the lighting stays in its mode from one image to the next")
+          .add("imm_prior_pull_per_s", &C::switching, &SwitchingFilterConfig::imm_prior_pull_per_s,
+               closed(0, 100), "mixing imm: pull of each mode towards its prior mean (1/s)")
+          .add("edge_margin_px", &C::edge_margin_px, closed(0, 20),
+               "pixels this close to a label edge of the rendered map are left out (px)")
+          .add("lut_rebuild_sigma", &C::lut_rebuild_sigma, closed(0, 5),
+               "rebuild the YUV lookup table when a colour mean moved this many standard "
+               "deviations");
+  return f;
+}
+
 void ColorEstimatorConfig::validate() const {
+  fields().validate(*this);
   model.validate();
   switching.validate();
-  if (!(lut_rebuild_sigma >= 0.0 && std::isfinite(lut_rebuild_sigma))) throw std::invalid_argument("lut_rebuild_sigma = " + std::to_string(lut_rebuild_sigma) + " (allowed: finite, >= 0)");
-  if (edge_margin_px < 0 || edge_margin_px > 20) throw std::invalid_argument("edge_margin_px = " + std::to_string(edge_margin_px) + " (allowed: 0..20)");
-  if (withheld_class < -1 || withheld_class > 5) throw std::invalid_argument("withheld_class = " + std::to_string(withheld_class) + " (allowed: -1..5)");
+  if (withheld_class < -1 || withheld_class > 5)
+    throw std::invalid_argument("withheld_class = " + std::to_string(withheld_class) +
+                                " (allowed: -1..5)");
 }
 
 ColorEstimator::ColorEstimator(const world::FieldMap& map, const world::PinholeCamera& camera,

@@ -40,4 +40,16 @@ std::string markdownTable(const std::vector<ParameterDoc>& rows) {
   return out;
 }
 
+std::string formatList(const std::vector<std::string>& items) {
+  std::string out = "[";
+  for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+  return out + "]";
+}
+
+std::string formatList(const std::vector<double>& numbers) {
+  std::vector<std::string> items;
+  for (double v : numbers) items.push_back(formatValue(Kind::kDouble, v));
+  return formatList(items);
+}
+
 }  // namespace adaptive_perception::config

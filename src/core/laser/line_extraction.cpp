@@ -5,24 +5,33 @@
 
 namespace adaptive_perception::laser {
 
-void LineExtractionConfig::validate() const {
-  auto check = [](bool ok, const char* name, double v, const char* range) {
-    if (!ok)
-      throw std::invalid_argument(std::string(name) + " = " + std::to_string(v) +
-                                  " (allowed: " + range + ")");
-  };
-  check(min_range_m >= 0.0, "min_range_m", min_range_m, ">= 0");
-  check(range_noise_std_m >= 0.0 && range_noise_std_m < 1.0, "range_noise_std_m", range_noise_std_m,
-        "0..1");
-  check(bearing_noise_std_rad >= 0.0 && bearing_noise_std_rad < 0.1, "bearing_noise_std_rad",
-        bearing_noise_std_rad, "0..0.1");
-  check(breakpoint_lambda_rad > 0.0 && breakpoint_lambda_rad < 1.5, "breakpoint_lambda_rad",
-        breakpoint_lambda_rad, "0 < x < 1.5");
-  check(max_gap_m > 0.0, "max_gap_m", max_gap_m, "> 0");
-  check(split_threshold_m > 0.0, "split_threshold_m", split_threshold_m, "> 0");
-  check(min_points >= 2, "min_points", min_points, ">= 2");
-  check(min_length_m >= 0.0, "min_length_m", min_length_m, ">= 0");
+const config::Fields<LineExtractionConfig>& LineExtractionConfig::fields() {
+  using C = LineExtractionConfig;
+  using config::closed;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("min_range_m", &C::min_range_m, closed(0, 100),
+               "returns closer than this (or the scan's range_min) are dropped (m)")
+          .add("range_noise_std_m", &C::range_noise_std_m, config::Range{0, 1, false, true},
+               "sigma_r: the breakpoint margin and the segments' covariance (m)")
+          .add("bearing_noise_std_rad", &C::bearing_noise_std_rad,
+               config::Range{0, 0.1, false, true}, "sigma_phi: the segments' covariance (rad)")
+          .add("breakpoint_lambda_rad", &C::breakpoint_lambda_rad, closed(0.01, 1.4),
+               "adaptive breakpoint detector (Borges & Aldon 2004): the shallowest incidence "
+               "angle still taken as one surface (rad)")
+          .add("max_gap_m", &C::max_gap_m, closed(0.01, 10),
+               "consecutive returns farther apart always start a new cluster (m)")
+          .add("split_threshold_m", &C::split_threshold_m, closed(0.001, 1),
+               "Douglas-Peucker epsilon: the farthest-point distance that splits (m)")
+          .add("merge_collinear", &C::merge_collinear,
+               "merge neighbours whose union still fits within split_threshold_m")
+          .add("min_points", &C::min_points, closed(2, 1000), "returns a segment needs")
+          .add("min_length_m", &C::min_length_m, closed(0, 10),
+               "length a segment needs between its projected endpoints (m)");
+  return f;
 }
+
+void LineExtractionConfig::validate() const { fields().validate(*this); }
 
 LineExtractor::LineExtractor(const LineExtractionConfig& config) { setConfig(config); }
 

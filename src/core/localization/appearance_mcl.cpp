@@ -11,11 +11,33 @@
 
 namespace adaptive_perception::localization {
 
+const config::Fields<AppearanceMclConfig>& AppearanceMclConfig::fields() {
+  using C = AppearanceMclConfig;
+  using config::closed;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("particles", &C::particles, closed(10, 100000), "number of particles")
+          .add("translation_noise_m", &C::translation_noise_m, closed(0, 10),
+               "per image, grown as a particle's weight falls (m)")
+          .add("rotation_noise_rad", &C::rotation_noise_rad, closed(0, 3), "per image (rad)")
+          .add("stable_spread_m", &C::stable_spread_m, closed(0.01, 100),
+               "stable: the estimates follow the motion within this RMS (m)")
+          .add("stable_min_weight", &C::stable_min_weight, closed(0, 1),
+               "stable: the best similarity is at least this")
+          .add("full_reinit_after", &C::full_reinit_after, closed(1, 100000),
+               "unstable and lost this many images in a row: a global restart")
+          .add("unknown_fraction", &C::unknown_fraction, closed(0.01, 1),
+               "share of the particles outside the known places that means unknown")
+          .add("known_radius_m", &C::known_radius_m, closed(0.01, 100),
+               "a particle farther than this from every training pose is outside (m)");
+  return f;
+}
+
 void AppearanceMclConfig::validate() const {
+  fields().validate(*this);
   auto need = [](bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(std::string("appearance MCL: ") + what);
   };
-  need(particles >= 10 && particles <= 100000, "particles must be in 10..100000");
   need(translation_noise_m >= 0.0 && rotation_noise_rad >= 0.0, "noise must be >= 0");
   need(weight_noise_gain >= 0.0, "weight_noise_gain must be >= 0");
   need(weight_epsilon > 0.0 && weight_epsilon <= 1.0, "weight_epsilon must be in (0, 1]");
@@ -24,7 +46,6 @@ void AppearanceMclConfig::validate() const {
   need(stable_spread_m > 0.0, "stable_spread_m must be positive");
   need(stable_min_weight >= 0.0 && stable_min_weight <= 1.0, "stable_min_weight must be in [0, 1]");
   need(reinit_radius_m > 0.0 && reinit_radius_gain_m >= 0.0, "re-initialisation radii");
-  need(full_reinit_after >= 1, "full_reinit_after must be >= 1");
   need(unknown_fraction > 0.0 && unknown_fraction <= 1.0, "unknown_fraction must be in (0, 1]");
   need(known_radius_m > 0.0, "known_radius_m must be positive");
 }

@@ -5,7 +5,37 @@
 
 namespace adaptive_perception::places {
 
+const config::Fields<PlaceRecognizerConfig>& PlaceRecognizerConfig::fields() {
+  using C = PlaceRecognizerConfig;
+  using config::closed;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("thumbnail_weight", &C::fusion, &FusionWeights::thumbnail, closed(0, 1000),
+               "the fused cue's weight of the thumbnail (the weights: not all 0)")
+          .add("gradient_weight", &C::fusion, &FusionWeights::gradient, closed(0, 1000),
+               "... of the gradient descriptor")
+          .add("chromaticity_weight", &C::fusion, &FusionWeights::chromaticity, closed(0, 1000),
+               "... of the chromaticity histogram")
+          .add("layout_weight", &C::fusion, &FusionWeights::layout, closed(0, 1000),
+               "... of the layout (equalised grey levels by region)")
+          .add("window", &C::window, closed(1, 1000), "images combined by eqs. 6-7 (sliding)")
+          .add("use_filter", &C::use_filter, "the topological Bayes filter over the adjacency")
+          .add("stay_probability", &C::filter, &PlaceFilterConfig::stay_probability,
+               closed(0, 1), "filter: chance to stay in a place between images")
+          .add("teleport_probability", &C::filter, &PlaceFilterConfig::teleport_probability,
+               closed(0, 1), "filter: chance to jump anywhere (at most 1 - stay_probability)")
+          .add("likelihood_sharpness", &C::filter, &PlaceFilterConfig::likelihood_sharpness,
+               closed(1e-3, 1e3), "filter: k of exp(-k (D - Dmin) / (Dmedian - Dmin))")
+          .add("use_sequence", &C::use_sequence,
+               "filter, whole-image cues: also observe the sequence matcher (for a database "
+               "that is one continuous drive)")
+          .add("sequence_frames", &C::sequence, &SequenceMatcherConfig::sequence_frames,
+               closed(1, 1000), "sequence matcher: images on one trajectory");
+  return f;
+}
+
 void PlaceRecognizerConfig::validate() const {
+  fields().validate(*this);
   if (cue != "histogram" && !isCueName(cue))
     throw std::invalid_argument("cue '" + cue +
                                 "' is not one of fused, thumbnail, gradient, chromaticity, "
@@ -13,8 +43,6 @@ void PlaceRecognizerConfig::validate() const {
   fusion.validate();
   if (color_space != "auto") spaceIndex(color_space);  // throws naming the valid ones
   if (method != "auto") distanceFromName(method);
-  if (window < 1 || window > 1000)
-    throw std::invalid_argument("window must be in 1..1000, got " + std::to_string(window));
   filter.validate();
   sequence.validate();
 }

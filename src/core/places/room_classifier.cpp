@@ -5,13 +5,30 @@
 
 namespace adaptive_perception::places {
 
+const config::Fields<RoomClassifierConfig>& RoomClassifierConfig::fields() {
+  using C = RoomClassifierConfig;
+  using config::closed;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("best_frames", &C::best_frames, closed(1, 1000), "training frames that vote")
+          .add("min_share", &C::min_share, config::Range{0, 1, false, true},
+               "the leading room needs more than this share of the vote")
+          .add("max_features", &C::sift, &SiftConfig::max_features, closed(10, 5000),
+               "SIFT keypoints per image")
+          .add("candidates", &C::index, &FeatureIndexConfig::candidates, closed(1, 10000),
+               "frames the indexed matcher verifies exactly")
+          .add("structure_weight", &C::structure, &StructureVoteConfig::weight, closed(0, 1),
+               "weight of line-structure similarity (papers/002 4.1.2) against SIFT; 0: off")
+          .add("structure_floor", &C::structure, &StructureVoteConfig::floor,
+               config::Range{0, 1, false, true},
+               "structural similarity that counts as none (restrictive detection)");
+  return f;
+}
+
 void RoomClassifierConfig::validate() const {
+  fields().validate(*this);
   sift.validate();
   index.validate();
-  if (best_frames < 1 || best_frames > 1000)
-    throw std::invalid_argument("best_frames must be in 1..1000");
-  if (!(min_share >= 0.0 && min_share < 1.0))
-    throw std::invalid_argument("min_share must be in [0, 1)");
   lines.validate();
   structure.validate();
 }

@@ -35,29 +35,6 @@ std::string variantName(Variant v) {
   }
 }
 
-void LineEkfSlamConfig::validate() const {
-  auto check = [](bool ok, const std::string& what) {
-    if (!ok) throw std::invalid_argument(what);
-  };
-  check(gate_probability > 0.0 && gate_probability < 1.0,
-        "gate_probability = " + std::to_string(gate_probability) + " (allowed: 0 < p < 1)");
-  check(confirm_sightings >= 1,
-        "confirm_sightings = " + std::to_string(confirm_sightings) + " (allowed: >= 1)");
-  check(
-      tentative_timeout_scans >= 1,
-      "tentative_timeout_scans = " + std::to_string(tentative_timeout_scans) + " (allowed: >= 1)");
-  check(min_new_line_length_m >= 0.0, "min_new_line_length_m must be >= 0");
-  check(line_model_rho_std_m >= 0.0 && line_model_alpha_std_rad >= 0.0,
-        "line_model_rho_std_m and line_model_alpha_std_rad must be >= 0");
-  check(anchor_min_angle_rad >= 0.0 && anchor_min_angle_rad <= math::kPi / 2.0,
-        "anchor_min_angle_rad = " + std::to_string(anchor_min_angle_rad) + " (allowed: 0 .. pi/2)");
-  check(jcbb_max_nodes >= 1, "jcbb_max_nodes must be >= 1");
-  check(retire_after_updates >= 0,
-        "retire_after_updates = " + std::to_string(retire_after_updates) +
-            " (allowed: 0 = off, or >= 1)");
-  motion.validate();
-}
-
 LineEkfSlam::LineEkfSlam(const LineEkfSlamConfig& config, const math::SE2& start,
                          const Eigen::Matrix3d& start_cov)
     : config_(config), x_(3), p_(start_cov), lin_pose_(start) {

@@ -12,9 +12,8 @@
 namespace adaptive_perception::tracking {
 
 void BoxTrackerConfig::validate() const {
+  fields().validate(*this);
   auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
-  if (samples < 10 || samples > 100000)
-    fail("samples = " + std::to_string(samples) + " (allowed: 10..100000)");
   if (bins_per_channel < 2 || bins_per_channel > 64 ||
       (bins_per_channel & (bins_per_channel - 1)) != 0)
     fail("bins_per_channel = " + std::to_string(bins_per_channel) +
@@ -41,8 +40,6 @@ void BoxTrackerConfig::validate() const {
     fail("learning_rate = " + std::to_string(learning_rate) + " (allowed: 0..1)");
   if (!(update_min_score >= -1.0 && update_min_score <= 1.0))
     fail("update_min_score = " + std::to_string(update_min_score) + " (allowed: -1..1)");
-  if (!(lost_score >= -1.0 && lost_score <= 1.0))
-    fail("lost_score = " + std::to_string(lost_score) + " (allowed: -1..1)");
   if (!(lost_growth >= 1.0 && lost_growth < 10.0))
     fail("lost_growth = " + std::to_string(lost_growth) + " (allowed: 1..10)");
   if (!(min_side_px > 0.0 && std::isfinite(min_side_px)))
@@ -57,16 +54,12 @@ void BoxTrackerConfig::validate() const {
     fail("scale_step = " + std::to_string(scale_step) + " (allowed: 0 < x < 1)");
   if (!(template_rate >= 0.0 && template_rate <= 1.0))
     fail("template_rate = " + std::to_string(template_rate) + " (allowed: 0..1)");
-  if (!(filter_gain >= 0.0 && std::isfinite(filter_gain)))
-    fail("filter_gain = " + std::to_string(filter_gain) + " (allowed: >= 0)");
   if (filter_scales < 0 || filter_scales > 5)
     fail("filter_scales = " + std::to_string(filter_scales) + " (allowed: 0..5)");
   if (!(filter_scale_step > 0.0 && filter_scale_step < 0.5))
     fail("filter_scale_step = " + std::to_string(filter_scale_step) + " (allowed: 0 < x < 0.5)");
   if (!(filter_scale_share >= 0.0 && filter_scale_share <= 1.0))
     fail("filter_scale_share = " + std::to_string(filter_scale_share) + " (allowed: 0..1)");
-  if (!(peak_fraction >= 0.0 && peak_fraction < 1.0))
-    fail("peak_fraction = " + std::to_string(peak_fraction) + " (allowed: 0 <= x < 1)");
   try {
     filter.validate();
   } catch (const std::invalid_argument& e) {

@@ -26,23 +26,19 @@ Ar2Model defaultDynamics() {
 }
 
 void CondensationConfig::validate() const {
+  fields().validate(*this);
   quantizer.validate();
   snake.validate();
   auto need = [](bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(what);
   };
-  need(samples >= 1 && samples <= 100000, "samples must be in 1..100000");
-  need(contour_points >= 8 && contour_points <= 1000, "contour_points must be in 8..1000");
   need(max_distribution_points >= 10 && max_distribution_points <= 1000000,
        "max_distribution_points must be in 10..1000000");
-  need(roi_margin >= 0.0, "roi_margin must be >= 0");
   need(min_bin_count >= 1, "min_bin_count must be >= 1");
   need(morph_radius_px >= 0 && morph_radius_px <= 20, "morph_radius_px must be in 0..20");
   need(mu_affine >= 0.0 && mu_area >= 0.0 && mu_quality >= 0.0, "mu_* must be >= 0");
-  need(sigma > 0.0, "sigma must be > 0");
   need(area_velocity >= 0.0 && area_velocity <= 2.0, "area_velocity must be in [0, 2]");
   need(euler_scale > 0.0, "euler_scale must be > 0");
-  need(lost_weight >= 0.0 && lost_weight < 1.0, "lost_weight must be in [0, 1)");
   need(min_area_px > 0.0, "min_area_px must be > 0");
   need(refine_dilate_px >= 0 && refine_dilate_px <= 20, "refine_dilate_px must be in 0..20");
   need(canny_low > 0.0 && canny_high >= canny_low, "need 0 < canny_low <= canny_high");

@@ -68,17 +68,10 @@ void EllipseWindow::shiftRight() {
 }
 
 void EllipseTrackerConfig::validate() const {
+  fields().validate(*this);
   quantizer.validate();
-  if (search_radius_px < 1 || search_radius_px > 200)
-    throw std::invalid_argument("search_radius_px must be in 1..200");
   if (!(scale_step >= 0.0 && scale_step < 0.5))
     throw std::invalid_argument("scale_step must be in [0, 0.5)");
-  if (!(update_rate >= 0.0 && update_rate <= 1.0))
-    throw std::invalid_argument("update_rate must be in [0, 1]");
-  if (!(update_threshold >= 0.0 && update_threshold <= 1.0))
-    throw std::invalid_argument("update_threshold must be in [0, 1]");
-  if (!(lost_threshold >= 0.0 && lost_threshold <= 1.0))
-    throw std::invalid_argument("lost_threshold must be in [0, 1]");
   if (!(lost_search_gain >= 1.0)) throw std::invalid_argument("lost_search_gain must be >= 1");
   if (!(min_axis_px > 0.0)) throw std::invalid_argument("min_axis_px must be > 0");
 }
