@@ -6,7 +6,7 @@
 #   - the install check (scripts/check_install.sh);
 #   - the core's unit tests and the fuzz targets' corpus replays, built alone with AddressSanitizer
 #     + UndefinedBehaviorSanitizer (scripts/check_core.sh). That tree builds at the lowest CPU
-#     priority while the ROS tests run; the unit tests run there only, not a second time from the
+#     priority beside the catkin build and the ROS tests; the unit tests run there only, not a second time from the
 #     catkin build (`catkin_make run_tests` still runs them all, as catkin users expect).
 # N counts the catkin test cases, the install check, and the sanitizer run's gtest cases and fuzz
 # replays. Prints the time of each stage. Exits non-zero when any test failed or did not run.
@@ -14,7 +14,13 @@
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 stage() { echo "run_tests: $1 after $(( SECONDS / 60 )) min $(( SECONDS % 60 )) s"; }
-"$AP_ROOT/scripts/setup.sh" || { echo "tests: 0 passed, 1 failed"; exit 1; }
+"$AP_ROOT/scripts/setup.sh" --no-build || { echo "tests: 0 passed, 1 failed"; exit 1; }
+mkdir -p "$AP_WS"
+# The sanitizer tree, beside everything below at nice 19: it takes only the CPU that the catkin
+# build and the ROS tests leave idle.
+nice -n 19 "$AP_ROOT/scripts/check_core.sh" build > "$AP_WS/check_core_build.log" 2>&1 &
+san_build=$!
+"$AP_ROOT/scripts/setup.sh" || { kill "$san_build" 2> /dev/null; echo "tests: 0 passed, 1 failed"; exit 1; }
 stage "setup (apt, catkin build) done"
 cd "$AP_WS"
 set +u; source devel/setup.bash; set -u
@@ -23,9 +29,6 @@ results="$AP_WS/build/test_results"
 rm -rf "$results"
 JOBS="${AP_JOBS:-$(nproc)}"
 TEST_JOBS="${AP_TEST_JOBS:-3}"
-# The sanitizer tree, beside everything below at nice 19: it takes only the CPU the ROS tests leave.
-nice -n 19 "$AP_ROOT/scripts/check_core.sh" build > "$AP_WS/check_core_build.log" 2>&1 &
-san_build=$!
 if ! catkin_make -j"$JOBS" ros_tests > "$AP_WS/tests_build.log" 2>&1; then
   tail -n 60 "$AP_WS/tests_build.log"; echo "test build FAILED (log: $AP_WS/tests_build.log)"
   kill "$san_build" 2> /dev/null
