@@ -4,7 +4,7 @@
 # of its seed corpus and regression inputs (test/fuzz) run under them. Any sanitizer report fails
 # the test that caused it. Ends with `sanitizers: N passed, M failed`; exits non-zero on a failure.
 # Part of scripts/run_tests.sh. Build in .ws/sanitize (git-ignored).
-# Usage: scripts/check_core.sh [build|test]   (~15 minutes on two cores from scratch)
+# Usage: scripts/check_core.sh [build|test]   (~13 minutes on two cores from scratch)
 #   build: only build the tree; test: only run the tests of a built tree; no argument: both.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -12,9 +12,18 @@ BUILD="$AP_WS/sanitize"
 JOBS="${AP_JOBS:-$(nproc)}"
 PHASE="${1:-all}"
 case "$PHASE" in all|build|test) ;; *) echo "check_core.sh: unknown phase '$PHASE' (build, test or none)"; exit 2 ;; esac
+# gcc, as the catkin build. (clang compiles this tree 20-45% faster with both sanitizers, but the
+# simulators draw random numbers in function arguments, whose order of evaluation the compilers
+# choose differently: under clang the same seed makes another scene, and one tracking test fails.)
+# CXX chooses another compiler.
+COMPILER="${CXX:-$(command -v g++)}"
+if [ "$PHASE" != test ] && [ -f "$BUILD/CMakeCache.txt" ] &&
+   ! grep -q "^CMAKE_CXX_COMPILER:[A-Z]*=$COMPILER\$" "$BUILD/CMakeCache.txt"; then
+  rm -rf "$BUILD"  # configured with another compiler
+fi
 mkdir -p "$BUILD"
 log="$BUILD/build.log"
-if [ "$PHASE" != test ] && ! { cmake -S "$AP_ROOT/test/standalone" -B "$BUILD" -DCMAKE_BUILD_TYPE=None -DAP_SANITIZE=ON &&
+if [ "$PHASE" != test ] && ! { cmake -S "$AP_ROOT/test/standalone" -B "$BUILD" -DCMAKE_BUILD_TYPE=None -DAP_SANITIZE=ON -DCMAKE_CXX_COMPILER="$COMPILER" &&
        cmake --build "$BUILD" -j"$JOBS"; } > "$log" 2>&1; then
   tail -n 40 "$log"; echo "check_core: sanitizer build FAILED (log: $log)"
   echo "sanitizers: 0 passed, 1 failed"; exit 1

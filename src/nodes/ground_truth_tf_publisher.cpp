@@ -1,5 +1,5 @@
-// ground_truth_tf_publisher: see include/adaptive_perception/ros/ground_truth_tf_node.h.
-#include "adaptive_perception/ros/ground_truth_tf_node.h"
+// ground_truth_tf_publisher: see include/adaptive_perception/ros/ground_truth_tf_publisher_node.h.
+#include "adaptive_perception/ros/ground_truth_tf_publisher_node.h"
 #include "adaptive_perception/ros/node_main.h"
 
 int main(int argc, char** argv) {

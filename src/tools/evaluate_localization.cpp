@@ -32,6 +32,7 @@
 #include "adaptive_perception/ros/bag_frames.h"
 #include "adaptive_perception/ros/params.h"
 #include "config_args.h"
+#include "progress.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -105,7 +106,9 @@ int main(int argc, char** argv) {
     math::SE2 prev_truth;
     long correct = 0, total = 0;
     int used = 0;
+    tools::Progress progress("evaluate_localization", static_cast<long>(frames.size()), "frames");
     for (const auto& f : frames) {
+      progress.update(static_cast<long>(&f - frames.data()) + 1);
       if (!f.has_odom || !f.has_truth) continue;
       const double t = f.stamp.toSec() - t0;
       const math::SE2 delta =

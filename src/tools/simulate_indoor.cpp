@@ -38,6 +38,7 @@
 #include "adaptive_perception/sim/indoor_renderer.h"
 #include "adaptive_perception/sim/indoor_route.h"
 #include "adaptive_perception/world/camera_model.h"
+#include "progress.h"
 #include "tick_schedule.h"
 #include "tool_args.h"
 
@@ -141,7 +142,10 @@ int main(int argc, char** argv) {
     double t_prev = 0.0;
     long images = 0;
     std::map<std::string, int> per_place;
+    tools::Progress progress("simulate_indoor", static_cast<long>(events.size()), "steps");
+    long step = 0;
     for (std::int64_t ns : events) {
+      progress.update(++step);
       const double t = ns * 1e-9;
       robot.step(t - t_prev);
       t_prev = t;

@@ -32,14 +32,9 @@ struct LaserSlamConfig {
   LaserOdometryConfig laser_odometry;
   // The EKF's prediction noise when the front end predicts, in MotionModelConfig's terms
   // (sd(dtheta) = alpha1 |r| + alpha2 |t| + min_r; sd(dx, dy) = alpha3 |t| + alpha4 |r| + min_t):
-  // a quarter of the wheel-odometry model (LineEkfSlamConfig::motion) in every term. Measured
-  // against the benchmark's relations of at most 1.5 s (intel, fr079, mit-csail), the front end's
-  // rotation error is 0.24-0.27 times what that model gives for the same motions and its
-  // translation error 0.66-1.06 times; a quarter in translation too gave the lower relation error
-  // on all three logs (0.0172 / 0.0329 / 0.0285 m against 0.0193 / 0.0354 / 0.0308 m with the
-  // translation terms left whole). With the wheel odometry's noise the EKF's heading variance
-  // grows so fast along a corridor that one line pairing after a stretch without associations
-  // turns the pose by 10 degrees (fr-clinic). docs/slam_real_logs.md has the measurements.
+  // a quarter of the wheel-odometry model (LineEkfSlamConfig::motion) in every term, because the
+  // front end's rotation error is 0.24-0.27 times what that model gives on the benchmark logs'
+  // relations. The measurements behind it: docs/slam_real_logs.md (2026-12-03).
   localization::MotionModelConfig front_end_motion{0.025, 0.0125, 0.02, 0.0025, 0.00025, 0.00025};
   LineEkfSlamConfig ekf;
   LoopClosingConfig loop;

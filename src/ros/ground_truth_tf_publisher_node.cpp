@@ -1,5 +1,5 @@
 #include "adaptive_perception/ros/diagnostics_heartbeat.h"
-#include "adaptive_perception/ros/ground_truth_tf_node.h"
+#include "adaptive_perception/ros/ground_truth_tf_publisher_node.h"
 
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
@@ -7,11 +7,25 @@
 
 namespace adaptive_perception {
 
+namespace {
+constexpr int kPathLength = 2000;
+}  // namespace
+
+std::vector<config::ParameterDoc> GroundTruthTfNode::parameters() {
+  return {{"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
+          {"odom_frame", "string", ros_topics::kOdomFrame, "", "the odometry frame"},
+          {"base_frame", "string", ros_topics::kBaseFrame, "", "the robot's frame"},
+          {"path_length", "int", std::to_string(kPathLength), "[0, 100000]",
+           "poses kept in ground_truth/path (0: no path)"},
+          {"publish_tf", "bool", "true", "",
+           "broadcast map -> odom; false when a localizer owns it (the path is still published)"}};
+}
+
 GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   map_frame_ = ros_params::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = ros_params::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   base_frame_ = ros_params::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
-  path_length_ = ros_params::getInRange(pnh, "path_length", 2000, 0, 100000);
+  path_length_ = ros_params::getInRange(pnh, "path_length", kPathLength, 0, 100000);
   publish_tf_ = ros_params::get<bool>(pnh, "publish_tf", true);
 
   truth_sub_.subscribe(nh, ros_topics::kGroundTruthPose, 20);

@@ -4,10 +4,8 @@
 // run on a simulator bag without a localizer. map -> odom = (map -> base_link)_truth * (odom ->
 // base_link)^-1, both at the same stamp (the simulator writes them together).
 //
-// Parameters (private):
-//   ~map_frame (string, "map"), ~odom_frame (string, "odom"), ~base_frame (string, "base_link").
-//   ~path_length (int, 2000, 0..100000): poses kept in the published path (0 = no path).
-//   ~publish_tf (bool, true): false when a localizer owns map -> odom (only the path is published).
+// Parameters (private): ~map_frame, ~odom_frame, ~base_frame, ~path_length, ~publish_tf (the
+//   table in docs/nodes/ground_truth_tf_publisher.md, made from parameters()).
 // Subscribed:
 //   ground_truth/pose (geometry_msgs/PoseStamped): base_link in map.
 //   odom (nav_msgs/Odometry): base_link in odom.
@@ -29,11 +27,15 @@
 #include <deque>
 #include <memory>
 
+#include "adaptive_perception/config/fields.h"
+
 namespace adaptive_perception {
 
 class GroundTruthTfNode {
  public:
   GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads (its doc page's table).
+  static std::vector<config::ParameterDoc> parameters();
 
  private:
   void callback(const geometry_msgs::PoseStampedConstPtr& truth,
