@@ -13,10 +13,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 DURATION="${1:-1200}"
 RATE="${2:-10}"
 OUT="$AP_ROOT/results/memory"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 mkdir -p "$OUT"
-set +u; source "$AP_WS/devel/setup.bash"; set -u
-export ROS_HOME="${ROS_HOME:-$AP_WS/ros_home}"
+use_workspace
 TMP="$(mktemp -d)"
 LAUNCH_PID=""
 cleanup() { [ -n "$LAUNCH_PID" ] && kill "$LAUNCH_PID" 2> /dev/null; wait 2> /dev/null; rm -rf "$TMP"; }

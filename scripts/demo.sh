@@ -24,8 +24,7 @@ for a in "$@"; do
   esac
 done
 "$AP_ROOT/scripts/setup.sh"
-set +u; source "$AP_WS/devel/setup.bash"; set -u
-export ROS_HOME="${ROS_HOME:-$AP_WS/ros_home}"
+use_workspace
 mkdir -p "$AP_ROOT/results/demo"
 summary="$AP_ROOT/results/demo/summary.txt"
 : > "$summary"
@@ -62,7 +61,6 @@ echo "$line" | tee -a "$summary"
 # train_places builds the database, and the test run is replayed through histogram_place_recognizer.
 places_dir="$AP_ROOT/results/demo/places"
 mkdir -p "$places_dir"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 for run in train:1 test:2; do
   "$BIN/simulate_indoor" --lighting cloudy --seed "${run#*:}" --camera_rate_hz 1 --width_px 160 --height_px 120 \
     --output "$places_dir/${run%%:*}.bag" --overwrite > /dev/null 2>&1

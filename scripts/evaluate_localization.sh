@@ -25,7 +25,6 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ "$THREADS" = 0 ] && THREADS="$(nproc)"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 mkdir -p "$OUT"
 cd "$AP_ROOT"
 KIDNAP="$OUT/field_kidnap.bag"

@@ -12,12 +12,10 @@
 # About 5 minutes on two cores. Needs a built workspace (scripts/setup.sh).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 CAMERA="${1:-omni}"
 RATE="${2:-1}"
 OUT="$AP_ROOT/results/places/$CAMERA"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
+make_tmp
 mkdir -p "$OUT"
 LIGHTS="$INDOOR_LIGHTS"
 for L in $LIGHTS; do

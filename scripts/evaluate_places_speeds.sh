@@ -10,7 +10,6 @@
 # Usage: [SPEEDS="0.6 0.73 1 1.37 2"] [TOLERANCE=1] scripts/evaluate_places_speeds.sh REF_DIR QUERY_DIR [EXTRA evaluate_places OPTIONS]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 SPEEDS="${SPEEDS:-0.6 0.73 1 1.37 2}"
 TOLERANCE="${TOLERANCE:-1}"
 [ "$#" -ge 2 ] || { echo "usage: $0 REF_DIR QUERY_DIR [evaluate_places options]"; exit 2; }
@@ -18,8 +17,7 @@ REF="${1%/}"; QUERY="${2%/}"; shift 2
 [ -x "$BIN/evaluate_places" ] || "$AP_ROOT/scripts/setup.sh" || exit 1
 name="$(basename "$(dirname "$REF")")"
 OUT="$AP_ROOT/results/places_speeds/$name"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
+make_tmp
 mkdir -p "$OUT"
 mapfile -t frames < <(find "$QUERY" -maxdepth 1 -type f \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.bmp' -o -iname '*.ppm' \) | LC_ALL=C sort)
 n="${#frames[@]}"

@@ -15,7 +15,6 @@
 # Usage: [TOLERANCE=1] scripts/evaluate_places_traversals.sh DIR [DIR ...]
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 TOLERANCE="${TOLERANCE:-1}"
 [ "$#" -ge 1 ] || { echo "usage: $0 DIR [DIR ...] (place-recognition datasets, or folders of them)"; exit 2; }
 [ -x "$BIN/evaluate_places" ] || "$AP_ROOT/scripts/setup.sh" || exit 1

@@ -10,7 +10,6 @@
 # Needs a built workspace (scripts/setup.sh). The whole set takes about 15 minutes on two cores.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 OUT="$AP_ROOT/results/real_logs"
 RETIRE_AFTER="${1:-0}"
 ODOM_NOISE_SCALE="${2:-1}"

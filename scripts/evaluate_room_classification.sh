@@ -14,15 +14,13 @@
 # (~20 minutes on two cores for both modes)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 RATE="${1:-2}"
 MODES="${2:-single mcl}"
 SW="${3:-0}"
 SUFFIX=""
 if [ "$SW" != "0" ]; then SUFFIX="+structure$SW"; fi
 OUT="$AP_ROOT/results/room_classification"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
+make_tmp
 mkdir -p "$OUT"
 LIGHTS="$INDOOR_LIGHTS"
 for L in $LIGHTS; do

@@ -10,7 +10,6 @@
 # About 10 minutes on two cores for the four logs.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 FLAGS="${FLAGS:-}"
 [ -x "$BIN/evaluate_slam" ] || "$AP_ROOT/scripts/setup.sh" || exit 1
 OUT="$AP_ROOT/results/slam_benchmark"

@@ -11,13 +11,11 @@
 # (seeds 1-10 were used to choose the line model noise; FIRST_SEED=11 gives held-out seeds)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 SEEDS="${1:-20}"
 VARIANTS="${2:-standard anchor external}"
 FIRST_SEED="${3:-1}"
 OUT="$AP_ROOT/results/slam"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
+make_tmp
 mkdir -p "$OUT"
 csv="$OUT/consistency.csv"
 echo "seed,variant,nees_in_bounds,nees_mean,ate_m,final_position_error_m,landmarks,realtime_factor,nees_below_bounds,nis_per_dof,merged" > "$csv"

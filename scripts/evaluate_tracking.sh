@@ -12,11 +12,9 @@
 # Usage: scripts/evaluate_tracking.sh [SEEDS="1 2 3 4 5 6"]   (~10 minutes on two cores)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 SEEDS="${1:-1 2 3 4 5 6}"
 OUT="$AP_ROOT/results/tracking"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
+make_tmp
 mkdir -p "$OUT"
 csv="$OUT/table.csv"
 echo "scenario,seed,tracker,mean_iou,success_rate,lost_frames,fps,camshift_mean_iou,camshift_success_rate,camshift_fps,frames" > "$csv"

@@ -13,7 +13,6 @@
 # Usage: scripts/evaluate_tracking_benchmark.sh DIR [DIR ...]
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 [ "$#" -ge 1 ] || { echo "usage: $0 DIR [DIR ...] (OTB / VOT sequence folders, or folders of them)"; exit 2; }
 [ -x "$BIN/evaluate_tracking" ] || "$AP_ROOT/scripts/setup.sh" || exit 1
 OUT="$AP_ROOT/results/tracking_benchmark"

@@ -15,7 +15,6 @@ while [ $# -gt 0 ]; do
     *) echo "usage: $0 [--environments N] [--output_dir DIR]" >&2; exit 2 ;;
   esac
 done
-BIN="$AP_WS/devel/lib/adaptive_perception"
 BAGS="$AP_ROOT/results/prior_bags"
 rm -rf "$BAGS"; mkdir -p "$BAGS"
 for e in $(seq 1 "$N"); do

@@ -12,11 +12,9 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 OUT="$AP_ROOT/results/report"
 [ "${1:-}" = "--output" ] && OUT="$2"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 mkdir -p "$OUT"
 cd "$AP_ROOT"
-TMP="$(mktemp -d)"
-trap 'rm -rf "$TMP"' EXIT
+make_tmp
 summary="$OUT/summary.txt"
 : > "$summary"
 

@@ -7,7 +7,6 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 OUT="$AP_ROOT/results/color_paper"
 [ "${1:-}" = "--output" ] && OUT="$2"
-BIN="$AP_WS/devel/lib/adaptive_perception"
 EVAL="$BIN/evaluate_color_estimation"
 mkdir -p "$OUT"
 cd "$AP_ROOT"

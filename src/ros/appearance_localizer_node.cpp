@@ -1,4 +1,3 @@
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/appearance_localizer_node.h"
 
 #include <geometry_msgs/PoseArray.h>
@@ -7,6 +6,7 @@
 #include <cstdio>
 
 #include "adaptive_perception/PlaceRecognition.h"
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
@@ -17,7 +17,6 @@ namespace {
 // The node's own parameters' defaults (the algorithm's are in its two configs).
 constexpr char kDefaultDatabase[] = "places.sqlite";
 constexpr double kMaxRate_hz = 5.0, kTransformTolerance_s = 0.1;
-std::string real(double v) { return config::formatValue(config::Kind::kDouble, v); }
 }  // namespace
 
 std::vector<config::ParameterDoc> AppearanceLocalizerNode::parameters() {
@@ -32,13 +31,13 @@ std::vector<config::ParameterDoc> AppearanceLocalizerNode::parameters() {
   const std::vector<config::ParameterDoc> node = {
       {"use_odom", "bool", "true", "",
        "move the particles by odom; else by the training run's average step"},
-      {"max_rate_hz", "double", real(kMaxRate_hz), "[0.01, 1000]",
+      {"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
        "images processed per second of image time at most"},
       {"publish_tf", "bool", "false", "", "broadcast map -> odom (needs odom)"},
-      {"transform_tolerance", "double", real(kTransformTolerance_s), "[0, 10]",
+      {"transform_tolerance", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
        "map -> odom is stamped this far after its image (s), as amcl does"},
-      {"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
-      {"odom_frame", "string", ros_topics::kOdomFrame, "", "the odometry frame"},
+      ros_params::frameParameter("map"),
+      ros_params::frameParameter("odom"),
       {"seed", "int", "1", "[0, 1073741824]", "the particles' random seed"}};
   rows.insert(rows.end(), node.begin(), node.end());
   rows.push_back(ros_params::stampOrderParameter());
@@ -91,8 +90,7 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
   image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &AppearanceLocalizerNode::onImage, this);
   if (use_odom_)
     odom_sub_ = nh.subscribe(ros_topics::kOdom, 50, &AppearanceLocalizerNode::onOdom, this);
-  initial_pose_sub_ =
-      nh.subscribe("initialpose", 2, &AppearanceLocalizerNode::onInitialPose, this);
+  initial_pose_sub_ = nh.subscribe("initialpose", 2, &AppearanceLocalizerNode::onInitialPose, this);
   global_srv_ = nh.advertiseService("global_localization",
                                     &AppearanceLocalizerNode::onGlobalLocalization, this);
   diagnostics_.setHardwareID("appearance_localizer");
@@ -195,10 +193,9 @@ void AppearanceLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs:
   last_room_ = room.place;
   room_pub_.publish(room);
   if (publish_tf_ && odom_pose) {
-    geometry_msgs::TransformStamped t =
-        ros_conv::toTransform(ros_conv::mapToOdom(e.pose, world::planarToIsometry(*odom_pose)),
-                              map_frame_, odom_frame_,
-                              msg->header.stamp + ros::Duration(transform_tolerance_s_));
+    geometry_msgs::TransformStamped t = ros_conv::toTransform(
+        ros_conv::mapToOdom(e.pose, world::planarToIsometry(*odom_pose)), map_frame_, odom_frame_,
+        msg->header.stamp + ros::Duration(transform_tolerance_s_));
     tf_.sendTransform(t);
   }
   diagnostics_.update();

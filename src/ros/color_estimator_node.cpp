@@ -35,9 +35,9 @@ std::vector<config::ParameterDoc> ColorEstimatorNode::parameters() {
       {"mixing", "string", kDefaultMixing, "best_mode, imm",
        "best_mode: only the mode that best explains the image is updated (the paper); imm"},
       {"field_file", "string", kFieldFile, "", "the field map"},
-      {"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
-      {"tf_timeout_s", "double", config::formatValue(config::Kind::kDouble, kTfTimeout_s),
-       "[0, 5]", "wall-clock wait for map -> camera at an image's stamp before it is skipped (s)"}};
+      ros_params::frameParameter("map"),
+      {"tf_timeout_s", "double", config::formatValue(config::Kind::kDouble, kTfTimeout_s), "[0, 5]",
+       "wall-clock wait for map -> camera at an image's stamp before it is skipped (s)"}};
   rows.insert(rows.end(), node.begin(), node.end());
   const std::vector<config::ParameterDoc> priors = ros_params::lightingPriorParameters();
   rows.insert(rows.end(), priors.begin(), priors.end());
@@ -65,8 +65,8 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 
   std::string filter, dir;
   priors_ = P::loadLightingPriors(pnh, &filter, &dir);
-  map_ = world::FieldMap::loadYaml(
-      P::resolvePackagePath(P::getName(pnh, "field_file", kFieldFile)));
+  map_ =
+      world::FieldMap::loadYaml(P::resolvePackagePath(P::getName(pnh, "field_file", kFieldFile)));
   config_.validate();
 
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_estimator/color_model", 5);

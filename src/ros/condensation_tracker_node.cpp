@@ -1,4 +1,3 @@
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/condensation_tracker_node.h"
 
 #include <algorithm>
@@ -6,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "adaptive_perception/TrackedObject.h"
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
@@ -16,7 +16,6 @@ namespace {
 // The node's own parameters' defaults (the trackers' are in their configs).
 constexpr char kDefaultMode[] = "box", kDefaultColorSpace[] = "opponent";
 constexpr double kMaxRate_hz = 30.0;
-std::string real(double v) { return config::formatValue(config::Kind::kDouble, v); }
 }  // namespace
 
 std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
@@ -39,7 +38,7 @@ std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
        "YAML of A1, A0, d, B from learn_tracking_dynamics; empty: the default model"},
       {"initial_roi", "list", "[]", "",
        "[x, y, w, h] pixels in the first image; empty: wait for ~set_target or the target topic"},
-      {"max_rate_hz", "double", real(kMaxRate_hz), "[0.01, 1000]",
+      {"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
        "images faster than this (by stamp) are skipped"},
       {"publish_overlay", "bool", "true", "",
        "condensation_tracker/overlay (only computed with a subscriber)"},
@@ -55,7 +54,9 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   if (mode != "box" && mode != "condensation" && mode != "ellipse")
     throw P::ParamError("parameter " + pnh.resolveName("mode") + " = '" + mode +
                         "' must be box, condensation or ellipse");
-  mode_ = mode == "box" ? Mode::kBox : mode == "condensation" ? Mode::kCondensation : Mode::kEllipse;
+  mode_ = mode == "box"            ? Mode::kBox
+          : mode == "condensation" ? Mode::kCondensation
+                                   : Mode::kEllipse;
   P::loadFields(pnh, tracking::BoxTrackerConfig::fields(), &box_config_);
   box_config_.validate();
   tracking::CondensationConfig& c = config_;
@@ -213,7 +214,8 @@ void CondensationTrackerNode::onImage(const ros::MessageEvent<const sensor_msgs:
     lost = r.lost;
     out.confidence = r.confidence;
     const cv::Rect2d& q = r.box;
-    contour = {{q.x, q.y}, {q.x + q.width, q.y}, {q.x + q.width, q.y + q.height}, {q.x, q.y + q.height}};
+    contour = {
+        {q.x, q.y}, {q.x + q.width, q.y}, {q.x + q.width, q.y + q.height}, {q.x, q.y + q.height}};
     search = r.search;
     if (!r.likelihood.empty() && segmentation_pub_.getNumSubscribers() > 0) {
       segmentation = cv::Mat::zeros(bgr.size(), CV_8UC1);

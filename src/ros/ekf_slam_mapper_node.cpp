@@ -1,4 +1,3 @@
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/ekf_slam_mapper_node.h"
 
 #include <chrono>
@@ -7,6 +6,7 @@
 
 #include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/math/chi_square.h"
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/tf_lookup.h"
@@ -20,15 +20,17 @@ namespace fs = std::filesystem;
 using ros_params::ParamError;
 
 namespace {
-// The node's own parameters' defaults (the algorithm's are in slam::LaserSlamConfig).
-constexpr char kDefaultVariant[] = "standard", kDefaultAssociation[] = "jcbb";
+// The node's own parameters' defaults (the algorithm's are in slam::LaserSlamConfig; the two
+// enums' defaults are named from it).
+const std::string kDefaultVariant = slam::variantName(slam::LineEkfSlamConfig{}.variant),
+                  kDefaultAssociation =
+                      slam::associationName(slam::LineEkfSlamConfig{}.association.method);
 constexpr char kDefaultMapFile[] = "line_map.yaml";
 const std::vector<double> kInitialPoseStd = {1e-3, 1e-3, 1e-3};
 constexpr double kExternalGate = 0.999, kTransformTolerance_s = 0.1, kTfTimeout_s = 0.2;
 constexpr double kMapUpdateInterval_s = 5.0;
 constexpr double kGridKeyframeDistance_m = 0.1, kGridKeyframeAngle_rad = 0.1;
 constexpr int kPathMaxPoses = 20000;
-std::string real(double v) { return config::formatValue(config::Kind::kDouble, v); }
 }  // namespace
 
 std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
@@ -43,33 +45,34 @@ std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
       {"initial_map", "string", "", "",
        "a line map written by ~save_map: localize against it, never extend it (loop closing "
        "off); empty: map"},
-      {"initial_pose", "list", "[]", "", "[x_m, y_m, yaw_rad] at the first scan; empty: the origin"},
+      {"initial_pose", "list", "[]", "",
+       "[x_m, y_m, yaw_rad] at the first scan; empty: the origin"},
       {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
        "its standard deviations (m, m, rad)"},
-      {"external_gate_probability", "double", real(kExternalGate), "[0.5, 0.999999]",
+      {"external_gate_probability", "double", config::formatReal(kExternalGate), "[0.5, 0.999999]",
        "external poses whose innovation fails this chi-square gate are rejected"},
-      {"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
-      {"odom_frame", "string", ros_topics::kOdomFrame, "", "the odometry frame"},
-      {"base_frame", "string", ros_topics::kBaseFrame, "", "the robot's frame"},
+      ros_params::frameParameter("map"),
+      ros_params::frameParameter("odom"),
+      ros_params::frameParameter("base"),
       {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
-      {"transform_tolerance_s", "double", real(kTransformTolerance_s), "[0, 10]",
+      {"transform_tolerance_s", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
        "map -> odom is future-dated by this (s), as amcl does"},
-      {"tf_timeout_s", "double", real(kTfTimeout_s), "[0, 5]",
+      {"tf_timeout_s", "double", config::formatReal(kTfTimeout_s), "[0, 5]",
        "wall-clock wait for odom -> base_link at a scan's stamp before it is skipped (s)"},
       {"map_file", "string", kDefaultMapFile, "",
        "~save_map's default path (relative to the node's working directory)"},
       {"path_max_poses", "int", std::to_string(kPathMaxPoses), "[1, 10000000]",
        "ekf_slam_mapper/path keeps the newest poses"},
-      {"map_update_interval_s", "double", real(kMapUpdateInterval_s), "[0, 3600]",
+      {"map_update_interval_s", "double", config::formatReal(kMapUpdateInterval_s), "[0, 3600]",
        "seconds between occupancy-grid renders (gmapping's map_update_interval); 0: no grid"},
-      {"grid_resolution_m", "double", real(grid.resolution_m), "[0.005, 10]",
+      {"grid_resolution_m", "double", config::formatReal(grid.resolution_m), "[0.005, 10]",
        "the grid's cell side (m)"},
-      {"grid_max_range_m", "double", real(grid.max_range_m), "[0.1, 1000]",
+      {"grid_max_range_m", "double", config::formatReal(grid.max_range_m), "[0.1, 1000]",
        "beams are used up to here; no-returns clear up to here (m)"},
-      {"grid_keyframe_distance_m", "double", real(kGridKeyframeDistance_m), "[0, 100]",
-       "the grid keeps a scan after this much motion (m)"},
-      {"grid_keyframe_angle_rad", "double", real(kGridKeyframeAngle_rad), "[0, 3.14159]",
-       "... or this much turning (rad)"}};
+      {"grid_keyframe_distance_m", "double", config::formatReal(kGridKeyframeDistance_m),
+       "[0, 100]", "the grid keeps a scan after this much motion (m)"},
+      {"grid_keyframe_angle_rad", "double", config::formatReal(kGridKeyframeAngle_rad),
+       "[0, 3.14159]", "... or this much turning (rad)"}};
   rows.insert(rows.end(), node.begin(), node.end());
   rows.push_back(ros_params::stampOrderParameter());
   return rows;
@@ -82,7 +85,7 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   slam::LineEkfSlamConfig& c = config_.ekf;
   try {
     c.variant = slam::parseVariant(P::get<std::string>(pnh, "variant", kDefaultVariant));
-    c.association =
+    c.association.method =
         slam::parseAssociation(P::get<std::string>(pnh, "association", kDefaultAssociation));
   } catch (const std::invalid_argument& e) {
     throw ParamError(std::string("ekf_slam_mapper parameters: ") + e.what());
@@ -153,9 +156,8 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     get_map_srv_ = service_queue_.handle(nh).advertiseService("dynamic_map",
                                                               &EkfSlamMapperNode::onGetMap, this);
     map_timer_ = service_queue_.handle(nh).createSteadyTimer(
-        ros::WallDuration(map_update_interval_s_), [this](const ros::SteadyTimerEvent&) {
-          onMapTimer();
-        });
+        ros::WallDuration(map_update_interval_s_),
+        [this](const ros::SteadyTimerEvent&) { onMapTimer(); });
   }
   diagnostics_.setHardwareID("ekf_slam_mapper");
   freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
@@ -163,15 +165,16 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   diagnostics_.add(*freq_);
   diagnostics_.add("slam", this, &EkfSlamMapperNode::diagnose);
   diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_, &mutex_);
-  ROS_INFO("ekf_slam_mapper: variant %s, association %s, retirement %s, front end %s, loop "
-           "closing %s",
-           slam::variantName(config_.ekf.variant).c_str(),
-           config_.ekf.association == slam::Association::kJcbb ? "jcbb" : "nn",
-           config_.ekf.retire_after_updates > 0
-               ? ("after " + std::to_string(config_.ekf.retire_after_updates) + " updates").c_str()
-               : "off",
-           config_.front_end ? "laser odometry" : "off (wheel odometry)",
-           config_.loop_closing ? "on" : "off");
+  ROS_INFO(
+      "ekf_slam_mapper: variant %s, association %s, retirement %s, front end %s, loop "
+      "closing %s",
+      slam::variantName(config_.ekf.variant).c_str(),
+      slam::associationName(config_.ekf.association.method).c_str(),
+      config_.ekf.retire_after_updates > 0
+          ? ("after " + std::to_string(config_.ekf.retire_after_updates) + " updates").c_str()
+          : "off",
+      config_.front_end ? "laser odometry" : "off (wheel odometry)",
+      config_.loop_closing ? "on" : "off");
 }
 
 void EkfSlamMapperNode::reset(const char* why) {
@@ -272,8 +275,7 @@ void EkfSlamMapperNode::processLines(const ros::MessageEvent<const LineSegmentAr
     for (const auto& p : pts) points_robot.push_back(mount.transformPoint(p.p_m));
   }
   try {
-    slam_->add(points_robot, slam::toObservations(segments, mount),
-               world::isometryToPlanar(odom));
+    slam_->add(points_robot, slam::toObservations(segments, mount), world::isometryToPlanar(odom));
   } catch (const std::exception& e) {
     ROS_ERROR_THROTTLE(10.0, "ekf_slam_mapper: update failed (%s): scan skipped", e.what());
     ++update_failures_;

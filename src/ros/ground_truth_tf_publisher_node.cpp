@@ -1,6 +1,6 @@
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/ground_truth_tf_publisher_node.h"
 
+#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
@@ -12,9 +12,9 @@ constexpr int kPathLength = 2000;
 }  // namespace
 
 std::vector<config::ParameterDoc> GroundTruthTfNode::parameters() {
-  return {{"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"},
-          {"odom_frame", "string", ros_topics::kOdomFrame, "", "the odometry frame"},
-          {"base_frame", "string", ros_topics::kBaseFrame, "", "the robot's frame"},
+  return {ros_params::frameParameter("map"),
+          ros_params::frameParameter("odom"),
+          ros_params::frameParameter("base"),
           {"path_length", "int", std::to_string(kPathLength), "[0, 100000]",
            "poses kept in ground_truth/path (0: no path)"},
           {"publish_tf", "bool", "true", "",

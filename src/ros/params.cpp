@@ -7,6 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+
+#include "adaptive_perception/ros/topics.h"
 
 namespace adaptive_perception::ros_params {
 
@@ -37,8 +40,8 @@ std::string packageRootBesideExecutable() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec) return "";
-  const fs::path share = exe.parent_path().parent_path().parent_path() / "share" /
-                         "adaptive_perception";
+  const fs::path share =
+      exe.parent_path().parent_path().parent_path() / "share" / "adaptive_perception";
   std::ifstream named((share / "source_dir.txt").string());
   std::string source;
   if (named && std::getline(named, source) && !source.empty()) return source;
@@ -161,14 +164,23 @@ ros_conv::StampOrderConfig loadStampOrder(const ros::NodeHandle& pnh) {
   return c;
 }
 
+config::ParameterDoc frameParameter(const std::string& frame) {
+  if (frame == "map") return {"map_frame", "string", ros_topics::kMapFrame, "", "the map frame"};
+  if (frame == "odom")
+    return {"odom_frame", "string", ros_topics::kOdomFrame, "", "the odometry frame"};
+  if (frame == "base")
+    return {"base_frame", "string", ros_topics::kBaseFrame, "", "the robot's frame"};
+  throw std::invalid_argument("frameParameter: no frame '" + frame + "' (map, odom or base)");
+}
+
 config::ParameterDoc stampOrderParameter() {
   const config::Range range = config::closed(kMinRestartBack_s, kMaxRestartBack_s);
-  return {"time_back_restart_s", "double",
-          config::formatValue(config::Kind::kDouble,
-                              ros_conv::StampOrderConfig().restart_after_back_s),
-          range.text(),
-          "an input older than the last is dropped; older by more than this (s), or the clock "
-          "jumping back (a looped bag), restarts the node's estimate"};
+  return {
+      "time_back_restart_s", "double",
+      config::formatValue(config::Kind::kDouble, ros_conv::StampOrderConfig().restart_after_back_s),
+      range.text(),
+      "an input older than the last is dropped; older by more than this (s), or the clock "
+      "jumping back (a looped bag), restarts the node's estimate"};
 }
 
 }  // namespace adaptive_perception::ros_params

@@ -39,8 +39,8 @@ int main(int argc, char** argv) {
     const double x = rng.uniform(-2.9, 2.9), y = rng.uniform(-1.9, 1.9);
     if (!map.isFree(x, y, 0.15)) continue;
     const math::SE2 base(x, y, rng.uniform(-math::kPi, math::kPi));
-    poses.push_back(world::planarToIsometry(base) *
-                    head.baseToOptical(rng.uniform(-1.5, 1.5), rng.uniform(-0.2, 0.7)));
+    const double tilt = rng.uniform(-0.2, 0.7), pan = rng.uniform(-1.5, 1.5);
+    poses.push_back(world::planarToIsometry(base) * head.baseToOptical(pan, tilt));
   }
   std::vector<world::PixelCoord> subsample;
   for (int v = 0; v < cam.height_px; v += 4)

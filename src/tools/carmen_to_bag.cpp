@@ -31,6 +31,7 @@
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/world/camera_model.h"
+#include "progress.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -86,7 +87,9 @@ int main(int argc, char** argv) {
       bag.writeLatched("/tf_static", t0, st, "/carmen_to_bag");
     }
     std::uint32_t seq = 0;
+    tools::Progress progress("carmen_to_bag", static_cast<long>(log.lasers.size()), "scans");
     for (const auto& l : log.lasers) {
+      progress.update(static_cast<long>(seq) + 1);
       sensor_msgs::LaserScan s;
       s.header.stamp = stamp(l.timestamp_s);
       s.header.seq = seq++;

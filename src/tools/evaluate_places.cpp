@@ -44,6 +44,7 @@
 #include "adaptive_perception/places/place_recognizer.h"
 #include "labelled_images.h"
 #include "place_traversal.h"
+#include "progress.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -146,9 +147,12 @@ int main(int argc, char** argv) {
     if (have_cues)
       for (const char* cue : {"thumbnail", "gradient", "chromaticity", "layout", "fused"})
         combos.push_back({-1, Distance::kChiSquare, cue, {}, 0});
+    tools::Progress progress("evaluate_places", static_cast<long>(combos.size() * tests.size()),
+                             "queries");
+    long queries = 0;
     for (Combo& c : combos) {
       c.d.reserve(tests.size());
-      for (size_t i = 0; i < tests.size(); ++i) {
+      for (size_t i = 0; i < tests.size(); ++i, progress.update(++queries)) {
         c.d.push_back(c.cue.empty() ? index.nodeDistances(c.space, c.method, tests[i])
                                     : dindex.nodeDistances(places::cueWeights(c.cue, rc.fusion),
                                                            test_descriptors[i]));

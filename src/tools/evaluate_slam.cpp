@@ -29,25 +29,27 @@
 // from ground_truth/pose with --external_std_m noise on every scan (the bag must have ground
 // truth). Summary keys (last line):
 //   evaluate_slam: variant=.. ate_m=.. final_position_error_m=.. odometry_final_position_error_m=..
-//       nees_in_bounds=.. nees_below_bounds=.. nees_mean=.. nis_per_dof=.. relation_trans_error_m=.. relation_trans_error_m_std=..
-//       relation_rot_error_deg=.. relation_rot_error_deg_std=.. landmarks=.. fixed_landmarks=..
-//       merged=.. (landmark pairs merged as the same wall over the run)
-//       scans=.. update_ms_mean=.. update_ms_max=.. realtime_factor=..
+//       nees_in_bounds=.. nees_below_bounds=.. nees_mean=.. nis_per_dof=..
+//       relation_trans_error_m=.. relation_trans_error_m_std=.. relation_rot_error_deg=..
+//       relation_rot_error_deg_std=.. landmarks=.. fixed_landmarks=.. merged=.. (landmark pairs
+//       merged as the same wall over the run) scans=.. update_ms_mean=.. update_ms_max=..
+//       realtime_factor=..
 // ate_m: RMS position error over the scans (no alignment: the map frame starts at the first true
-// pose; with --loop_closing, of the optimised trajectory). nees_in_bounds: share of scans whose pose NEES lies inside the 95% chi-square interval of
-// 3 degrees of freedom; nees_below_bounds the share below it (under-confident: the rest of the
-// misses are over-confident); nees_mean should be near 3. nis_per_dof: the normalised innovation squared
-// of the line updates summed over the run over their degrees of freedom (near 1 for a consistent
-// filter; needs no ground truth, so it also checks real logs). For the anchor variant the truth is first expressed in the frame the
-// anchored line and the fixed intersection define (matched to the true walls of ground_truth/walls). Relation keys: the
-// Kuemmerle et al. metric against --relations (Freiburg format, bag stamps). -1 where not
-// available. --make_relations writes reference relations from ground_truth/pose (1 s chain + 200
-// random pairs). Writes OUTPUT/estimate.tum, truth.tum, odometry.tum, pose_covariance.csv,
-// nees.csv (per scan with ground truth: NEES and the pose error), nis.csv (per scan: NIS, dof, landmarks merged),
-// landmarks.csv, map.png (the line landmarks), line_map.yaml (the EKF's map as ~save_map writes
-// it, for ekf_slam_mapper's ~initial_map) and the occupancy grid of every scan at its final
-// pose (estimate.tum's) in map_server's files, map.yaml + map.pgm (slam/occupancy_grid.h, 0.05 m),
-// and map_grid.png.
+// pose; with --loop_closing, of the optimised trajectory). nees_in_bounds: share of scans whose
+// pose NEES lies inside the 95% chi-square interval of 3 degrees of freedom; nees_below_bounds the
+// share below it (under-confident: the rest of the misses are over-confident); nees_mean should be
+// near 3. nis_per_dof: the normalised innovation squared of the line updates summed over the run
+// over their degrees of freedom (near 1 for a consistent filter; needs no ground truth, so it also
+// checks real logs). For the anchor variant the truth is first expressed in the frame the anchored
+// line and the fixed intersection define (matched to the true walls of ground_truth/walls).
+// Relation keys: the Kuemmerle et al. metric against --relations (Freiburg format, bag stamps). -1
+// where not available. --make_relations writes reference relations from ground_truth/pose (1 s
+// chain + 200 random pairs). Writes OUTPUT/estimate.tum, truth.tum, odometry.tum,
+// pose_covariance.csv, nees.csv (per scan with ground truth: NEES and the pose error), nis.csv (per
+// scan: NIS, dof, landmarks merged), landmarks.csv, map.png (the line landmarks), line_map.yaml
+// (the EKF's map as ~save_map writes it, for ekf_slam_mapper's ~initial_map) and the occupancy grid
+// of every scan at its final pose (estimate.tum's) in map_server's files, map.yaml + map.pgm
+// (slam/occupancy_grid.h, 0.05 m), and map_grid.png.
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
@@ -181,8 +183,10 @@ int main(int argc, char** argv) {
   const std::string bag_path = args.get("bag", "");
   slam::LaserSlamConfig slam_cfg;
   slam::LineEkfSlamConfig& cfg = slam_cfg.ekf;
-  const std::string association = args.get("association", "jcbb");
-  const std::string variant = args.get("variant", "standard");
+  const std::string association =
+      args.get("association", slam::associationName(slam::LineEkfSlamConfig{}.association.method));
+  const std::string variant =
+      args.get("variant", slam::variantName(slam::LineEkfSlamConfig{}.variant));
   // Every field of the node's table (slam::LaserSlamConfig::fields(): the same names and ranges as
   // ekf_slam_mapper's parameters), e.g. --retire_after_updates 50, --loop_closing 0.
   tools::applyFields(args, slam::LaserSlamConfig::fields(), &slam_cfg);
@@ -204,7 +208,7 @@ int main(int argc, char** argv) {
   args.finish();
   if (bag_path.empty()) args.fail("--bag FILE is required");
   try {
-    cfg.association = slam::parseAssociation(association);
+    cfg.association.method = slam::parseAssociation(association);
     cfg.variant = slam::parseVariant(variant);
     slam_cfg.validate();
     if (external_std <= 0.0) throw std::invalid_argument("--external_std_m must be > 0");
@@ -254,8 +258,8 @@ int main(int argc, char** argv) {
     const slam::LineEkfSlam& ekf = slam.ekf();
     laser::LineExtractor extractor(lines);
     fs::create_directories(output);
-    std::ofstream ekf_tum(fs::path(output) / "ekf.tum"),
-        truth_tum(fs::path(output) / "truth.tum"), odom_tum(fs::path(output) / "odometry.tum");
+    std::ofstream ekf_tum(fs::path(output) / "ekf.tum"), truth_tum(fs::path(output) / "truth.tum"),
+        odom_tum(fs::path(output) / "odometry.tum");
     std::ofstream cov_csv(fs::path(output) / "pose_covariance.csv");
     cov_csv << "t,xx,xy,yy,yawyaw\n";
     const double nees_lo = math::chiSquareQuantile(0.025, 3),
@@ -423,7 +427,8 @@ int main(int argc, char** argv) {
     if (!relations.empty()) {
       rel = slam::evaluateRelations(relations, estimate, 0.01);
       ekf_rel = slam::evaluateRelations(relations, ekf_estimate, 0.01);
-      if (!front_estimate.empty()) front_rel = slam::evaluateRelations(relations, front_estimate, 0.01);
+      if (!front_estimate.empty())
+        front_rel = slam::evaluateRelations(relations, front_estimate, 0.01);
       if (rel.used == 0)
         throw std::runtime_error(relations_path + ": no relation matches the bag's scan stamps");
     }
@@ -433,7 +438,8 @@ int main(int argc, char** argv) {
     const bool has_rel = !relations.empty();
     std::printf(
         "evaluate_slam: variant=%s ate_m=%.3f final_position_error_m=%.3f "
-        "odometry_final_position_error_m=%.3f nees_in_bounds=%.3f nees_below_bounds=%.3f nees_mean=%.2f "
+        "odometry_final_position_error_m=%.3f nees_in_bounds=%.3f nees_below_bounds=%.3f "
+        "nees_mean=%.2f "
         "nis_per_dof=%.2f relation_trans_error_m=%.4f "
         "relation_trans_error_m_std=%.4f relation_rot_error_deg=%.3f "
         "relation_rot_error_deg_std=%.3f relations_used=%d landmarks=%d fixed_landmarks=%d "
@@ -441,15 +447,17 @@ int main(int argc, char** argv) {
         "front_end=%s front_end_relation_trans_error_m=%.4f front_end_relation_rot_error_deg=%.3f "
         "front_end_matched=%.3f front_end_weak_matches=%ld loop_closures=%d graph_nodes=%d "
         "ekf_relation_trans_error_m=%.4f chain_edges_replaced=%d loops_rejected_free_space=%ld "
-        "wide_attempts=%ld wide_matches=%ld wide_confirmed=%ld wide_s=%.1f grid_cells=%dx%d grid_s=%.1f\n",
+        "wide_attempts=%ld wide_matches=%ld wide_confirmed=%ld wide_s=%.1f grid_cells=%dx%d "
+        "grid_s=%.1f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
-        with_truth ? double(below) / with_truth : -1.0,
-        with_truth ? nees_sum / with_truth : -1.0, nis_dof ? nis_sum / nis_dof : -1.0, has_rel ? rel.trans_mean_m : -1.0,
+        with_truth ? double(below) / with_truth : -1.0, with_truth ? nees_sum / with_truth : -1.0,
+        nis_dof ? nis_sum / nis_dof : -1.0, has_rel ? rel.trans_mean_m : -1.0,
         has_rel ? rel.trans_std_m : -1.0, has_rel ? math::radToDeg(rel.rot_mean_rad) : -1.0,
         has_rel ? math::radToDeg(rel.rot_std_rad) : -1.0, rel.used, confirmed,
-        ekf.numFixedLandmarks(), merged, scans.size(), 1e3 * compute_s / scans.size(), 1e3 * max_update_s,
-        duration / std::max(compute_s, 1e-9), slam_cfg.front_end ? "laser_odometry" : "none",
+        ekf.numFixedLandmarks(), merged, scans.size(), 1e3 * compute_s / scans.size(),
+        1e3 * max_update_s, duration / std::max(compute_s, 1e-9),
+        slam_cfg.front_end ? "laser_odometry" : "none",
         has_rel && !front_estimate.empty() ? front_rel.trans_mean_m : -1.0,
         has_rel && !front_estimate.empty() ? math::radToDeg(front_rel.rot_mean_rad) : -1.0,
         slam.frontEnd().scans() ? double(slam.frontEnd().matched()) / slam.frontEnd().scans()
@@ -458,7 +466,8 @@ int main(int argc, char** argv) {
         slam.loopCloser().nodes(), has_rel ? ekf_rel.trans_mean_m : -1.0,
         slam.loopCloser().chainEdgesReplaced(), slam.loopCloser().freeSpaceRejections(),
         slam.loopCloser().wideAttempts(), slam.loopCloser().wideMatches(),
-        slam.loopCloser().wideConfirmed(), slam.loopCloser().wideSeconds(), grid.width, grid.height, grid_s);
+        slam.loopCloser().wideConfirmed(), slam.loopCloser().wideSeconds(), grid.width, grid.height,
+        grid_s);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";
     return 1;

@@ -40,6 +40,7 @@
 #include "adaptive_perception/places/place_database.h"
 #include "adaptive_perception/places/traversal_matcher.h"
 #include "adaptive_perception/places/traversal_metrics.h"
+#include "progress.h"
 #include "tool_args.h"
 
 namespace adaptive_perception::tools {
@@ -133,7 +134,9 @@ inline places::ReferenceTraversal describeReferences(const std::vector<std::stri
   }
   std::string previous;
   std::vector<cv::Mat> sift;
+  tools::Progress progress("reference", static_cast<long>(ref_files.size()), "images");
   for (size_t i = 0; i < ref_files.size(); ++i) {
+    progress.update(static_cast<long>(i) + 1);
     const cv::Mat img = readImage(ref_files[i], "reference");
     places::TrainingImage ti;
     ti.source = ref_files[i];
@@ -248,7 +251,9 @@ inline int runTraversalEvaluation(Args& args) {
     std::vector<std::vector<places::QueryOutcome>> outcomes(methods.size());
     std::vector<double> match_s(methods.size(), 0.0);
     double describe_s = 0.0, sift_s = 0.0;  // the whole-image descriptors; SIFT (words only)
+    tools::Progress progress("queries", static_cast<long>(query_files.size()), "images");
     for (size_t i = 0; i < query_files.size(); ++i) {
+      progress.update(static_cast<long>(i) + 1);
       const auto t0 = std::chrono::steady_clock::now();
       const cv::Mat img = traversal_detail::readImage(query_files[i], "query");
       places::ImageDescriptors d = places::computeDescriptors(img, cfg.descriptor);

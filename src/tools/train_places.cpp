@@ -29,6 +29,7 @@
 #include "adaptive_perception/places/line_structure.h"
 #include "adaptive_perception/places/place_database.h"
 #include "labelled_images.h"
+#include "progress.h"
 #include "tool_args.h"
 
 using namespace adaptive_perception;
@@ -80,7 +81,10 @@ int main(int argc, char** argv) {
     std::map<std::string, std::vector<places::TrainingImage>> by_place;
     std::set<std::pair<std::string, std::string>> edges;
     std::string previous;
+    tools::Progress progress("train_places", 0, "images");
+    long seen = 0;
     const long n = tools::forEachLabelledImage(bag, list, [&](const tools::LabelledImage& li) {
+      progress.update(++seen);
       places::TrainingImage ti;
       ti.source = li.source;
       ti.stamp_s = li.stamp_s;
@@ -95,6 +99,7 @@ int main(int argc, char** argv) {
       if (!previous.empty() && previous != li.label) edges.insert(std::minmax(previous, li.label));
       previous = li.label;
     });
+    progress.finish();
     if (n == 0) throw std::runtime_error("no labelled image in " + (bag.empty() ? list : bag));
     long added = 0;
     for (auto& [place, images] : by_place) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -43,6 +44,17 @@ inline std::string inputFile(const std::uint8_t* data, std::size_t size,
   std::ofstream(path, std::ios::binary | std::ios::trunc)
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   return path;
+}
+
+/// Runs `parse` (a parser on the fuzzer's input) and returns libFuzzer's 0. A std::exception, a
+/// clear refusal of a bad file, is the expected answer; crashes and sanitizer reports are not.
+template <class Parse>
+int parsesOrRefuses(Parse&& parse) {
+  try {
+    parse();
+  } catch (const std::exception&) {
+  }
+  return 0;
 }
 
 }  // namespace adaptive_perception::fuzz

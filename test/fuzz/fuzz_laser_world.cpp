@@ -1,6 +1,5 @@
 // libFuzzer target: a laser simulator world YAML (sim/laser_simulator.h).
 #include <cstdint>
-#include <exception>
 
 #include "adaptive_perception/sim/laser_simulator.h"
 #include "fuzz_input.h"
@@ -8,10 +7,6 @@
 using namespace adaptive_perception;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  try {
-    sim::LaserWorld::loadYaml(fuzz::inputFile(data, size, ".yaml"));
-  } catch (const std::exception&) {
-    // A clear error is the expected answer to a bad file; crashes and sanitizer reports are not.
-  }
-  return 0;
+  return fuzz::parsesOrRefuses(
+      [&] { sim::LaserWorld::loadYaml(fuzz::inputFile(data, size, ".yaml")); });
 }

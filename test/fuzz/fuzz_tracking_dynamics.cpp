@@ -1,7 +1,6 @@
 // libFuzzer target: a CONDENSATION dynamics YAML (tracking/dynamics.h, learn_tracking_dynamics
 // output).
 #include <cstdint>
-#include <exception>
 
 #include "adaptive_perception/tracking/dynamics.h"
 #include "fuzz_input.h"
@@ -9,10 +8,6 @@
 using namespace adaptive_perception;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  try {
-    tracking::Ar2Model::loadYaml(fuzz::inputFile(data, size, ".yaml"));
-  } catch (const std::exception&) {
-    // A clear error is the expected answer to a bad file; crashes and sanitizer reports are not.
-  }
-  return 0;
+  return fuzz::parsesOrRefuses(
+      [&] { tracking::Ar2Model::loadYaml(fuzz::inputFile(data, size, ".yaml")); });
 }

@@ -37,6 +37,7 @@ inline Range belowOne() { return {0.0, 1.0, false, true}; }           // [0, 1)
 /// A value as it reads in a message or a table: integers without a decimal point, booleans as
 /// true / false, reals in the shortest form that reads back the same.
 std::string formatValue(Kind kind, double v);
+inline std::string formatReal(double v) { return formatValue(Kind::kDouble, v); }
 /// A list as a table shows it: "[a, b]" (numbers as formatValue writes reals).
 std::string formatList(const std::vector<std::string>& items);
 std::string formatList(const std::vector<double>& numbers);

@@ -3,22 +3,8 @@
 // (papers/002) against the training frames of a place database (train_places --features, from a
 // bag with ground_truth/pose).
 //
-// Parameters (private): the table in docs/nodes/appearance_localizer.md, made from parameters()
-//   (~database, the room classifier's and the Monte Carlo localizer's config tables, and the
-//   node's own: odometry, rate, tf, frames, seed).
-// Subscribed: camera/image_raw (bgr8, rgb8, yuv422), odom (nav_msgs/Odometry; without it the
-//   training run's average step drives the particles), initialpose
-//   (geometry_msgs/PoseWithCovarianceStamped in ~map_frame, as rviz's "2D Pose Estimate" sends it:
-//   the particles are drawn from that Gaussian; another frame or a covariance that is not
-//   positive definite is refused with a warning naming it, and the particles stay).
-// Published: appearance_localizer/pose (PoseWithCovarianceStamped in ~map_frame),
-//   appearance_localizer/particles (PoseArray), appearance_localizer/room (PlaceRecognition:
-//   place = the room, "not classified" while unstable, "unknown" for an unknown room; confidence
-//   = the room's share of the particle weight; places / belief = every room and its share), tf
-//   ~map_frame -> ~odom_frame when ~publish_tf, /diagnostics (rate, stability,
-//   re-initialisations). On shutdown one line `appearance_localizer: frames=.. classified=..
-//   reinitializations=..` on stdout.
-// Services: global_localization (std_srvs/Empty): particles over every training pose again.
+// Its interface (parameters, subscribed and published topics, services, tf) is documented once,
+// in docs/nodes/appearance_localizer.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>

@@ -2,21 +2,8 @@
 // color_estimator: adaptive colour classification with the hierarchical Bayesian colour model and a
 // switching Kalman filter over lighting (Schulz & Fox 2004, section III), given the camera pose.
 //
-// Parameters (private): the table in docs/nodes/color_estimator.md, made from parameters() (the
-//   core's color::ColorEstimatorConfig::fields() plus the node's own: the lighting priors, the
-//   field map, the frame and the tf timeout).
-// Subscribed:
-//   camera/image_raw (sensor_msgs/Image: yuv422 | bgr8 | rgb8), camera/camera_info (optional; until
-//   one arrives a 208x160 image is taken to be the AIBO ERS-7 camera), tf map -> image frame at the
-//   stamp.
-// Published (stamped with the image's stamp):
-//   color_estimator/color_model (adaptive_perception/ColorModel), color_estimator/classified
-//   (mono8 class ids, 255 unknown), color_estimator/classified_color (bgr8), /diagnostics.
-// Services:
-//   ~reset (std_srvs/Trigger): back to the priors. ~save_prior (adaptive_perception/SavePrior):
-//   writes the active mode's posterior as a prior YAML.
-// dynamic_reconfigure: drift_std_per_sqrt_s, unknown_mahalanobis, mode_stay_probability,
-// lut_rebuild_sigma.
+// Its interface (parameters, subscribed and published topics, services, tf) is documented once,
+// in docs/nodes/color_estimator.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <dynamic_reconfigure/server.h>
@@ -31,10 +18,10 @@
 #include <mutex>
 #include <optional>
 
-#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/ColorEstimatorConfig.h"
 #include "adaptive_perception/SavePrior.h"
 #include "adaptive_perception/color/color_estimator.h"
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/ros/camera_model_source.h"
 #include "adaptive_perception/ros/image_gate.h"
 #include "adaptive_perception/ros/service_queue.h"

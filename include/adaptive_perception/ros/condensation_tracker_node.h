@@ -5,21 +5,8 @@
 // video, tracking/box_condensation_tracker.h), the paper's CONDENSATION over the distribution
 // fused with an affine snake (mode condensation), or the elliptical head tracker alone (ellipse).
 //
-// Parameters (private): the table in docs/nodes/condensation_tracker.md, made from parameters()
-//   (~mode, the trackers' config tables and the node's own: colour space, dynamics, first box,
-//   rate, overlay, seed).
-// Subscribed: camera/image_raw (bgr8, rgb8, mono8, yuv422; any size), condensation_tracker/target
-//   (geometry_msgs/PolygonStamped: the box of its points becomes the target on the next image).
-// Published: tracked_object (TrackedObject; in mode box the contour is the box's corners and the
-//   ellipse the box's inscribed one), condensation_tracker/segmentation (mono8, the best
-//   sample's target-coloured pixels; in mode box the object likelihood P(O | c) x 255 over the
-//   region searched), condensation_tracker/overlay (bgr8: contour
-//   green, red when lost; the region the samples searched magenta; the samples cyan, brighter
-//   with weight; confidence), /diagnostics (rate, confidence,
-//   lost frames). A lost target is reported (lost flag + throttled warning) and searched for, first
-//   around its last place, then over the whole image. On shutdown one line `condensation_tracker:
-//   frames=.. lost=.. reacquired=..` on stdout.
-// Services: condensation_tracker/set_target (SetTarget): the roi of the next image is the target.
+// Its interface (parameters, subscribed and published topics, services, tf) is documented once,
+// in docs/nodes/condensation_tracker.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PolygonStamped.h>
@@ -29,8 +16,8 @@
 #include <memory>
 #include <optional>
 
-#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/SetTarget.h"
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/ros/image_gate.h"
 #include "adaptive_perception/tracking/box_condensation_tracker.h"
 #include "adaptive_perception/tracking/condensation_tracker.h"

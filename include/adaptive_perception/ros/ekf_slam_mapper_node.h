@@ -4,44 +4,17 @@
 // evaluate_slam runs; this node feeds it line_extractor's segments, the scans they came from and
 // the odometry from tf, and publishes the robot pose, map -> odom and the map.
 //
-// Parameters (private): the table in docs/nodes/ekf_slam_mapper.md, made from parameters() (the
-//   core's slam::LaserSlamConfig::fields() plus the node's own). The ones to know first:
-//   ~front_end (laser odometry on `scan` predicts the EKF; false: the wheel odometry, the
-//   paper's filter), ~loop_closing and ~wide_search (a pose graph over the EKF's keyframes),
-//   ~initial_map (a map written by ~save_map: localize against it without extending it; a file
-//   that cannot be read stops the node naming the file and line), ~variant, ~association,
-//   ~map_update_interval_s (the occupancy grid; 0: none).
-// Subscribed:
-//   lines (adaptive_perception/LineSegmentArray from line_extractor, in the laser frame),
-//   scan (sensor_msgs/LaserScan: the scans the lines came from, matched by stamp: the front end's
-//   and the loop closer's points, and the grid's scans),
-//   tf odom -> base_link and base_link -> the lines' frame at the scan stamp,
-//   external_pose (geometry_msgs/PoseWithCovarianceStamped in map; variant external only: x, y,
-//   and yaw too when its variance is finite and below 1e3 rad^2).
-// Published:
-//   ekf_slam_mapper/pose (geometry_msgs/PoseWithCovarianceStamped), tf map -> odom,
-//   ekf_slam_mapper/map (visualization_msgs/MarkerArray, drawn with the loop closer's current
-//   correction of the EKF's frame: confirmed segments black, anchored /
-//   retired blue, tentative grey; 2-sigma bands of each landmark's offset at its midpoint; the
-//   robot's 2-sigma position ellipse), ekf_slam_mapper/path (nav_msgs/Path),
-//   map (nav_msgs/OccupancyGrid, latched, every ~map_update_interval_s) and map_metadata
-//   (nav_msgs/MapMetaData, latched), as gmapping publishes them,
-//   /diagnostics (landmarks, update time, scans, rejected inputs).
-// Services:
-//   ~save_map (adaptive_perception/SaveMap): the map and its covariance as YAML (slam/map_io.h),
-//   and beside it the occupancy grid in map_server's format (NAME_grid.yaml + NAME_grid.pgm),
-//   each written to a temporary file and renamed; refused when one exists unless overwrite.
-//   dynamic_map (nav_msgs/GetMap): the occupancy grid rendered now, as gmapping serves it.
-//   ~reset (std_srvs/Trigger): forgets the map and starts again from ~initial_pose.
+// Its interface (parameters, subscribed and published topics, services, tf) is documented once,
+// in docs/nodes/ekf_slam_mapper.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/GetMap.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <nav_msgs/Path.h>
+#include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 #include <std_srvs/Trigger.h>
-#include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
@@ -53,8 +26,8 @@
 #include <mutex>
 
 #include "adaptive_perception/LineSegmentArray.h"
-#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/SaveMap.h"
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
 #include "adaptive_perception/slam/laser_slam.h"
@@ -95,7 +68,7 @@ class EkfSlamMapperNode {
   math::SE2 initial_pose_;
   Eigen::Matrix3d initial_cov_ = Eigen::Matrix3d::Zero();
   std::unique_ptr<slam::LaserSlam> slam_;
-  std::string initial_map_;                      // ~initial_map, empty: mapping
+  std::string initial_map_;                     // ~initial_map, empty: mapping
   std::vector<slam::FixedLandmark> known_map_;  // its landmarks
   std::string map_frame_, odom_frame_, base_frame_, map_file_;
   bool publish_tf_ = true;
@@ -106,7 +79,7 @@ class EkfSlamMapperNode {
   nav_msgs::Path path_;
   slam::OccupancyGridConfig grid_config_;
   double map_update_interval_s_ = 0.0;
-  std::deque<sensor_msgs::LaserScanConstPtr> recent_scans_;  // awaiting their lines
+  std::deque<sensor_msgs::LaserScanConstPtr> recent_scans_;              // awaiting their lines
   std::deque<ros::MessageEvent<const LineSegmentArray>> waiting_lines_;  // awaiting their scans
   static constexpr size_t kMaxWaitingLines = 10;
   std::unique_ptr<slam::GridKeyframes> keyframes_;

@@ -1,12 +1,8 @@
 #pragma once
 // field_map_publisher: publishes the 3-D field map for rviz.
 //
-// Parameters (private): ~field_file, ~frame_id (the table in docs/nodes/field_map_publisher.md,
-//   made from parameters()).
-// Published:
-//   field_map (visualization_msgs/MarkerArray, latched): carpet, lines, centre circle, walls,
-//   goals,
-//       beacons (one cylinder per colour band), ball.
+// Its interface (parameters, subscribed and published topics, services, tf) is documented once,
+// in docs/nodes/field_map_publisher.md; the parameter table there is made from parameters().
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
 

@@ -4,15 +4,8 @@
 // run on a simulator bag without a localizer. map -> odom = (map -> base_link)_truth * (odom ->
 // base_link)^-1, both at the same stamp (the simulator writes them together).
 //
-// Parameters (private): ~map_frame, ~odom_frame, ~base_frame, ~path_length, ~publish_tf (the
-//   table in docs/nodes/ground_truth_tf_publisher.md, made from parameters()).
-// Subscribed:
-//   ground_truth/pose (geometry_msgs/PoseStamped): base_link in map.
-//   odom (nav_msgs/Odometry): base_link in odom.
-// Published:
-//   tf map -> odom, stamped with the pair's stamp (unless ~publish_tf is false).
-//   ground_truth/path (nav_msgs/Path): the true trajectory, for rviz.
-//   /diagnostics: rate of matched pairs.
+// Its interface (parameters, subscribed and published topics, services, tf) is documented once,
+// in docs/nodes/ground_truth_tf_publisher.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseStamped.h>

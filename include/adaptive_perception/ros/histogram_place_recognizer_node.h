@@ -5,22 +5,8 @@
 // places/global_descriptor.h), which hold across a change of light; ~cue histogram gives the
 // paper's colour-histogram correlation.
 //
-// Parameters (private): the table in docs/nodes/histogram_place_recognizer.md, made from
-//   parameters() (the node's own and places::PlaceRecognizerConfig::fields()). ~bins, ~spaces
-//   and ~mask build a new database; given for an existing one they must match it or the node
-//   refuses to start. A database stored before the cues existed needs ~cue histogram or training
-//   again.
-// Subscribed: camera/image_raw (bgr8, rgb8, yuv422); ground_truth/place (std_msgs/String; train
-//   mode labels each image with the latest one).
-// Published: place (adaptive_perception/PlaceRecognition, per image, over the last ~window
-//   images), ~overlay (bgr8: the image, enlarged to >= 480 px wide, over a band with the result;
-//   only when subscribed),
-//   /diagnostics (rate, places, images, last confidence; accuracy against ground_truth/place when
-//   that topic is heard). On shutdown, one line `histogram_place_recognizer: images=.. dropped=..
-//   results=.. labelled=.. window_accuracy=.. filter_accuracy=..` on stdout.
-// Services: ~add_images (AddPlaceImages: the next N images / T seconds go to a place),
-//   ~remove_place (RemovePlace), ~set_adjacency (SetPlaceAdjacency), ~save (std_srvs/Trigger:
-//   write images still being collected now). Every change is one SQLite transaction.
+// Its interface (parameters, subscribed and published topics, services, tf) is documented once,
+// in docs/nodes/histogram_place_recognizer.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <ros/ros.h>
@@ -33,11 +19,11 @@
 #include <optional>
 #include <set>
 
-#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/AddPlaceImages.h"
 #include "adaptive_perception/PlaceRecognition.h"
 #include "adaptive_perception/RemovePlace.h"
 #include "adaptive_perception/SetPlaceAdjacency.h"
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/places/place_database.h"
 #include "adaptive_perception/places/place_recognizer.h"
 #include "adaptive_perception/ros/image_gate.h"

@@ -1,14 +1,8 @@
 #pragma once
 // line_extractor: wall segments from laser scans (split-and-merge, perception paper section 2.1).
 //
-// Parameters (private): the table in docs/nodes/line_extractor.md, made from parameters() (the
-//   core's LineExtractionConfig::fields() plus ~split_method and ~time_back_restart_s).
-// Subscribed: scan (sensor_msgs/LaserScan).
-// Published: lines (adaptive_perception/LineSegmentArray, the scan's stamp and frame),
-//   lines/markers (visualization_msgs/MarkerArray, only computed when subscribed), /diagnostics.
-// dynamic_reconfigure: split_threshold_m, min_points, min_length_m, max_gap_m,
-// breakpoint_lambda_rad,
-//   merge_collinear, split_method.
+// Its interface (parameters, subscribed and published topics, services, tf) is documented once,
+// in docs/nodes/line_extractor.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <dynamic_reconfigure/server.h>

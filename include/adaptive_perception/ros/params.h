@@ -118,6 +118,9 @@ bool loadInitialPose(const ros::NodeHandle& pnh, const std::vector<double>& defa
 ros_conv::StampOrderConfig loadStampOrder(const ros::NodeHandle& pnh);
 /// Its row in a node's parameter table (ros/parameter_docs.h).
 config::ParameterDoc stampOrderParameter();
+/// The row of ~map_frame, ~odom_frame or ~base_frame (`frame`: "map", "odom" or "base") with the
+/// project's name for that frame (ros/topics.h) as its default.
+config::ParameterDoc frameParameter(const std::string& frame);
 /// The rows of the parameters loadLightingPriors reads (~filter, ~priors, ~single_prior,
 /// ~priors_dir).
 std::vector<config::ParameterDoc> lightingPriorParameters();

@@ -3,22 +3,8 @@
 // lighting (Schulz & Fox 2004, section IV). The algorithm is localization::RbpfLocalizer; this node
 // feeds it images, odometry and the head chain from tf, and publishes its estimate.
 //
-// Parameters (private): every one with its default, range and doc in parameters() below, shown as
-//   the table of docs/nodes/rbpf_localizer.md; the algorithm's come from localization::RbpfConfig's
-//   field table (loaded by ros_params::loadFields), the node's own (threads, seed, priors, field
-//   file, initial pose, frames, tf timing) are read here.
-// Subscribed:
-//   camera/image_raw (sensor_msgs/Image: yuv422 | bgr8 | rgb8, 208x160 or camera/camera_info's
-//   size), camera/camera_info (optional), initialpose (geometry_msgs/PoseWithCovarianceStamped,
-//   rviz "2D Pose Estimate"), tf odom -> base_link and base_link -> image frame at the image stamp.
-// Published:
-//   rbpf_localizer/pose (geometry_msgs/PoseWithCovarianceStamped), rbpf_localizer/particles
-//   (geometry_msgs/PoseArray), tf map -> odom, rbpf_localizer/color_model (ColorModel of the
-//   best particle), rbpf_localizer/classified (mono8 class ids) and rbpf_localizer/classified_color
-//   (bgr8), /diagnostics (rate, effective sample size, spread, searches).
-// Services:
-//   global_localization (std_srvs/Empty, as amcl): particles uniform again, global search on the
-//   next image.
+// Its interface (parameters, subscribed and published topics, services, tf) is documented once,
+// in docs/nodes/rbpf_localizer.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>

@@ -25,7 +25,8 @@
 namespace adaptive_perception::sim {
 
 enum class TrackingScenario { kCircles, kLambertianRectangle, kDistractor, kHandheld };
-/// "circles" | "lambertian_rectangle" | "distractor" | "handheld"; throws std::invalid_argument naming them.
+/// "circles" | "lambertian_rectangle" | "distractor" | "handheld"; throws std::invalid_argument
+/// naming them.
 TrackingScenario parseTrackingScenario(const std::string& name);
 std::string trackingScenarioName(TrackingScenario s);
 std::vector<std::string> trackingScenarioNames();
@@ -60,6 +61,8 @@ class TrackingScene {
     double radius;
   };
   void move(Mover* m, double max_speed);
+  /// A zero-mean Gaussian step in x and y with standard deviation `sd` on each axis.
+  cv::Point2d drawPoint(double sd);
   TrackingSceneConfig config_;
   math::Rng rng_;
   cv::Mat background_;

@@ -4,12 +4,11 @@
 // models. Per scan:
 //   1. predict(): pose composed with the odometry delta, covariance F_x P F_x^T + F_v Q F_v^T on
 //      the pose rows and columns only (O(n));
-//   2. update(): data association of the scan's lines with the landmarks, individual compatibility
-//      (chi-square gate on each pairing) then either nearest neighbour or joint compatibility
-//      branch and bound (JCBB, Neira & Tardos 2001: the largest set of pairings that is jointly
-//      compatible); one stacked update with gain eq. 7, innovation eq. 8 and the Joseph-form
-//      covariance of eq. 9, evaluated in O(n^2 m) by expanding the product; new landmarks added
-//      with their full cross-covariance (G_r P G_r^T + G_z R G_z^T);
+//   2. update(): data association of the scan's lines with the landmarks (data_association.h:
+//      individual compatibility, then nearest neighbour or JCBB); one stacked update with gain eq.
+//      7, innovation eq. 8 and the Joseph-form covariance of eq. 9, evaluated in O(n^2 m) by
+//      expanding the product; new landmarks added with their full cross-covariance (G_r P G_r^T +
+//      G_z R G_z^T);
 //   Optionally with first-estimates Jacobians (first_estimate_jacobians).
 //   3. tentative landmarks (seen fewer than confirm_sightings times) that go unseen for
 //      tentative_timeout_scans scans are removed.
@@ -44,13 +43,10 @@
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/math/se2.h"
+#include "adaptive_perception/slam/data_association.h"
 #include "adaptive_perception/slam/line_landmark_model.h"
 
 namespace adaptive_perception::slam {
-
-enum class Association { kNearestNeighbour, kJcbb };
-/// "nn" | "jcbb"; throws std::invalid_argument naming the allowed values.
-Association parseAssociation(const std::string& name);
 
 enum class Variant { kStandard, kAnchor, kExternal };
 /// "standard" | "anchor" | "external"; throws std::invalid_argument naming the allowed values.
@@ -58,8 +54,7 @@ Variant parseVariant(const std::string& name);
 std::string variantName(Variant v);
 
 struct LineEkfSlamConfig {
-  Association association = Association::kJcbb;
-  double gate_probability = 0.99;      // chi-square gate of individual and joint compatibility
+  DataAssociationConfig association;   // gate, nearest neighbour or JCBB, shared landmarks
   int confirm_sightings = 3;           // a landmark is confirmed after this many sightings
   int tentative_timeout_scans = 10;    // unconfirmed landmarks unseen this long are dropped
   double min_new_line_length_m = 0.5;  // shorter segments update but never start a landmark
@@ -77,14 +72,8 @@ struct LineEkfSlamConfig {
   Variant variant = Variant::kStandard;
   double anchor_min_angle_rad = 0.5;  // direction difference of the second anchor to the first
   int retire_after_updates = 0;       // 0: retirement off; the paper used 50
-  // Several segments of one scan may pair with the same landmark (JCBB; nearest neighbour always
-  // allows it): a wall broken by a doorway, an alcove or an occluder is one line in this model
-  // and its pieces are independent measurements of it. Without this, JCBB's one-to-one pairing
-  // makes every extra piece a new landmark that is merged back after confirmation, over and over
-  // (hundreds of merges in a 2-minute loop), and the pose NEES of the simulator loop came out
-  // over-confident on 3 of 20 held-out seeds (mean NEES 5.6 to 6.0).
-  bool share_landmarks = true;
-  // Two landmarks whose difference is compatible with zero at gate_probability are merged (the
+  // Two landmarks whose difference is compatible with zero at association.gate_probability are
+  // merged (the
   // same wall initialised twice before a loop closed); checked for the landmarks seen each scan.
   bool merge_landmarks = true;
   // false: no landmark is started, the filter localizes against the landmarks it has (a map loaded
@@ -101,10 +90,9 @@ struct LineEkfSlamConfig {
   // raised the ATE from 0.073 to 0.081 m; a line first seen as a short far segment has a poor
   // first direction, and the Jacobians stay there.
   bool first_estimate_jacobians = false;
-  // JCBB search budget per scan (tree nodes); past it the best hypothesis found so far is used.
-  long jcbb_max_nodes = 20000;
-  /// The tunable fields (config/fields.h; the motion model's as ~odom_*), association and variant
-  /// aside (enums: parseAssociation, parseVariant). Defined in line_ekf_slam_config.cpp.
+  /// The tunable fields (config/fields.h; the data association's and the motion model's, as
+  /// ~odom_*), the association method and the variant aside (enums: parseAssociation,
+  /// parseVariant). Defined in line_ekf_slam_config.cpp.
   static const config::Fields<LineEkfSlamConfig>& fields();
   void validate() const;  // throws std::invalid_argument naming the first field out of range
 };
@@ -226,10 +214,8 @@ class LineEkfSlam {
   Eigen::Vector2d linearise(const LineObservation& obs, int lm, Eigen::Matrix<double, 2, 3>* hr,
                             Eigen::Matrix2d* hl, Eigen::Matrix2d* r) const;
   Block pairingBlock(const LineObservation& obs, int lm) const;
-  /// Squared Mahalanobis distance of one pairing (individual compatibility), allocation-free.
-  double individualMahalanobis(const LineObservation& obs, int lm) const;
-  /// chi-square quantile of gate_probability at dof degrees of freedom, cached.
-  double gate(int dof) const;
+  /// The pairing of obs with landmark lm, linearised for the data association.
+  LinearPairing linearPairing(const LineObservation& obs, int lm) const;
   std::vector<Block> blocks(const std::vector<LineObservation>& obs,
                             const std::vector<Pairing>& pairs) const;
   /// The stacked update (eqs. 6-9); returns the squared Mahalanobis distance of the innovation.
@@ -246,19 +232,12 @@ class LineEkfSlam {
   /// Moves landmark i out of the state: conditioned on its estimate (anchor) or marginalised.
   void fixLandmark(int i, bool anchor);
   void extendExtent(const Line& l, const LineObservation& obs, Landmark* lm);
-  // JCBB's search state: the pairings on the current branch with their fixed-size blocks, and the
-  // Cholesky factor L of their joint innovation covariance S with w = L^-1 nu, both grown by two
-  // rows per pairing (the joint Mahalanobis distance is |w|^2), so that a node of the search costs
-  // O(m^2) for m pairings instead of rebuilding and factoring S (O(m^3)).
-  struct JcbbBranch;
-  void jcbb(const std::vector<LineObservation>& obs,
-            const std::vector<std::vector<int>>& candidates, size_t i, JcbbBranch& branch,
-            std::vector<Pairing>& best, double& best_d2, long& nodes) const;
   void addLandmark(const LineObservation& obs, int scan);
   void removeLandmark(int i);
   void extendExtent(int i, const LineObservation& obs);
 
   LineEkfSlamConfig config_;
+  DataAssociation association_;
   Eigen::VectorXd x_;
   Eigen::MatrixXd p_;
   std::vector<Landmark> landmarks_;
@@ -269,7 +248,6 @@ class LineEkfSlam {
   // The last predicted pose x_{k|k-1} (the start pose before any prediction): where the
   // first-estimates Jacobians linearise the robot.
   math::SE2 lin_pose_;
-  mutable std::vector<double> gate_by_dof_;
   int scan_ = 0;
 };
 

@@ -116,8 +116,10 @@ void AppearanceMcl::initGlobal() {
   particles_.clear();
   for (int i = 0; i < config_.particles; ++i) {
     const math::SE2& f = frames_[rng_.uniformInt(0, static_cast<int>(frames_.size()) - 1)].pose;
-    particles_.emplace_back(f.x_m + rng_.gaussian(0.0, 0.3), f.y_m + rng_.gaussian(0.0, 0.3),
-                            f.yaw_rad + rng_.gaussian(0.0, 0.3));
+    // One draw per statement: an argument list's order is the compiler's.
+    const double dyaw = rng_.gaussian(0.0, 0.3), dy = rng_.gaussian(0.0, 0.3),
+                 dx = rng_.gaussian(0.0, 0.3);
+    particles_.emplace_back(f.x_m + dx, f.y_m + dy, f.yaw_rad + dyaw);
   }
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   similarity_.assign(particles_.size(), 0.0);
@@ -141,8 +143,7 @@ void AppearanceMcl::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& c
   particles_.clear();
   for (int i = 0; i < config_.particles; ++i) {
     const Eigen::VectorXd d = g.sample(rng_);
-    particles_.emplace_back(mean.x_m + d[0], mean.y_m + d[1],
-                            math::wrapAngle(mean.yaw_rad + d[2]));
+    particles_.emplace_back(mean.x_m + d[0], mean.y_m + d[1], math::wrapAngle(mean.yaw_rad + d[2]));
   }
   weights_.assign(particles_.size(), 1.0 / particles_.size());
   similarity_.assign(particles_.size(), 0.0);

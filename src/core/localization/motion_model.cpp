@@ -32,8 +32,10 @@ Eigen::Vector2d motionNoiseStd(const math::SE2& d, const MotionModelConfig& c) {
 math::SE2 sampleMotion(const math::SE2& pose, const math::SE2& d, const MotionModelConfig& c,
                        math::Rng& rng) {
   const Eigen::Vector2d sd = motionNoiseStd(d, c);
-  const math::SE2 noisy(d.x_m + rng.gaussian(0.0, sd[0]), d.y_m + rng.gaussian(0.0, sd[0]),
-                        d.yaw_rad + rng.gaussian(0.0, sd[1]));
+  // One draw per statement: an argument list's order is the compiler's.
+  const double dyaw = rng.gaussian(0.0, sd[1]), dy = rng.gaussian(0.0, sd[0]),
+               dx = rng.gaussian(0.0, sd[0]);
+  const math::SE2 noisy(d.x_m + dx, d.y_m + dy, d.yaw_rad + dyaw);
   return pose * noisy;
 }
 

@@ -20,9 +20,11 @@ void IndoorRoute::move(double forward_m, double turn_rad) {
   const double nt = config_.odom_translation_noise_m_per_sqrt_m * std::sqrt(std::abs(forward_m));
   const double nr = config_.odom_rotation_noise_rad_per_sqrt_rad *
                     std::sqrt(std::abs(turn_rad) + 0.1 * std::abs(forward_m));
-  odom_pose_ =
-      odom_pose_ * math::SE2(forward_m + rng_.gaussian(0.0, nt), rng_.gaussian(0.0, 0.3 * nt),
-                             turn_rad + rng_.gaussian(0.0, nr));
+  // One draw per statement (an argument list's order is the compiler's), in the order the
+  // simulated runs behind the figures were made in.
+  const double turn_noise = rng_.gaussian(0.0, nr), side_noise = rng_.gaussian(0.0, 0.3 * nt),
+               forward_noise = rng_.gaussian(0.0, nt);
+  odom_pose_ = odom_pose_ * math::SE2(forward_m + forward_noise, side_noise, turn_rad + turn_noise);
 }
 
 bool IndoorRoute::step(double dt) {

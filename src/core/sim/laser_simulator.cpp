@@ -77,8 +77,11 @@ void LaserSimulator::step(double dt) {
   const double ts = world_.odom_translation_noise_m_per_sqrt_m * std::sqrt(std::fabs(delta.x_m));
   const double rs = world_.odom_rotation_noise_rad_per_sqrt_rad *
                     std::sqrt(std::fabs(delta.yaw_rad) + 0.1 * std::fabs(delta.x_m));
-  odom_pose_ = odom_pose_ * math::SE2(delta.x_m + rng_.gaussian(0, ts), rng_.gaussian(0, 0.3 * ts),
-                                      delta.yaw_rad + rng_.gaussian(0, rs));
+  // One draw per statement (an argument list's order is the compiler's), in the order the
+  // simulated logs behind the figures were made in.
+  const double yaw_noise = rng_.gaussian(0, rs), y_noise = rng_.gaussian(0, 0.3 * ts),
+               x_noise = rng_.gaussian(0, ts);
+  odom_pose_ = odom_pose_ * math::SE2(delta.x_m + x_noise, y_noise, delta.yaw_rad + yaw_noise);
 }
 
 laser::LaserScan2D LaserSimulator::scan(std::vector<VisibleWall>* visible) {

@@ -53,8 +53,13 @@ TrackingScene::TrackingScene(TrackingSceneConfig config, std::uint64_t seed)
     background_.row(y).setTo(cv::Scalar(70 + 40.0 * y / h, 80 + 20.0 * y / h, 75));
   if (config_.clutter) {
     for (int i = 0; i < 40; ++i) {
-      const cv::Scalar c(rng_.uniform(40, 200), rng_.uniform(60, 180), rng_.uniform(40, 150));
-      const cv::Point p(rng_.uniformInt(0, w - 1), rng_.uniformInt(0, h - 1));
+      // One draw per statement: the order of arguments is the compiler's, a statement's is not.
+      // (Each statement draws in the order the scenes behind the figures were made in.)
+      const double c2 = rng_.uniform(40, 150), c1 = rng_.uniform(60, 180),
+                   c0 = rng_.uniform(40, 200);
+      const cv::Scalar c(c0, c1, c2);
+      const int py = rng_.uniformInt(0, h - 1), px = rng_.uniformInt(0, w - 1);
+      const cv::Point p(px, py);
       const int a = static_cast<int>(rng_.uniform(5, 30) * s),
                 b = static_cast<int>(rng_.uniform(5, 30) * s);
       if (rng_.bernoulli(0.5))
@@ -92,11 +97,13 @@ TrackingScene::TrackingScene(TrackingSceneConfig config, std::uint64_t seed)
     cv_rng.fill(noise, cv::RNG::UNIFORM, 40, 200);
     cv::GaussianBlur(noise, world_, cv::Size(), 1.5 * s);
     for (int i = 0; i < 160; ++i) {
-      const cv::Point p(rng_.uniformInt(0, 2 * w - 1), rng_.uniformInt(0, 2 * h - 1));
-      const cv::Size a(static_cast<int>(rng_.uniform(4, 26) * s),
-                       static_cast<int>(rng_.uniform(4, 26) * s));
-      cv::ellipse(world_, p, a, rng_.uniform(0, 180), 0, 360, palette[rng_.uniformInt(0, 3)],
-                  cv::FILLED, cv::LINE_AA);
+      const int py = rng_.uniformInt(0, 2 * h - 1), px = rng_.uniformInt(0, 2 * w - 1);
+      const int ah = static_cast<int>(rng_.uniform(4, 26) * s),
+                aw = static_cast<int>(rng_.uniform(4, 26) * s);
+      const int colour = rng_.uniformInt(0, 3);
+      const double angle_deg = rng_.uniform(0, 180);
+      cv::ellipse(world_, {px, py}, {aw, ah}, angle_deg, 0, 360, palette[colour], cv::FILLED,
+                  cv::LINE_AA);
     }
     // The card: two of the palette's colours in stripes and spots, with a dark border.
     card_.create(static_cast<int>(44 * s), static_cast<int>(60 * s), CV_8UC3);
@@ -122,14 +129,14 @@ SceneFrame TrackingScene::handheld(int k) {
   const double s = std::min(w, h) / 240.0;
   // The camera: a slow wandering pan and a hand's shake (a stiff random walk about 0).
   const cv::Point2d before = pan_ + shake_;
-  pan_vel_ += cv::Point2d(rng_.gaussian(0, 0.25 * s), rng_.gaussian(0, 0.25 * s));
+  pan_vel_ += drawPoint(0.25 * s);
   pan_vel_ *= std::min(1.0, 3.0 * s / std::max(1e-9, std::hypot(pan_vel_.x, pan_vel_.y)));
   pan_ += pan_vel_;
   if (pan_.x < 0 || pan_.x > w) pan_vel_.x = -pan_vel_.x;
   if (pan_.y < 0 || pan_.y > h) pan_vel_.y = -pan_vel_.y;
   pan_.x = std::clamp(pan_.x, 0.0, static_cast<double>(w));
   pan_.y = std::clamp(pan_.y, 0.0, static_cast<double>(h));
-  shake_ = 0.6 * shake_ + cv::Point2d(rng_.gaussian(0, 2.0 * s), rng_.gaussian(0, 2.0 * s));
+  shake_ = 0.6 * shake_ + drawPoint(2.0 * s);
   const cv::Point2d view = pan_ + shake_;
   const cv::Point2d camera_motion = view - before;
   SceneFrame f;
@@ -177,9 +184,15 @@ SceneFrame TrackingScene::handheld(int k) {
   return f;
 }
 
+cv::Point2d TrackingScene::drawPoint(double sd) {
+  const double y = rng_.gaussian(0, sd);  // y first: the order the scenes were made in
+  const double x = rng_.gaussian(0, sd);
+  return {x, y};
+}
+
 void TrackingScene::move(Mover* m, double max_speed) {
   // A smoothly wandering velocity, bouncing off the borders.
-  m->vel += cv::Point2d(rng_.gaussian(0, 0.3), rng_.gaussian(0, 0.3));
+  m->vel += drawPoint(0.3);
   const double v = std::hypot(m->vel.x, m->vel.y);
   if (v > max_speed) m->vel *= max_speed / v;
   m->pos += m->vel;

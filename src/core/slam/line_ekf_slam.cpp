@@ -11,12 +11,6 @@
 
 namespace adaptive_perception::slam {
 
-Association parseAssociation(const std::string& name) {
-  if (name == "nn") return Association::kNearestNeighbour;
-  if (name == "jcbb") return Association::kJcbb;
-  throw std::invalid_argument("association = '" + name + "' (allowed: nn, jcbb)");
-}
-
 Variant parseVariant(const std::string& name) {
   if (name == "standard") return Variant::kStandard;
   if (name == "anchor") return Variant::kAnchor;
@@ -37,7 +31,7 @@ std::string variantName(Variant v) {
 
 LineEkfSlam::LineEkfSlam(const LineEkfSlamConfig& config, const math::SE2& start,
                          const Eigen::Matrix3d& start_cov)
-    : config_(config), x_(3), p_(start_cov), lin_pose_(start) {
+    : config_(config), association_(config.association), x_(3), p_(start_cov), lin_pose_(start) {
   config_.validate();
   x_ << start.x_m, start.y_m, math::wrapAngle(start.yaw_rad);
 }
@@ -121,6 +115,18 @@ Eigen::Vector2d LineEkfSlam::linearise(const LineObservation& obs, int lm,
   *r = obs.cov + modelNoise();
   if (fixed) *r += *hl * f->cov * hl->transpose();  // a retired landmark's own uncertainty
   return lineInnovation(obs.line, pred);
+}
+
+LinearPairing LineEkfSlam::linearPairing(const LineObservation& obs, int lm) const {
+  LinearPairing q;
+  q.nu = linearise(obs, lm, &q.hr, &q.hl, &q.r);
+  if (lm < numLandmarks()) q.col = landmarkIndex(lm);
+  return q;
+}
+
+std::vector<int> LineEkfSlam::associate(const std::vector<LineObservation>& obs) const {
+  return association_.associate(static_cast<int>(obs.size()), numLandmarks() + numFixedLandmarks(),
+                                p_, [&](int i, int lm) { return linearPairing(obs[i], lm); });
 }
 
 LineEkfSlam::Block LineEkfSlam::pairingBlock(const LineObservation& obs, int lm) const {
@@ -347,7 +353,7 @@ void LineEkfSlam::anchorOrRetire(UpdateResult* res) {
 }
 
 int LineEkfSlam::mergeCompatible(std::vector<int> seen) {
-  const double gate2 = gate(2);
+  const double gate2 = association_.gate(2);
   int merged = 0;
   std::sort(seen.begin(), seen.end());
   seen.erase(std::unique(seen.begin(), seen.end()), seen.end());

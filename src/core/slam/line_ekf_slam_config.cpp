@@ -11,8 +11,7 @@ const config::Fields<LineEkfSlamConfig>& LineEkfSlamConfig::fields() {
   using config::closed;
   static const config::Fields<C> f =
       config::Fields<C>()
-          .add("gate_probability", &C::gate_probability, closed(0.5, 0.999999),
-               "chi-square gate of individual and joint compatibility (probability)")
+          .nest(&C::association, DataAssociationConfig::fields())
           .add("confirm_sightings", &C::confirm_sightings, closed(1, 1000),
                "sightings that confirm a landmark")
           .add("tentative_timeout_scans", &C::tentative_timeout_scans, closed(1, 100000),
@@ -28,8 +27,6 @@ const config::Fields<LineEkfSlamConfig>& LineEkfSlamConfig::fields() {
                "(rad)")
           .add("retire_after_updates", &C::retire_after_updates, closed(0, 1000000),
                "a landmark updated this often leaves the state (0: never; the paper used 50)")
-          .add("share_landmarks", &C::share_landmarks,
-               "segments of one wall update one landmark together")
           .add("merge_landmarks", &C::merge_landmarks,
                "two landmarks that become one wall are merged")
           .add("first_estimate_jacobians", &C::first_estimate_jacobians,
@@ -40,9 +37,7 @@ const config::Fields<LineEkfSlamConfig>& LineEkfSlamConfig::fields() {
 
 void LineEkfSlamConfig::validate() const {
   fields().validate(*this);
-  if (jcbb_max_nodes < 1)
-    throw std::invalid_argument("jcbb_max_nodes = " + std::to_string(jcbb_max_nodes) +
-                                " (allowed: >= 1)");
+  association.validate();
 }
 
 }  // namespace adaptive_perception::slam

@@ -1,6 +1,6 @@
 // LineEkfSlam's landmark extents (line_ekf_slam.h): the pieces of wall seen along each landmark
 // line, for drawing and for merging. They are not part of the filter's state; the filter's model
-// and updates are in line_ekf_slam.cpp, its data association in line_ekf_slam_association.cpp.
+// and updates are in line_ekf_slam.cpp, its data association in data_association.cpp.
 #include <algorithm>
 #include <cmath>
 #include <utility>

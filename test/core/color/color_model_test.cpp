@@ -293,7 +293,7 @@ TEST(ColorLut, AgreesWithDirectClassification) {
   int near_agree = 0;
   for (int i = 0; i < n; ++i) {
     Eigen::Vector3d c =
-        g + Eigen::Vector3d(rng.gaussian(0, 25), rng.gaussian(0, 6), rng.gaussian(0, 6));
+        g + Eigen::Vector3d{rng.gaussian(0, 25), rng.gaussian(0, 6), rng.gaussian(0, 6)};
     c = c.cwiseMax(0).cwiseMin(255).array().round();
     near_agree += lut.lookup(c[0], c[1], c[2]) == cls.classify(c);
   }

@@ -75,11 +75,11 @@ TEST(PolylineSplit, HullTreeAgreesWithRecursiveOnRandomInputs) {
     Eigen::Vector2d p(0, 0), heading(1, 0);
     for (int k = 0; k < n; ++k) {
       if (trial % 3 == 0) {
-        pts.emplace_back(rng.uniform(-5, 5), rng.uniform(-5, 5));
+        pts.push_back({rng.uniform(-5, 5), rng.uniform(-5, 5)});
       } else {
         const double turn = rng.bernoulli(0.05) ? rng.uniform(-2, 2) : 0.0;
         heading = Eigen::Rotation2Dd(turn) * heading;
-        p += 0.05 * heading + Eigen::Vector2d(rng.gaussian(0, 0.005), rng.gaussian(0, 0.005));
+        p += 0.05 * heading + Eigen::Vector2d{rng.gaussian(0, 0.005), rng.gaussian(0, 0.005)};
         pts.push_back(p);
       }
     }

@@ -28,8 +28,8 @@ TEST(Angles, WrapStaysInHalfOpenRange) {
 TEST(SE2, ComposeMatchesHomogeneousMatrices) {
   Rng rng(3);
   for (int i = 0; i < 100; ++i) {
-    const SE2 a(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-4, 4));
-    const SE2 b(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-4, 4));
+    const SE2 a{rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-4, 4)};
+    const SE2 b{rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-4, 4)};
     const Eigen::Matrix3d m = a.matrix() * b.matrix();
     const SE2 c = a * b;
     EXPECT_NEAR(c.x_m, m(0, 2), 1e-12);
@@ -50,8 +50,8 @@ TEST(SE2, HandComputedComposition) {
 TEST(SE2, InverseAndBetween) {
   Rng rng(4);
   for (int i = 0; i < 100; ++i) {
-    const SE2 a(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-4, 4));
-    const SE2 b(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-4, 4));
+    const SE2 a{rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-4, 4)};
+    const SE2 b{rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-4, 4)};
     const SE2 id = a * a.inverse();
     EXPECT_NEAR(id.x_m, 0, 1e-12);
     EXPECT_NEAR(id.y_m, 0, 1e-12);
@@ -60,7 +60,7 @@ TEST(SE2, InverseAndBetween) {
     EXPECT_NEAR(back.x_m, b.x_m, 1e-12);
     EXPECT_NEAR(back.y_m, b.y_m, 1e-12);
     EXPECT_NEAR(adaptive_perception::math::angleDiff(back.yaw_rad, b.yaw_rad), 0, 1e-12);
-    const Eigen::Vector2d p(rng.uniform(-1, 1), rng.uniform(-1, 1));
+    const Eigen::Vector2d p{rng.uniform(-1, 1), rng.uniform(-1, 1)};
     const Eigen::Vector3d ph = a.matrix() * Eigen::Vector3d(p.x(), p.y(), 1.0);
     EXPECT_NEAR((a.transformPoint(p) - ph.head<2>()).norm(), 0, 1e-12);
   }

@@ -119,8 +119,8 @@ TEST(Sift, ExtractsFromATexturedImageAndNothingFromAFlatOne) {
   std::mt19937 gen(2);
   std::uniform_int_distribution<int> u(0, 255);
   for (int i = 0; i < 40; ++i)
-    cv::rectangle(img, cv::Rect(u(gen) % 150, u(gen) % 110, 5 + u(gen) % 30, 5 + u(gen) % 30),
-                  cv::Scalar(u(gen), u(gen), u(gen)), cv::FILLED);
+    cv::rectangle(img, cv::Rect{u(gen) % 150, u(gen) % 110, 5 + u(gen) % 30, 5 + u(gen) % 30},
+                  cv::Scalar{double(u(gen)), double(u(gen)), double(u(gen))}, cv::FILLED);
   SiftConfig cfg;
   const cv::Mat d = extractSift(img, cfg);
   EXPECT_GT(d.rows, 20);

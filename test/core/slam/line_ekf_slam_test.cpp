@@ -169,7 +169,7 @@ TEST(LineEkfSlam, JcbbFindsTheHypothesisNearestNeighbourMisses) {
   const std::vector<slam::LineObservation> seen{obsOf(Line{1.7, 0.0}, 0.005, 0.002),
                                                 obsOf(Line{2.0, 0.0}, 0.005, 0.002)};
   slam::LineEkfSlamConfig nn_cfg = cfg;
-  nn_cfg.association = slam::Association::kNearestNeighbour;
+  nn_cfg.association.method = slam::Association::kNearestNeighbour;
   slam::LineEkfSlam nn(nn_cfg);
   nn.update({obsOf(Line{2.0, 0.0}, 0.005, 0.002), obsOf(Line{2.3, 0.0}, 0.005, 0.002)});
   nn.predict(math::SE2(), Eigen::Vector3d(0.3 * 0.3, 1e-4, 1e-6).asDiagonal());
@@ -195,7 +195,7 @@ TEST(LineEkfSlam, TentativeLandmarksAreDroppedConfirmedOnesKept) {
 
 TEST(LineEkfSlam, BadConfigurationIsRejectedWithItsName) {
   slam::LineEkfSlamConfig cfg;
-  cfg.gate_probability = 1.5;
+  cfg.association.gate_probability = 1.5;
   try {
     slam::LineEkfSlam ekf(cfg);
     FAIL() << "no exception";
@@ -252,7 +252,8 @@ TEST(LineEkfSlam, AnchorConditionsTheStateOnTheAnchoredLandmarks) {
   };
   const Line l2 = plain.landmark(2);
   const double h = 1e-6;
-  const double du_drho = (along({l2.rho_m + h, l2.alpha_rad}) - along({l2.rho_m - h, l2.alpha_rad})) / (2 * h);
+  const double du_drho =
+      (along({l2.rho_m + h, l2.alpha_rad}) - along({l2.rho_m - h, l2.alpha_rad})) / (2 * h);
   const double du_dalpha =
       (along({l2.rho_m, l2.alpha_rad + h}) - along({l2.rho_m, l2.alpha_rad - h})) / (2 * h);
   const int n = static_cast<int>(plain.state().size());
@@ -264,8 +265,9 @@ TEST(LineEkfSlam, AnchorConditionsTheStateOnTheAnchoredLandmarks) {
   c(2, i2 + 1) = du_dalpha;
   const Eigen::MatrixXd& p = plain.covariance();
   const Eigen::MatrixXd cond = p - p * c.transpose() * (c * p * c.transpose()).inverse() * c * p;
-  const std::vector<int> keep{0, 1, 2, slam::LineEkfSlam::landmarkIndex(1),
-                              slam::LineEkfSlam::landmarkIndex(1) + 1, i2, i2 + 1};
+  const std::vector<int> keep{
+      0,  1,     2, slam::LineEkfSlam::landmarkIndex(1), slam::LineEkfSlam::landmarkIndex(1) + 1,
+      i2, i2 + 1};
   Eigen::MatrixXd expected(7, 7);
   for (int a = 0; a < 7; ++a)
     for (int b = 0; b < 7; ++b) expected(a, b) = cond(keep[a], keep[b]);
@@ -403,8 +405,8 @@ TEST(LineEkfSlam, FirstEstimatesJacobiansKeepTheHeadingUnobservable) {
         const math::SE2 d(0.1, 0.0, 0.1);  // a circle of radius 1 m
         truth = truth * d;
         const Eigen::Matrix3d q = Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal();
-        ekf.predict(math::SE2(d.x_m + rng.gaussian(0, 0.01), d.y_m + rng.gaussian(0, 0.01),
-                              d.yaw_rad + rng.gaussian(0, 0.01)),
+        ekf.predict(math::SE2{d.x_m + rng.gaussian(0, 0.01), d.y_m + rng.gaussian(0, 0.01),
+                              d.yaw_rad + rng.gaussian(0, 0.01)},
                     q);
       }
       std::vector<slam::LineObservation> obs;
@@ -432,7 +434,7 @@ TEST(LineEkfSlam, PiecesOfOneWallInOneScanShareTheLandmark) {
   for (const bool share : {true, false}) {
     slam::LineEkfSlamConfig cfg;
     cfg.confirm_sightings = 1;
-    cfg.share_landmarks = share;
+    cfg.association.share_landmarks = share;
     slam::LineEkfSlam ekf(cfg);
     ekf.update({obsOf(Line{2.0, 0.3})});
     ASSERT_EQ(ekf.numLandmarks(), 1);

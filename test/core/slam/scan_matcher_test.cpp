@@ -40,7 +40,7 @@ TEST(LikelihoodField, EqualsTheBruteForceFieldOfTheNearestMapCell) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-2.0, 2.0);
   std::vector<Eigen::Vector2d> pts;
-  for (int i = 0; i < 60; ++i) pts.emplace_back(u(rng), 0.5 * u(rng));
+  for (int i = 0; i < 60; ++i) pts.push_back({u(rng), 0.5 * u(rng)});
   const double res = 0.05, sd = 0.1;
   const slam::LikelihoodField f(pts, res, sd, 0.6);
   const cv::Mat& v = f.values();
@@ -71,8 +71,8 @@ TEST(ScanMatcher, RecoversAKnownOffset) {
   const std::vector<Eigen::Vector2d> scan = scanFrom(truth);
   ASSERT_GT(scan.size(), 150u);
   const slam::ScanMatcherConfig c;
-  for (const math::SE2& off : {math::SE2(0.12, -0.08, 0.05), math::SE2(-0.2, 0.15, -0.15),
-                               math::SE2(0.0, 0.0, 0.0)}) {
+  for (const math::SE2& off :
+       {math::SE2(0.12, -0.08, 0.05), math::SE2(-0.2, 0.15, -0.15), math::SE2(0.0, 0.0, 0.0)}) {
     const math::SE2 prior(truth.x_m + off.x_m, truth.y_m + off.y_m, truth.yaw_rad + off.yaw_rad);
     const slam::ScanMatch m = slam::matchScan(field, scan, prior, c);
     EXPECT_NEAR(m.pose.x_m, truth.x_m, 0.01);
@@ -93,7 +93,8 @@ TEST(LaserOdometry, RemovesAWheelOdometryBias) {
   math::SE2 truth(1.0, 1.0, 0.0), odom = truth, prev = truth;
   double worst = 0.0, odom_err = 0.0;
   for (int k = 0; k < 120; ++k) {
-    const math::SE2 next(1.0 + 0.06 * k, 1.0 + 0.005 * k, 0.3 * std::sin(0.05 * k));  // below the pillar
+    const math::SE2 next(1.0 + 0.06 * k, 1.0 + 0.005 * k,
+                         0.3 * std::sin(0.05 * k));  // below the pillar
     const math::SE2 d = math::between(prev, next);
     odom = odom * math::SE2(1.1 * d.x_m, 1.1 * d.y_m, 1.02 * d.yaw_rad);
     prev = next;
@@ -151,7 +152,7 @@ TEST(LaserOdometry, KeepsASoundOdometryAgainstAWeakMatchThatTurns) {
       if (k >= 20 && k < 23) {
         const math::SE2 turn(0.0, 0.0, -0.15);
         for (auto& p : scan) p = turn.transformPoint(p);
-        for (int j = 0; j < 300; ++j) scan.emplace_back(2.0 + std::fabs(u(rng)), u(rng));
+        for (int j = 0; j < 300; ++j) scan.push_back({2.0 + std::fabs(u(rng)), u(rng)});
       }
       const math::SE2 est = lo.add(scan, truth);
       *worst_yaw = std::max(*worst_yaw, std::fabs(math::angleDiff(est.yaw_rad, truth.yaw_rad)));
@@ -162,9 +163,10 @@ TEST(LaserOdometry, KeepsASoundOdometryAgainstAWeakMatchThatTurns) {
   long weak_with = 0, weak_without = 0;
   run(slam::LaserOdometryConfig().odometry_gate_min_score, &with_rule, &weak_with);
   run(0.0, &without_rule, &weak_without);
-  std::printf("weak turning matches: worst yaw error %.4f rad with the rule (%ld kept the "
-              "odometry), %.4f rad without\n",
-              with_rule, weak_with, without_rule);
+  std::printf(
+      "weak turning matches: worst yaw error %.4f rad with the rule (%ld kept the "
+      "odometry), %.4f rad without\n",
+      with_rule, weak_with, without_rule);
   EXPECT_GT(without_rule, 0.1);
   EXPECT_LT(with_rule, 0.01);
   EXPECT_GE(weak_with, 1);
@@ -192,9 +194,10 @@ TEST(LaserOdometry, DoesNotShrinkAFeaturelessCorridorAtTheEdgeOfTheSensorsReach)
     return est.x_m - 41.0;
   };
   const double with_margin = run(slam::LaserOdometryConfig().edge_margin_m), without = run(0.0);
-  std::printf("40 m along a featureless corridor: laser odometry ends %.3f m off with the edge "
-              "margin, %.3f m without\n",
-              with_margin, without);
+  std::printf(
+      "40 m along a featureless corridor: laser odometry ends %.3f m off with the edge "
+      "margin, %.3f m without\n",
+      with_margin, without);
   EXPECT_LT(std::fabs(with_margin), 0.1);
   EXPECT_GT(std::fabs(without), 3.0 * std::fabs(with_margin));
 }

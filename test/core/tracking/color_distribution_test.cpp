@@ -23,7 +23,8 @@ ColorPoints anisotropicCloud(int n, std::uint64_t seed) {
       Eigen::AngleAxisf(0.4f, Eigen::Vector3f(1, 2, 0.5).normalized()).toRotationMatrix();
   ColorPoints pts;
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3f z(0.08f * rng.gaussian(), 0.03f * rng.gaussian(), 0.01f * rng.gaussian());
+    const Eigen::Vector3f z{0.08f * float(rng.gaussian()), 0.03f * float(rng.gaussian()),
+                            0.01f * float(rng.gaussian())};
     pts.push_back(Eigen::Vector3f(0.6f, 0.3f, 0.4f) + r * z);
   }
   return pts;

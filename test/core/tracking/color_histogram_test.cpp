@@ -90,10 +90,13 @@ int framesTracked(double update_rate) {
   std::mt19937 gen(4);
   std::uniform_int_distribution<int> u(0, 255);
   cv::Mat background(240, 320, CV_8UC3, cv::Scalar(0, 0, 0));
-  for (int i = 0; i < 60; ++i)  // grey-blue clutter
-    cv::rectangle(background,
-                  cv::Rect(u(gen) % 300, u(gen) % 220, 10 + u(gen) % 40, 10 + u(gen) % 40),
-                  cv::Scalar(100 + u(gen) % 100, 90 + u(gen) % 60, 60 + u(gen) % 40), cv::FILLED);
+  for (int i = 0; i < 60; ++i) {  // grey-blue clutter
+    // Drawn last value first, one per statement: the scene this test was written on.
+    int v[7];
+    for (int k = 6; k >= 0; --k) v[k] = u(gen);
+    cv::rectangle(background, cv::Rect(v[0] % 300, v[1] % 220, 10 + v[2] % 40, 10 + v[3] % 40),
+                  cv::Scalar(100 + v[4] % 100, 90 + v[5] % 60, 60 + v[6] % 40), cv::FILLED);
+  }
   EllipseTrackerConfig cfg;
   cfg.search_radius_px = 8;
   cfg.update_rate = update_rate;

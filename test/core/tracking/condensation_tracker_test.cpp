@@ -18,8 +18,9 @@ cv::Mat clutter(int seed) {
   std::uniform_int_distribution<int> u(0, 255);
   cv::Mat bg(240, 320, CV_8UC3, cv::Scalar(40, 40, 40));
   for (int i = 0; i < 50; ++i)
-    cv::rectangle(bg, cv::Rect(u(gen) % 300, u(gen) % 220, 8 + u(gen) % 30, 8 + u(gen) % 30),
-                  cv::Scalar(110 + u(gen) % 80, 100 + u(gen) % 50, 50 + u(gen) % 30), cv::FILLED);
+    cv::rectangle(bg, cv::Rect{u(gen) % 300, u(gen) % 220, 8 + u(gen) % 30, 8 + u(gen) % 30},
+                  cv::Scalar{110.0 + u(gen) % 80, 100.0 + u(gen) % 50, 50.0 + u(gen) % 30},
+                  cv::FILLED);
   return bg;
 }
 

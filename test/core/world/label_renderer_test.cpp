@@ -114,9 +114,9 @@ TEST_F(LabelRendererTest, AllEntryPointsAgree) {
   std::vector<std::uint8_t> listed;
   int histogram[256] = {0};
   for (int trial = 0; trial < 30; ++trial) {
-    const SE2 base(rng.uniform(-2.5, 2.5), rng.uniform(-1.7, 1.7), rng.uniform(-kPi, kPi));
-    const Eigen::Isometry3d pose =
-        planarToIsometry(base) * head.baseToOptical(rng.uniform(-1.5, 1.5), rng.uniform(-0.3, 0.6));
+    const SE2 base{rng.uniform(-2.5, 2.5), rng.uniform(-1.7, 1.7), rng.uniform(-kPi, kPi)};
+    const double pan = rng.uniform(-1.5, 1.5), tilt = rng.uniform(-0.3, 0.6);
+    const Eigen::Isometry3d pose = planarToIsometry(base) * head.baseToOptical(pan, tilt);
     renderer_.renderImage(pose, image.data());
     renderer_.renderPixels(pose, all, &listed);
     ASSERT_EQ(image, listed);
