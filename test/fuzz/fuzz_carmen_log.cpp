@@ -3,6 +3,7 @@
 #include <string>
 
 #include "adaptive_perception/io/carmen_log.h"
+#include "fuzz_input.h"
 
 using namespace adaptive_perception;
 
