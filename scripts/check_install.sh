@@ -7,7 +7,8 @@
 #   2. the installed scripts keep their execute bit;
 #   3. the installed libraries and executables hold no path of the source tree;
 #   4. an installed tool, run from another directory with only the install space sourced, finds the
-#      package's config files there.
+#      package's config files there;
+#   5. the installed package exports its nodelets and its image transport, with their libraries.
 # Needs a built workspace (scripts/setup.sh). Ends with `check_install: passed` (exit 0) or
 # `check_install: FAILED: <what>` (exit 1). About a minute after a build.
 set -uo pipefail
@@ -54,4 +55,14 @@ case "$out" in
   bench_rbpf:*) echo "$out" ;;
   *) fail "the installed bench_rbpf did not run from the install space: $out" ;;
 esac
+# 5. The installed plugins: every node as a nodelet, and the compressed image transport.
+out="$(env -i HOME="$HOME" PATH=/usr/bin:/bin bash -c "source '$INSTALL/setup.bash' &&
+  rospack plugins --attrib=plugin nodelet; rospack plugins --attrib=plugin image_transport" 2>&1)"
+for xml in nodelet_plugins.xml image_transport_plugins.xml; do
+  echo "$out" | grep -q "^adaptive_perception $SHARE/$xml\$" ||
+    fail "the installed package does not export $SHARE/$xml (rospack plugins said: $out)"
+done
+for lib in adaptive_perception_nodelets adaptive_perception_image_transport; do
+  [ -f "$INSTALL/lib/lib$lib.so" ] || fail "lib$lib.so was not installed in $INSTALL/lib"
+done
 echo "check_install: passed"

@@ -14,6 +14,10 @@ PACKAGES=(
   # static_transform_publisher (demo.launch places the parts side by side)
   tf2-tools
   librosbag-dev libcv-bridge-dev libimage-transport-dev libtf2-ros-dev libtf2-geometry-msgs-dev
+  # every node as a nodelet (src/nodelets), and the nodelet manager
+  libnodeletlib-dev pluginlib-dev libnodeletlib-tools
+  # image_transport's republish (test/ros/compressed_camera.test); image_geometry (rectification)
+  image-transport-tools libimage-geometry-dev
   libtf2-eigen-dev libsensor-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
   libdiagnostic-updater-dev libdiagnostic-msgs-dev libdynamic-reconfigure-config-init-mutex-dev
   python3-dynamic-reconfigure rosbash libstd-srvs-dev python3-std-srvs

@@ -4,5 +4,5 @@
 
 int main(int argc, char** argv) {
   return adaptive_perception::runNode<adaptive_perception::ColorEstimatorNode>(
-      argc, argv, "color_estimator", /*threads=*/2);
+      argc, argv, "color_estimator");
 }

@@ -4,5 +4,5 @@
 
 int main(int argc, char** argv) {
   return adaptive_perception::runNode<adaptive_perception::RbpfLocalizerNode>(
-      argc, argv, "rbpf_localizer", /*threads=*/2);
+      argc, argv, "rbpf_localizer");
 }

@@ -41,6 +41,7 @@ std::vector<config::ParameterDoc> AppearanceLocalizerNode::parameters() {
       {"seed", "int", "1", "[0, 1073741824]", "the particles' random seed"}};
   rows.insert(rows.end(), node.begin(), node.end());
   rows.push_back(ros_params::stampOrderParameter());
+  rows.push_back(ros_params::imageTransportParameter());
   return rows;
 }
 
@@ -87,7 +88,8 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
       nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("appearance_localizer/pose", 5);
   particles_pub_ = nh.advertise<geometry_msgs::PoseArray>("appearance_localizer/particles", 2);
   room_pub_ = nh.advertise<PlaceRecognition>("appearance_localizer/room", 10);
-  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &AppearanceLocalizerNode::onImage, this);
+  image_sub_ = image_transport::ImageTransport(nh).subscribe(
+      ros_topics::kCameraImage, 2, &AppearanceLocalizerNode::onImage, this, ros_params::imageTransportHints(pnh));
   if (use_odom_)
     odom_sub_ = nh.subscribe(ros_topics::kOdom, 50, &AppearanceLocalizerNode::onOdom, this);
   initial_pose_sub_ = nh.subscribe("initialpose", 2, &AppearanceLocalizerNode::onInitialPose, this);
@@ -140,11 +142,10 @@ bool AppearanceLocalizerNode::onGlobalLocalization(std_srvs::Empty::Request&,
   return true;
 }
 
-void AppearanceLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
-  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
+void AppearanceLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat bgr;
   bool restart = false;
-  const auto verdict = gate_.accept(*msg, event.getPublisherName(), &bgr, &restart);
+  const auto verdict = gate_.accept(*msg, &bgr, &restart);
   if (restart) {  // a looped bag: the filter starts again as at start-up (same seed, same output)
     make_filter_();
     last_odom_.reset();

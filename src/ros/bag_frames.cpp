@@ -64,6 +64,9 @@ BagFrameReader::BagFrameReader(const std::string& path, const std::string& camer
       }
     } else if (isTopic(m, T::kCameraInfo) && !has_camera_info_) {
       if (auto ci = m.instantiate<sensor_msgs::CameraInfo>()) {
+        if (ros_conv::hasDistortion(*ci))
+          throw std::runtime_error(path + ": camera_info has lens distortion; the evaluation "
+                                          "tools take undistorted images (the nodes rectify)");
         camera_ = ros_conv::fromCameraInfo(*ci);
         has_camera_info_ = true;
       }

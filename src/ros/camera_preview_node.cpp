@@ -2,14 +2,22 @@
 
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 
 namespace adaptive_perception {
 
-CameraPreviewNode::CameraPreviewNode(ros::NodeHandle nh, ros::NodeHandle /*pnh*/) {
-  image_pub_ = nh.advertise<sensor_msgs::Image>("camera/image_preview", 2);
-  labels_pub_ = nh.advertise<sensor_msgs::Image>("camera/labels_color", 2);
-  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &CameraPreviewNode::onImage, this);
+std::vector<config::ParameterDoc> CameraPreviewNode::parameters() {
+  return {ros_params::imageTransportParameter()};
+}
+
+CameraPreviewNode::CameraPreviewNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+  image_transport::ImageTransport it(nh);
+  image_pub_ = it.advertise("camera/image_preview", 2);
+  labels_pub_ = it.advertise("camera/labels_color", 2);
+  image_sub_ = it.subscribe(ros_topics::kCameraImage, 2, &CameraPreviewNode::onImage, this,
+                            ros_params::imageTransportHints(pnh));
+  // Class ids must arrive exactly: the labels are always raw.
   labels_sub_ = nh.subscribe(ros_topics::kCameraLabels, 2, &CameraPreviewNode::onLabels, this);
 }
 

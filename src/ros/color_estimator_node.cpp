@@ -35,6 +35,7 @@ std::vector<config::ParameterDoc> ColorEstimatorNode::parameters() {
       {"mixing", "string", kDefaultMixing, "best_mode, imm",
        "best_mode: only the mode that best explains the image is updated (the paper); imm"},
       {"field_file", "string", kFieldFile, "", "the field map"},
+      ros_conv::CameraModelSource::parameter(),
       ros_params::frameParameter("map"),
       {"tf_timeout_s", "double", config::formatValue(config::Kind::kDouble, kTfTimeout_s), "[0, 5]",
        "wall-clock wait for map -> camera at an image's stamp before it is skipped (s)"}};
@@ -42,11 +43,15 @@ std::vector<config::ParameterDoc> ColorEstimatorNode::parameters() {
   const std::vector<config::ParameterDoc> priors = ros_params::lightingPriorParameters();
   rows.insert(rows.end(), priors.begin(), priors.end());
   rows.push_back(ros_params::stampOrderParameter());
+  rows.push_back(ros_params::imageTransportParameter());
   return rows;
 }
 
 ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
+    : nh_(nh),
+      pnh_(pnh),
+      camera_("color_estimator", ros_params::get<std::string>(pnh, "camera_model", "")),
+      tf_listener_(tf_buffer_) {
   namespace P = ros_params;
   P::loadFields(pnh, color::ColorEstimatorConfig::fields(), &config_);
   const std::string noise = P::get<std::string>(pnh, "observation_noise", kDefaultObservationNoise);
@@ -70,11 +75,12 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   config_.validate();
 
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_estimator/color_model", 5);
-  classified_pub_ = nh.advertise<sensor_msgs::Image>("color_estimator/classified", 2);
-  classified_color_pub_ = nh.advertise<sensor_msgs::Image>("color_estimator/classified_color", 2);
+  classified_pub_ = image_transport::ImageTransport(nh).advertise("color_estimator/classified", 2);
+  classified_color_pub_ = image_transport::ImageTransport(nh).advertise("color_estimator/classified_color", 2);
   // Two deep: an image re-sent older right after a newer one is seen, and dropped, rather than
   // displacing the newer one in the queue.
-  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &ColorEstimatorNode::onImage, this);
+  image_sub_ = image_transport::ImageTransport(nh).subscribe(
+      ros_topics::kCameraImage, 2, &ColorEstimatorNode::onImage, this, ros_params::imageTransportHints(pnh));
   info_sub_ = nh.subscribe(ros_topics::kCameraInfo, 1, &ColorEstimatorNode::onCameraInfo, this);
   ros::NodeHandle service_nh = service_queue_.handle(pnh);
   reset_srv_ = service_nh.advertiseService("reset", &ColorEstimatorNode::onReset, this);
@@ -168,8 +174,7 @@ bool ColorEstimatorNode::ensureEstimator(int width, int height) {
   return true;
 }
 
-void ColorEstimatorNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
-  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
+void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat yuv;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -177,7 +182,7 @@ void ColorEstimatorNode::onImage(const ros::MessageEvent<const sensor_msgs::Imag
     // the model (ColorEstimator::process).
     bool went_back = false;
     const ros_conv::ImageGate::Result verdict =
-        gate_.accept(*msg, event.getPublisherName(), &yuv, &went_back);
+        gate_.accept(*msg, &yuv, &went_back);
     if (verdict == ros_conv::ImageGate::Result::kBadImage) ++skipped_bad_image_;
     if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   }
@@ -195,7 +200,8 @@ void ColorEstimatorNode::onImage(const ros::MessageEvent<const sensor_msgs::Imag
   color::ColorEstimator::Result r;
   try {
     if (!ensureEstimator(yuv.cols, yuv.rows)) return;
-    r = estimator_->process(msg->header.stamp.toSec(), yuv, ros_conv::toIsometry(pose.transform));
+    r = estimator_->process(msg->header.stamp.toSec(), camera_.rectify(yuv),
+                            ros_conv::toIsometry(pose.transform));
   } catch (const std::exception& e) {  // no exception leaves a callback
     ROS_ERROR_THROTTLE(10.0, "color_estimator: frame dropped: %s", e.what());
     ++skipped_bad_image_;

@@ -45,6 +45,7 @@ std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
       {"seed", "int", "1", "[0, 1073741824]", "sampling seed"}};
   rows.insert(rows.end(), node.begin(), node.end());
   rows.push_back(ros_params::stampOrderParameter());
+  rows.push_back(ros_params::imageTransportParameter());
   return rows;
 }
 
@@ -88,9 +89,10 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   }
 
   object_pub_ = nh.advertise<TrackedObject>(ros_topics::kTrackedObject, 10);
-  segmentation_pub_ = nh.advertise<sensor_msgs::Image>("condensation_tracker/segmentation", 2);
-  overlay_pub_ = nh.advertise<sensor_msgs::Image>("condensation_tracker/overlay", 2);
-  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &CondensationTrackerNode::onImage, this);
+  segmentation_pub_ = image_transport::ImageTransport(nh).advertise("condensation_tracker/segmentation", 2);
+  overlay_pub_ = image_transport::ImageTransport(nh).advertise("condensation_tracker/overlay", 2);
+  image_sub_ = image_transport::ImageTransport(nh).subscribe(
+      ros_topics::kCameraImage, 2, &CondensationTrackerNode::onImage, this, ros_params::imageTransportHints(pnh));
   target_sub_ =
       nh.subscribe("condensation_tracker/target", 2, &CondensationTrackerNode::onTarget, this);
   target_srv_ = nh.advertiseService("condensation_tracker/set_target",
@@ -157,11 +159,10 @@ bool CondensationTrackerNode::onSetTarget(SetTarget::Request& req, SetTarget::Re
   return true;
 }
 
-void CondensationTrackerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
-  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
+void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat bgr;
   bool restart = false;
-  if (gate_.accept(*msg, event.getPublisherName(), &bgr, &restart) !=
+  if (gate_.accept(*msg, &bgr, &restart) !=
       ros_conv::ImageGate::Result::kProcess)
     return;
   image_size_ = bgr.size();

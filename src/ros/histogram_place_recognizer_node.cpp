@@ -49,6 +49,7 @@ std::vector<config::ParameterDoc> HistogramPlaceRecognizerNode::parameters() {
        "train mode: keep one labelled image in N"}};
   rows.insert(rows.end(), node.begin(), node.end());
   rows.push_back(ros_params::stampOrderParameter());
+  rows.push_back(ros_params::imageTransportParameter());
   return rows;
 }
 
@@ -105,9 +106,9 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
   reload();
 
   place_pub_ = nh.advertise<PlaceRecognition>(ros_topics::kPlace, 10);
-  overlay_pub_ = pnh.advertise<sensor_msgs::Image>("overlay", 2);
-  image_sub_ =
-      nh.subscribe(ros_topics::kCameraImage, 2, &HistogramPlaceRecognizerNode::onImage, this);
+  overlay_pub_ = image_transport::ImageTransport(pnh).advertise("overlay", 2);
+  image_sub_ = image_transport::ImageTransport(nh).subscribe(
+      ros_topics::kCameraImage, 2, &HistogramPlaceRecognizerNode::onImage, this, ros_params::imageTransportHints(pnh));
   label_sub_ =
       nh.subscribe(ros_topics::kGroundTruthPlace, 10, &HistogramPlaceRecognizerNode::onLabel, this);
   add_srv_ = pnh.advertiseService("add_images", &HistogramPlaceRecognizerNode::onAddImages, this);
@@ -189,12 +190,10 @@ void HistogramPlaceRecognizerNode::onLabel(const std_msgs::StringConstPtr& msg) 
   label_ = msg->data;
 }
 
-void HistogramPlaceRecognizerNode::onImage(
-    const ros::MessageEvent<const sensor_msgs::Image>& event) {
-  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
+void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat bgr;
   bool restart = false;
-  const auto verdict = gate_.accept(*msg, event.getPublisherName(), &bgr, &restart);
+  const auto verdict = gate_.accept(*msg, &bgr, &restart);
   if (restart) recognizer_->reset();
   if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   places::ImageHistograms h;

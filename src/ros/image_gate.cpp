@@ -6,9 +6,9 @@
 
 namespace adaptive_perception::ros_conv {
 
-ImageGate::Result ImageGate::accept(const sensor_msgs::Image& msg, const std::string& publisher,
-                                    cv::Mat* image, bool* time_went_back) {
-  const StampOrder::Verdict order = order_.check(msg.header.stamp, publisher);
+ImageGate::Result ImageGate::accept(const sensor_msgs::Image& msg, cv::Mat* image,
+                                    bool* time_went_back) {
+  const StampOrder::Verdict order = order_.check(msg.header.stamp, "");
   *time_went_back = order == StampOrder::Verdict::kRestart;
   if (order == StampOrder::Verdict::kDrop) return Result::kOutOfOrder;
   if (*time_went_back) last_processed_ = ros::Time();

@@ -132,14 +132,21 @@ sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& c,
   return info;
 }
 
+bool hasDistortion(const sensor_msgs::CameraInfo& info) {
+  for (double d : info.D)
+    if (d != 0.0) return true;
+  return false;
+}
+
 world::PinholeCamera fromCameraInfo(const sensor_msgs::CameraInfo& info) {
   world::PinholeCamera c;
   c.width_px = static_cast<int>(info.width);
   c.height_px = static_cast<int>(info.height);
-  c.fx_px = info.K[0];
-  c.fy_px = info.K[4];
-  c.cx_px = info.K[2];
-  c.cy_px = info.K[5];
+  const bool rectified = hasDistortion(info) && info.P[0] > 0.0 && info.P[5] > 0.0;
+  c.fx_px = rectified ? info.P[0] : info.K[0];
+  c.fy_px = rectified ? info.P[5] : info.K[4];
+  c.cx_px = rectified ? info.P[2] : info.K[2];
+  c.cy_px = rectified ? info.P[6] : info.K[5];
   c.validate();
   return c;
 }

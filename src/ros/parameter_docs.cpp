@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "adaptive_perception/ros/appearance_localizer_node.h"
+#include "adaptive_perception/ros/camera_preview_node.h"
 #include "adaptive_perception/ros/color_estimator_node.h"
 #include "adaptive_perception/ros/condensation_tracker_node.h"
 #include "adaptive_perception/ros/ekf_slam_mapper_node.h"
@@ -17,6 +18,7 @@ namespace adaptive_perception::ros_params {
 const std::map<std::string, std::vector<config::ParameterDoc>>& nodeParameters() {
   static const std::map<std::string, std::vector<config::ParameterDoc>> nodes = {
       {"appearance_localizer", AppearanceLocalizerNode::parameters()},
+      {"camera_preview", CameraPreviewNode::parameters()},
       {"color_estimator", ColorEstimatorNode::parameters()},
       {"condensation_tracker", CondensationTrackerNode::parameters()},
       {"ekf_slam_mapper", EkfSlamMapperNode::parameters()},

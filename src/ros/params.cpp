@@ -173,6 +173,21 @@ config::ParameterDoc frameParameter(const std::string& frame) {
   throw std::invalid_argument("frameParameter: no frame '" + frame + "' (map, odom or base)");
 }
 
+namespace {
+constexpr char kDefaultImageTransport[] = "raw";
+}  // namespace
+
+image_transport::TransportHints imageTransportHints(const ros::NodeHandle& pnh) {
+  const std::string transport = get<std::string>(pnh, "image_transport", kDefaultImageTransport);
+  return image_transport::TransportHints(transport, ros::TransportHints(), pnh);
+}
+
+config::ParameterDoc imageTransportParameter() {
+  return {"image_transport", "string", kDefaultImageTransport, "raw, compressed",
+          "the transport of camera/image_raw: raw, or compressed (camera/image_raw/compressed, "
+          "JPEG or PNG)"};
+}
+
 config::ParameterDoc stampOrderParameter() {
   const config::Range range = config::closed(kMinRestartBack_s, kMaxRestartBack_s);
   return {

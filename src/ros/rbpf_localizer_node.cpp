@@ -76,6 +76,7 @@ std::vector<config::ParameterDoc> RbpfLocalizerNode::parameters() {
       {"initial_pose", "list", "[]", "", "[x_m, y_m, yaw_rad]; empty: global localization"},
       {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
        "its standard deviations (m, m, rad)"},
+      ros_conv::CameraModelSource::parameter(),
       ros_params::frameParameter("map"),
       ros_params::frameParameter("odom"),
       ros_params::frameParameter("base"),
@@ -88,11 +89,15 @@ std::vector<config::ParameterDoc> RbpfLocalizerNode::parameters() {
   const std::vector<config::ParameterDoc> priors = ros_params::lightingPriorParameters();
   rows.insert(rows.end(), priors.begin(), priors.end());
   rows.push_back(ros_params::stampOrderParameter());
+  rows.push_back(ros_params::imageTransportParameter());
   return rows;
 }
 
 RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : nh_(nh), pnh_(pnh), tf_listener_(tf_buffer_) {
+    : nh_(nh),
+      pnh_(pnh),
+      camera_("rbpf_localizer", ros_params::get<std::string>(pnh, "camera_model", "")),
+      tf_listener_(tf_buffer_) {
   namespace P = ros_params;
   localization::RbpfConfig& c = config_;
   P::loadFields(pnh, localization::RbpfConfig::fields(), &c);
@@ -129,11 +134,12 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("rbpf_localizer/pose", 5);
   particles_pub_ = nh.advertise<geometry_msgs::PoseArray>("rbpf_localizer/particles", 2);
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("rbpf_localizer/color_model", 5);
-  classified_pub_ = nh.advertise<sensor_msgs::Image>("rbpf_localizer/classified", 2);
-  classified_color_pub_ = nh.advertise<sensor_msgs::Image>("rbpf_localizer/classified_color", 2);
+  classified_pub_ = image_transport::ImageTransport(nh).advertise("rbpf_localizer/classified", 2);
+  classified_color_pub_ = image_transport::ImageTransport(nh).advertise("rbpf_localizer/classified_color", 2);
   // Two deep: an image re-sent older right after a newer one is seen, and dropped, rather than
   // displacing the newer one in the queue.
-  image_sub_ = nh.subscribe(ros_topics::kCameraImage, 2, &RbpfLocalizerNode::onImage, this);
+  image_sub_ = image_transport::ImageTransport(nh).subscribe(
+      ros_topics::kCameraImage, 2, &RbpfLocalizerNode::onImage, this, ros_params::imageTransportHints(pnh));
   info_sub_ = nh.subscribe(ros_topics::kCameraInfo, 1, &RbpfLocalizerNode::onCameraInfo, this);
   initial_pose_sub_ = nh.subscribe("initialpose", 1, &RbpfLocalizerNode::onInitialPose, this);
   global_srv_ = service_queue_.handle(nh).advertiseService(
@@ -173,8 +179,7 @@ bool RbpfLocalizerNode::ensureLocalizer(int width, int height) {
   return true;
 }
 
-void RbpfLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image>& event) {
-  const boost::shared_ptr<const sensor_msgs::Image> msg = event.getConstMessage();
+void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat yuv;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -182,7 +187,7 @@ void RbpfLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image
     // below.
     bool went_back = false;
     const ros_conv::ImageGate::Result verdict =
-        gate_.accept(*msg, event.getPublisherName(), &yuv, &went_back);
+        gate_.accept(*msg, &yuv, &went_back);
     if (verdict == ros_conv::ImageGate::Result::kBadImage) ++skipped_bad_image_;
     if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   }
@@ -222,7 +227,7 @@ void RbpfLocalizerNode::onImage(const ros::MessageEvent<const sensor_msgs::Image
   }
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    last_ = rbpf_->step(delta, dt_s, yuv, tf.base_to_sensor);
+    last_ = rbpf_->step(delta, dt_s, camera_.rectify(yuv), tf.base_to_sensor);
   } catch (const std::exception& e) {
     ROS_ERROR_THROTTLE(10.0, "rbpf_localizer: frame dropped: %s", e.what());
     ++skipped_bad_image_;

@@ -28,13 +28,16 @@ StampOrder::Verdict StampOrder::check(const ros::Time& stamp, const std::string&
     return Verdict::kRestart;
   }
   ++dropped_;
+  // Images through image_transport come without their publisher's name.
+  const std::string from =
+      publisher.empty() && last_publisher_.empty()
+          ? ""
+          : " (from " + (publisher.empty() ? "?" : publisher) + "; the last from " +
+                (last_publisher_.empty() ? "?" : last_publisher_) +
+                (publisher != last_publisher_ ? ": two publishers interleave?" : "") + ")";
   ROS_WARN_THROTTLE(10.0,
-                    "%s: %s message %.3f s older than the last one dropped (from %s; the last "
-                    "from %s%s); %ld dropped so far",
-                    node_.c_str(), input_.c_str(), back_s,
-                    publisher.empty() ? "?" : publisher.c_str(),
-                    last_publisher_.empty() ? "?" : last_publisher_.c_str(),
-                    publisher != last_publisher_ ? ": two publishers interleave?" : "", dropped_);
+                    "%s: %s message %.3f s older than the last one dropped%s; %ld dropped so far",
+                    node_.c_str(), input_.c_str(), back_s, from.c_str(), dropped_);
   return Verdict::kDrop;
 }
 

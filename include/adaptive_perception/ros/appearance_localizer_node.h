@@ -9,6 +9,7 @@
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <image_transport/image_transport.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Empty.h>
@@ -33,7 +34,7 @@ class AppearanceLocalizerNode {
   ~AppearanceLocalizerNode();
 
  private:
-  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
   void onOdom(const nav_msgs::OdometryConstPtr& msg);
   void onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool onGlobalLocalization(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -48,7 +49,8 @@ class AppearanceLocalizerNode {
   std::string map_frame_, odom_frame_;
   std::optional<nav_msgs::Odometry> odom_;  // latest
   std::optional<math::SE2> last_odom_;      // at the last processed image
-  ros::Subscriber image_sub_, odom_sub_, initial_pose_sub_;
+  image_transport::Subscriber image_sub_;
+  ros::Subscriber odom_sub_, initial_pose_sub_;
   double transform_tolerance_s_ = 0.0;  // from ~transform_tolerance
   long initial_poses_ = 0;
   ros::Publisher pose_pub_, particles_pub_, room_pub_;

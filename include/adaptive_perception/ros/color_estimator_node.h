@@ -7,6 +7,7 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <dynamic_reconfigure/server.h>
+#include <image_transport/image_transport.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -33,11 +34,14 @@ class ColorEstimatorNode {
  public:
   /// Throws ros_params::ParamError / std::runtime_error (bad prior file) with a clear message.
   ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Callbacks that may run at once (node_main.h): the state is locked, so tf and camera_info
+  /// are taken while an image is classified.
+  static constexpr int kCallbackThreads = 2;
   /// Every private parameter the node reads (its doc page's table).
   static std::vector<config::ParameterDoc> parameters();
 
  private:
-  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg);
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSavePrior(SavePrior::Request& req, SavePrior::Response& res);
@@ -50,7 +54,7 @@ class ColorEstimatorNode {
   color::ColorEstimatorConfig config_;
   std::vector<color::LightingPrior> priors_;
   world::FieldMap map_;
-  ros_conv::CameraModelSource camera_{"color_estimator"};
+  ros_conv::CameraModelSource camera_;
   std::unique_ptr<color::ColorEstimator> estimator_;
   std::string map_frame_;
   double tf_timeout_s_ = 0.0;  // from ~tf_timeout_s
@@ -58,8 +62,10 @@ class ColorEstimatorNode {
 
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
-  ros::Subscriber image_sub_, info_sub_;
-  ros::Publisher model_pub_, classified_pub_, classified_color_pub_;
+  image_transport::Subscriber image_sub_;
+  ros::Subscriber info_sub_;
+  ros::Publisher model_pub_;
+  image_transport::Publisher classified_pub_, classified_color_pub_;
   // reset, save_prior and dynamic_reconfigure answer while an image waits for tf.
   ros_conv::ServiceQueue service_queue_;
   ros::ServiceServer reset_srv_, save_srv_;

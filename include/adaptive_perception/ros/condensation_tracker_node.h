@@ -10,6 +10,7 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PolygonStamped.h>
+#include <image_transport/image_transport.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 
@@ -33,7 +34,7 @@ class CondensationTrackerNode {
   ~CondensationTrackerNode();
 
  private:
-  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
   void onTarget(const geometry_msgs::PolygonStampedConstPtr& msg);
   bool onSetTarget(SetTarget::Request& req, SetTarget::Response& res);
   bool requestTarget(const cv::Rect2d& roi, std::string* why);
@@ -53,8 +54,10 @@ class CondensationTrackerNode {
   cv::Size image_size_;                       // of the last image taken (empty before the first)
   bool publish_overlay_ = true;
   ros_conv::ImageGate gate_{"condensation_tracker", 30.0};
-  ros::Subscriber image_sub_, target_sub_;
-  ros::Publisher object_pub_, segmentation_pub_, overlay_pub_;
+  image_transport::Subscriber image_sub_;
+  ros::Subscriber target_sub_;
+  ros::Publisher object_pub_;
+  image_transport::Publisher segmentation_pub_, overlay_pub_;
   ros::ServiceServer target_srv_;
   diagnostic_updater::Updater diagnostics_;
   ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too

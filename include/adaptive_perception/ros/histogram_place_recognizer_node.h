@@ -9,6 +9,7 @@
 // in docs/nodes/histogram_place_recognizer.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
+#include <image_transport/image_transport.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 #include <std_msgs/String.h>
@@ -38,7 +39,7 @@ class HistogramPlaceRecognizerNode {
   ~HistogramPlaceRecognizerNode();
 
  private:
-  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
   void onLabel(const std_msgs::StringConstPtr& msg);
   bool onAddImages(AddPlaceImages::Request& req, AddPlaceImages::Response& res);
   bool onRemovePlace(RemovePlace::Request& req, RemovePlace::Response& res);
@@ -73,8 +74,10 @@ class HistogramPlaceRecognizerNode {
   };
   std::optional<Collect> collect_;
 
-  ros::Subscriber image_sub_, label_sub_;
-  ros::Publisher place_pub_, overlay_pub_;
+  image_transport::Subscriber image_sub_;
+  ros::Subscriber label_sub_;
+  ros::Publisher place_pub_;
+  image_transport::Publisher overlay_pub_;
   ros::ServiceServer add_srv_, remove_srv_, adjacency_srv_, save_srv_;
   diagnostic_updater::Updater diagnostics_;
   ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too

@@ -24,12 +24,11 @@ class ImageGate {
         order_(std::move(node), "image", order) {}
 
   enum class Result { kProcess, kTooSoon, kOutOfOrder, kBadImage };
-  /// kProcess with *image filled (bgr8 or YUV, CV_8UC3), or why not. `publisher` (the caller id) is
-  /// named in warnings. *time_went_back is set when time really went back (StampOrder's kRestart:
-  /// the caller restarts its filter; the image is still judged); an image only a little older than
-  /// the last is kOutOfOrder.
-  Result accept(const sensor_msgs::Image& msg, const std::string& publisher, cv::Mat* image,
-                bool* time_went_back);
+  /// kProcess with *image filled (bgr8 or YUV, CV_8UC3), or why not (image_transport does not
+  /// say who published an image, so the warnings cannot name it). *time_went_back is set when time really went back (StampOrder's
+  /// kRestart: the caller restarts its filter; the image is still judged); an image only a little
+  /// older than the last is kOutOfOrder.
+  Result accept(const sensor_msgs::Image& msg, cv::Mat* image, bool* time_went_back);
   long badImages() const { return bad_images_; }
   long outOfOrder() const { return order_.dropped(); }
 

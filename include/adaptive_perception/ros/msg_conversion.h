@@ -52,8 +52,12 @@ cv::Mat imageToMono8(const sensor_msgs::Image& msg);
 /// CameraInfo of a pinhole camera without distortion.
 sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& camera,
                                      const std_msgs::Header& header);
-/// A pinhole camera from CameraInfo (K); throws std::invalid_argument on a zero focal length.
+/// The camera of the images a node works on: camera_info's K, or its P (the rectified camera)
+/// when it has lens distortion (hasDistortion), as image_geometry defines them. Throws
+/// std::invalid_argument on a bad size or focal length.
 world::PinholeCamera fromCameraInfo(const sensor_msgs::CameraInfo& info);
+/// True when any distortion coefficient is non-zero.
+bool hasDistortion(const sensor_msgs::CameraInfo& info);
 
 geometry_msgs::Pose toPose(const math::SE2& pose);
 geometry_msgs::Pose toPose(const Eigen::Isometry3d& pose);

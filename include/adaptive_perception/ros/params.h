@@ -1,6 +1,7 @@
 #pragma once
 // Reading and validating private parameters. A node given a bad value refuses to start: the thrown
 // ParamError names the parameter, the value and the allowed range.
+#include <image_transport/transport_hints.h>
 #include <ros/node_handle.h>
 
 #include <Eigen/Core>
@@ -121,6 +122,11 @@ config::ParameterDoc stampOrderParameter();
 /// The row of ~map_frame, ~odom_frame or ~base_frame (`frame`: "map", "odom" or "base") with the
 /// project's name for that frame (ros/topics.h) as its default.
 config::ParameterDoc frameParameter(const std::string& frame);
+/// How an image node takes its camera images: ~image_transport names the transport (raw, the
+/// default, or compressed: ros/compressed_transport.h, or any plugin installed), as image_transport's
+/// own nodes read it. Throws ParamError naming a transport that is not installed.
+image_transport::TransportHints imageTransportHints(const ros::NodeHandle& pnh);
+config::ParameterDoc imageTransportParameter();
 /// The rows of the parameters loadLightingPriors reads (~filter, ~priors, ~single_prior,
 /// ~priors_dir).
 std::vector<config::ParameterDoc> lightingPriorParameters();

@@ -8,6 +8,7 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <image_transport/image_transport.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -35,12 +36,15 @@ class RbpfLocalizerNode {
   /// Throws ros_params::ParamError / std::runtime_error (bad prior or field file) with a clear
   /// message.
   RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Callbacks that may run at once (node_main.h): the state is locked, so tf and camera_info
+  /// are taken while an image is weighed.
+  static constexpr int kCallbackThreads = 2;
   /// Every private parameter the node reads, with its default, range and doc (the table of
   /// docs/nodes/rbpf_localizer.md, made by describe_parameters).
   static std::vector<config::ParameterDoc> parameters();
 
  private:
-  void onImage(const ros::MessageEvent<const sensor_msgs::Image>& event);
+  void onImage(const sensor_msgs::ImageConstPtr& msg);
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg);
   void onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool onGlobalLocalization(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
@@ -54,7 +58,7 @@ class RbpfLocalizerNode {
   localization::RbpfConfig config_;
   std::vector<color::LightingPrior> priors_;
   world::FieldMap map_;
-  ros_conv::CameraModelSource camera_{"rbpf_localizer"};
+  ros_conv::CameraModelSource camera_;
   std::unique_ptr<localization::RbpfLocalizer> rbpf_;
   // A pose to start from (initial_pose parameter or initialpose topic), applied when the localizer
   // is (re)built.
@@ -71,8 +75,10 @@ class RbpfLocalizerNode {
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
-  ros::Subscriber image_sub_, info_sub_, initial_pose_sub_;
-  ros::Publisher pose_pub_, particles_pub_, model_pub_, classified_pub_, classified_color_pub_;
+  image_transport::Subscriber image_sub_;
+  ros::Subscriber info_sub_, initial_pose_sub_;
+  ros::Publisher pose_pub_, particles_pub_, model_pub_;
+  image_transport::Publisher classified_pub_, classified_color_pub_;
   ros_conv::ServiceQueue service_queue_;  // global_localization answers while a step waits
   ros::ServiceServer global_srv_;
   diagnostic_updater::Updater diagnostics_;
