@@ -63,7 +63,7 @@ TEST(EkfSlamMapperLocalize, StaysOnTheTruePathAgainstTheLoadedMapWithoutExtendin
   ros::WallDuration(2.0).sleep();
   std::lock_guard<std::mutex> l(mutex);
   ASSERT_EQ(scans, expected);
-  ASSERT_GE(static_cast<int>(poses.size()), expected - 10) << "the mapper kept up with 4x replay";
+  ASSERT_GE(static_cast<int>(poses.size()), expected - 10) << "the mapper answered the scans";
   double worst = 0.0, final_err = -1.0;
   int compared = 0;
   for (const auto& m : poses) {

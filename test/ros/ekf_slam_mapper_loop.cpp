@@ -87,7 +87,7 @@ TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
   {
     std::lock_guard<std::mutex> l(mutex);
     ASSERT_EQ(scans, expected);
-    EXPECT_GE(poses, expected - 10) << "the mapper kept up with 4x replay";
+    EXPECT_GE(poses, expected - 10) << "the mapper answered the scans";
     ASSERT_TRUE(last_pose);
     EXPECT_EQ(last_pose->header.frame_id, "map");
     const auto it = truth.find(last_pose->header.stamp);

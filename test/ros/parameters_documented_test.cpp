@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -115,5 +116,55 @@ TEST(ParametersDocumented, EveryNameTheSourceReadsIsDocumentedAndEveryNodeRowIsR
       EXPECT_NE(source.find("loadFields("), std::string::npos)
           << "src/ros/" << node << "_node.cpp does not load its config's table";
     }
+  }
+}
+
+// A numeric range as the tables write it: "[lo, hi]", "(lo, hi]", "[lo, hi)".
+static bool parseRange(const std::string& text, double* lo, double* hi) {
+  static const std::regex range(R"(^[\[\(]\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)\s*[\]\)]$)");
+  std::smatch m;
+  if (!std::regex_match(text, m, range)) return false;
+  *lo = std::stod(m[1]);
+  *hi = std::stod(m[2]);
+  return true;
+}
+
+TEST(ParametersDocumented, DynamicReconfigureAgreesWithTheTable) {
+  // Each .cfg entry: gen.add("name", type_t, level, "doc", default[, min, max]). The default must
+  // be the table's, and the slider's span must lie within the range the node accepts.
+  const std::regex add(
+      R"re(gen\.add\("(\w+)",\s*(\w+)_t,\s*\d+,\s*"[^"]*",\s*([^,\)]+)(?:,\s*([^,\)]+),\s*([^,\)]+))?\))re");
+  const std::map<std::string, std::string> files = {{"cfg/LineExtractor.cfg", "line_extractor"},
+                                                    {"cfg/ColorEstimator.cfg", "color_estimator"}};
+  for (const auto& [file, node] : files) {
+    const std::string cfg = read(file);
+    ASSERT_FALSE(cfg.empty()) << file;
+    const auto& rows = ros_params::nodeParameters().at(node);
+    int entries = 0;
+    for (auto it = std::sregex_iterator(cfg.begin(), cfg.end(), add); it != std::sregex_iterator();
+         ++it, ++entries) {
+      const std::string name = (*it)[1], type = (*it)[2], def = (*it)[3];
+      const auto row = std::find_if(rows.begin(), rows.end(),
+                                    [&](const config::ParameterDoc& r) { return r.name == name; });
+      ASSERT_NE(row, rows.end()) << file << " tunes ~" << name << ", which " << node
+                                 << "'s table does not have";
+      if (type == "double" || type == "int") {
+        EXPECT_DOUBLE_EQ(std::stod(def), std::stod(row->default_value))
+            << file << ": default of " << name;
+        double lo = 0, hi = 0;
+        if ((*it)[4].matched && parseRange(row->range, &lo, &hi)) {
+          EXPECT_GE(std::stod((*it)[4]), lo) << file << ": slider of " << name << " below "
+                                             << row->range;
+          EXPECT_LE(std::stod((*it)[5]), hi) << file << ": slider of " << name << " above "
+                                             << row->range;
+        }
+      } else if (type == "bool") {
+        EXPECT_EQ(def == "True" ? "true" : "false", row->default_value)
+            << file << ": default of " << name;
+      } else {
+        EXPECT_EQ(def, "\"" + row->default_value + "\"") << file << ": default of " << name;
+      }
+    }
+    EXPECT_GT(entries, 0) << file << " has no gen.add line this test can read";
   }
 }
