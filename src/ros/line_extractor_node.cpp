@@ -75,9 +75,9 @@ LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   stamp_order_ = ros_conv::StampOrder("line_extractor", "scan", P::loadStampOrder(pnh));
   lines_pub_ = nh.advertise<LineSegmentArray>("lines", 10);
   markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("lines/markers", 2);
-  // Every scan is worth its lines to the mapper: a queue of 50 rides out a second-long stall at
-  // 4x replay.
-  scan_sub_ = nh.subscribe(ros_topics::kScan, 50, &LineExtractorNode::onScan, this);
+  // Every scan is worth its lines to the mapper: 20 scans ride out a 2 s stall at 10 Hz, and keep
+  // the delay short when scans come faster than they can be taken (as the mapper's queue).
+  scan_sub_ = nh.subscribe(ros_topics::kScan, 20, &LineExtractorNode::onScan, this);
   diagnostics_.setHardwareID("line_extractor");
   freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
       diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
