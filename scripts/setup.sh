@@ -28,6 +28,8 @@ PACKAGES=(
   libeigen3-dev libopencv-dev libyaml-cpp-dev libbz2-dev libsqlite3-dev
   # the pose graph of the SLAM loop closing (slam/pose_graph.h)
   libceres-dev
+  # the tools' command lines (src/tools/command_line.h)
+  libcli11-dev
   # OpenCV's CSRT and KCF trackers, the peers of evaluate_tracking
   libopencv-contrib-dev
   # sample videos (a face sequence) for the tracking evaluation

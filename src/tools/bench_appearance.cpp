@@ -1,8 +1,7 @@
 // bench_appearance: speed of SIFT room classification and appearance MCL on one core, with a
 // training set the size of the paper's (1,700 frames) rendered from the indoor simulator.
 //
-//   bench_appearance [--frames 1700] [--particles 100] [--test_frames 100]
-//                    [--structure_weight 0] [--seed N]
+//   bench_appearance --help   (every option with its default, unit and range)
 //
 // Training frames: a cloudy run of the indoor building at the camera rate that gives --frames
 // images (309 x 240), their SIFT features indexed. Test: --test_frames images of another run; per
@@ -20,7 +19,7 @@
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/sim/indoor_renderer.h"
 #include "adaptive_perception/sim/indoor_route.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 using Clock = std::chrono::steady_clock;
@@ -51,18 +50,21 @@ void renderRun(const sim::IndoorWorld& world, const sim::IndoorRenderer& rendere
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "bench_appearance [--frames N] [--particles N] [--test_frames N] "
-                   "[--structure_weight W] [--seed N]");
-  const long frames = args.getInt("frames", 1700);
-  const long particles = args.getInt("particles", 100);
-  const long test_frames = args.getInt("test_frames", 100);
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
+  tools::CommandLine cli("bench_appearance",
+                         "Speed of SIFT room classification and appearance MCL on one core, on a "
+                         "training set rendered from the indoor simulator.");
+  long frames = 1700;
+  cli.option("frames", &frames, config::closed(10, 100000), "training frames");
+  long particles = 100;
+  cli.option("particles", &particles, config::closed(1, 100000), "MCL particles");
+  long test_frames = 100;
+  cli.option("test_frames", &test_frames, config::closed(1, 10000), "test frames");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
   places::RoomClassifierConfig cfg;
-  cfg.structure.weight = args.getDouble("structure_weight", 0.0);
-  args.finish();
-  if (frames < 10 || frames > 100000) args.fail("--frames must be in 10..100000");
-  if (test_frames < 1 || test_frames > 10000) args.fail("--test_frames must be in 1..10000");
+  cfg.structure.weight = 0.0;  // SIFT alone unless asked: the paper's classifier
+  cli.fields(places::RoomClassifierConfig::fields(), &cfg, {"structure_weight"});
+  cli.parse(argc, argv);
   cv::setNumThreads(1);  // one core, as the target says (OpenCV would parallelise SIFT)
   try {
     const sim::IndoorWorld world = sim::IndoorWorld::loadYaml(

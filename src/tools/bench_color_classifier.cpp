@@ -2,8 +2,7 @@
 // default), through the lookup table from packed UYVY as the node does, and the direct eq. (9)
 // classifier for comparison; also the cost of rebuilding the table.
 //
-//   bench_color_classifier [--bag rosbag/field_bright.bag] [--prior
-//   config/color_priors/bright.yaml] [--seconds 2]
+//   bench_color_classifier --help   (every option with its default, unit and range)
 //
 // Last line: `bench_color_classifier: frames_per_s=... direct_frames_per_s=... lut_build_ms=...`
 #include <chrono>
@@ -14,20 +13,24 @@
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/ros/bag_frames.h"
 #include "adaptive_perception/ros/params.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "bench_color_classifier [--bag FILE] [--prior FILE.yaml] [--seconds S]");
-  const std::string bag =
-      ros_params::resolvePackagePath(args.get("bag", "rosbag/field_bright.bag"));
-  const std::string prior_path =
-      ros_params::resolvePackagePath(args.get("prior", "config/color_priors/bright.yaml"));
-  const double seconds = args.getDouble("seconds", 2.0);
-  args.finish();
+  tools::CommandLine cli("bench_color_classifier",
+                         "Full-frame colour classification throughput on one core, through the "
+                         "lookup table and the direct classifier, and the table's rebuild cost.");
+  std::string bag = "rosbag/field_bright.bag";
+  cli.option("bag", &bag, "field bag whose images are classified (relative: from the package)");
+  std::string prior_path = "config/color_priors/bright.yaml";
+  cli.option("prior", &prior_path, "colour prior (YAML; relative: from the package)");
+  double seconds = 2.0;
+  cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
+  cli.parse(argc, argv);
+  bag = ros_params::resolvePackagePath(bag);
+  prior_path = ros_params::resolvePackagePath(prior_path);
   try {
     const color::LightingPrior prior = color::LightingPrior::loadYaml(prior_path);
     const color::ColorFilter filter(prior, color::ColorModelConfig());

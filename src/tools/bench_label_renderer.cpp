@@ -2,8 +2,7 @@
 // poses drawn from the head chain over the whole field (seeded, so every run renders the same
 // views).
 //
-//   bench_label_renderer [--field config/field_4legged.yaml] [--poses 2000] [--seconds 2] [--seed
-//   1]
+//   bench_label_renderer --help   (every option with its default, unit and range)
 //
 // Last line: `bench_label_renderer: labeled_pixels_per_s=... full_frame_pixels_per_s=...
 // subsample_pixels_per_s=... frames_per_s=...` (full frames of 208x160, and the particle filter's
@@ -16,18 +15,23 @@
 
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/world/label_renderer.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "bench_label_renderer [--field FILE.yaml] [--poses N] [--seconds S] [--seed N]");
-  const std::string field = args.get("field", "");
-  const int n_poses = args.getInt("poses", 2000);
-  const double seconds = args.getDouble("seconds", 2.0);
-  const int seed = args.getInt("seed", 1);
-  args.finish();
+  tools::CommandLine cli("bench_label_renderer",
+                         "Throughput of the label renderer on one core, on a fixed seeded set of "
+                         "camera poses over the whole field.");
+  std::string field;
+  cli.option("field", &field, "field description (YAML; empty: the built-in 4-legged league field)");
+  int n_poses = 2000;
+  cli.option("poses", &n_poses, config::closed(1, 1000000), "camera poses");
+  double seconds = 2.0;
+  cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
+  int seed = 1;
+  cli.option("seed", &seed, "random seed");
+  cli.parse(argc, argv);
 
   const world::FieldMap map = field.empty() ? world::FieldMap() : world::FieldMap::loadYaml(field);
   const world::PinholeCamera cam = world::PinholeCamera::aiboErs7();

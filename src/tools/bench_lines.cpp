@@ -3,7 +3,7 @@
 // tree, on a worst-case input (an alternating exponential zigzag: every split peels off one point,
 // O(n^2) for the linear scan).
 //
-//   bench_lines [--seconds S] [--seed N]
+//   bench_lines --help   (every option with its default, unit and range)
 //
 // Last line: `bench_lines: scans_per_s_181=... scans_per_s_361=... scans_per_s_1081=...
 //             split_ms_recursive_N=... split_ms_hull_tree_N=... (for N = 1000, 4000, 16000)`
@@ -14,7 +14,7 @@
 
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/math/rng.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 using Clock = std::chrono::steady_clock;
@@ -53,10 +53,14 @@ laser::LaserScan2D officeScan(int beams, math::Rng& rng) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv, "bench_lines [--seconds S] [--seed N]");
-  const double seconds = args.getDouble("seconds", 1.5);
-  const int seed = static_cast<int>(args.getInt("seed", 1));
-  args.finish();
+  tools::CommandLine cli("bench_lines",
+                         "Line extraction throughput on one core for 181, 361 and 1081-beam scans, "
+                         "and the split step alone on a worst-case input.");
+  double seconds = 1.5;
+  cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
+  int seed = 1;
+  cli.option("seed", &seed, "random seed");
+  cli.parse(argc, argv);
   math::Rng rng(seed);
   std::string summary = "bench_lines:";
   for (int beams : {181, 361, 1081}) {

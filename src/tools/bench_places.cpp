@@ -1,6 +1,6 @@
 // bench_places: place-recognition speed on one core.
 //
-//   bench_places [--images 10000] [--space hsv] [--bins 256] [--seconds 1] [--seed N]
+//   bench_places --help   (every option with its default, unit and range)
 //
 // 1. Histogram extraction of a 640 x 480 rendering of the indoor building (the kitchen, cloudy),
 //    each colour space alone and all eight together (ms per image).
@@ -26,7 +26,7 @@
 #include "adaptive_perception/places/traversal_matcher.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/sim/indoor_renderer.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 using Clock = std::chrono::steady_clock;
@@ -47,17 +47,22 @@ double msPerCall(double seconds, F&& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "bench_places [--images N] [--space NAME] [--bins B] [--seconds S] [--seed N]");
-  const long images = args.getInt("images", 10000);
-  const std::string space_name = args.get("space", "hsv");
-  const long bins = args.getInt("bins", 256);
-  const double seconds = args.getDouble("seconds", 1.0);
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  args.finish();
-  if (images < 1 || images > 1000000) args.fail("--images must be in 1..1000000");
-  if (bins < 2 || bins > 256) args.fail("--bins must be in 2..256");
-  if (!(seconds > 0.0)) args.fail("--seconds must be positive");
+  tools::CommandLine cli("bench_places",
+                         "Place-recognition speed on one core: histogram extraction, queries "
+                         "against stored images, and traversal descriptors.");
+  long images = 10000;
+  cli.option("images", &images, config::closed(1, 1000000), "stored images");
+  std::string space_name = "hsv";
+  std::vector<std::string> spaces;
+  for (int i = 0; i < places::kNumSpaces; ++i) spaces.push_back(places::spaceName(i));
+  cli.option("space", &space_name, "colour space of the queries")->check(CLI::IsMember(spaces));
+  long bins = 256;
+  cli.option("bins", &bins, config::closed(2, 256), "histogram bins");
+  double seconds = 1.0;
+  cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  cli.parse(argc, argv);
   try {
     const int space = places::spaceIndex(space_name);
     const sim::IndoorWorld world = sim::IndoorWorld::loadYaml(

@@ -1,7 +1,6 @@
 // bench_tracker: frames per second of the trackers of papers/001 section 3 on one core.
 //
-//   bench_tracker [--samples 100] [--frames 200] [--width 320] [--height 240]
-//                 [--scenario circles] [--seed 1]
+//   bench_tracker --help   (every option with its default, unit and range)
 //
 // Frames come from the tracking simulator (sim/tracking_scene.h), rendered before timing. Times
 // the CONDENSATION tracker with --samples samples and the elliptical head tracker alone, each over
@@ -21,23 +20,29 @@
 #include "adaptive_perception/tracking/box_condensation_tracker.h"
 #include "adaptive_perception/tracking/condensation_tracker.h"
 #include "adaptive_perception/tracking/ellipse_tracker.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "bench_tracker [--samples N] [--frames N] [--width PX] [--height PX] "
-                   "[--scenario NAME] [--seed N]");
-  const long samples = args.getInt("samples", 100);
+  tools::CommandLine cli("bench_tracker",
+                         "Frames per second of the box, CONDENSATION and elliptical head trackers "
+                         "on one core, on frames of the tracking simulator.");
+  long samples = 100;
+  cli.option("samples", &samples, config::closed(1, 100000), "CONDENSATION samples");
   sim::TrackingSceneConfig sc;
-  sc.frames = static_cast<int>(args.getInt("frames", 200));
-  sc.width = static_cast<int>(args.getInt("width", 320));
-  sc.height = static_cast<int>(args.getInt("height", 240));
-  const std::string scenario = args.get("scenario", "circles");
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  args.finish();
+  sc.frames = 200;
+  cli.option("frames", &sc.frames, "frames");
+  sc.width = 320;
+  cli.option("width", &sc.width, "image width, px");
+  sc.height = 240;
+  cli.option("height", &sc.height, "image height, px");
+  std::string scenario = "circles";
+  cli.option("scenario", &scenario, "simulated scenario (sim/tracking_scene.h)");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  cli.parse(argc, argv);
   cv::setNumThreads(1);  // one core, as the target says
   try {
     sc.scenario = sim::parseTrackingScenario(scenario);

@@ -1,7 +1,6 @@
 // carmen_to_bag: converts a CARMEN log (.clf or .clf.bz2) into a bag.
 //
-//   carmen_to_bag --input LOG --output FILE.bag [--laser_frame laser] [--overwrite] [--max_issues
-//   20] [--odometry auto|odom_lines|laser_poses]
+//   carmen_to_bag --help   (every option with its default, unit and range)
 //
 // Topics: scan (sensor_msgs/LaserScan: angle_min, angle_increment and range_max from the log;
 // FLASER and ROBOTLASER1 in `laser`, RLASER in `rear_laser`), odom (nav_msgs/Odometry; --odometry
@@ -32,27 +31,32 @@
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/world/camera_model.h"
 #include "progress.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace T = adaptive_perception::ros_topics;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "carmen_to_bag --input LOG --output FILE.bag [--laser_frame laser] "
-                   "[--overwrite] [--max_issues 20] [--odometry auto|odom_lines|laser_poses]");
-  const std::string input = args.get("input", "");
-  const std::string output = args.get("output", "");
-  const std::string laser_frame = args.get("laser_frame", T::kLaserFrame);
-  const bool overwrite = args.has("overwrite");
-  const long max_issues = args.getInt("max_issues", 20);
-  const std::string odometry = args.get("odometry", "auto");
-  args.finish();
-  if (input.empty() || output.empty()) args.fail("--input and --output are required");
-  if (odometry != "auto" && odometry != "odom_lines" && odometry != "laser_poses")
-    args.fail("--odometry = '" + odometry + "' (allowed: auto, odom_lines, laser_poses)");
+  tools::CommandLine cli("carmen_to_bag", "Converts a CARMEN log (.clf or .clf.bz2) into a bag.");
+  std::string input;
+  cli.option("input", &input, "the CARMEN log")->required();
+  std::string output;
+  cli.option("output", &output, "the bag to write")->required();
+  std::string laser_frame = T::kLaserFrame;
+  cli.option("laser_frame", &laser_frame, "frame of the front laser's scans");
+  bool overwrite = false;
+  cli.flag("overwrite", &overwrite, "replace the bag if it exists");
+  long max_issues = 20;
+  cli.option("max_issues", &max_issues, config::closed(0, 1e9),
+             "malformed lines reported one by one before a summary");
+  std::string odometry = "auto";
+  cli.option("odometry", &odometry,
+             "odometry source: the lasers' robot poses unless they never change (auto), or "
+             "either forced")
+      ->check(CLI::IsMember({"auto", "odom_lines", "laser_poses"}));
+  cli.parse(argc, argv);
   if (std::filesystem::exists(output) && !overwrite)
-    args.fail("'" + output + "' exists; pass --overwrite to replace it");
+    cli.fail("'" + output + "' exists; pass --overwrite to replace it");
   try {
     io::CarmenLog log = io::readCarmenLog(input);
     log.sortByTime();

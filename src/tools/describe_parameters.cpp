@@ -2,31 +2,37 @@
 // default, allowed range and what it does), as its doc page shows it; --update rewrites the table
 // in docs/nodes/<node>.md (between its markers) from the code.
 //
-//   describe_parameters --node rbpf_localizer [--update] [--docs DIR (default docs/nodes)]
-//   describe_parameters --list
+//   describe_parameters --help   (every option with its default, unit and range)
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/ros/parameter_docs.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv, "describe_parameters --node NAME [--update] [--docs DIR] | --list");
-  const bool list = args.has("list");
-  const std::string node = args.get("node", "");
-  const bool update = args.has("update");
-  const std::string docs = args.get("docs", "docs/nodes");
-  args.finish();
+  tools::CommandLine cli("describe_parameters",
+                         "Prints a node's parameter table (every private parameter it reads, its "
+                         "default, range and doc) as its doc page shows it; --update rewrites the "
+                         "table in the page from the code.");
+  bool list = false;
+  cli.flag("list", &list, "list the nodes that have a table");
+  std::string node;
+  cli.option("node", &node, "the node");
+  bool update = false;
+  cli.flag("update", &update, "rewrite the table in DOCS/<node>.md (between its markers)");
+  std::string docs = "docs/nodes";
+  cli.option("docs", &docs, "folder of the nodes' doc pages");
+  cli.parse(argc, argv);
   const auto& nodes = ros_params::nodeParameters();
   if (list) {
     for (const auto& [name, rows] : nodes) std::cout << name << " (" << rows.size() << ")\n";
     return 0;
   }
-  if (!nodes.count(node)) args.fail("--node must name a node with a parameter table (--list)");
+  if (!nodes.count(node)) cli.fail("--node must name a node with a parameter table (--list)");
   if (!update) {
     std::cout << ros_params::parameterBlock(node);
     return 0;

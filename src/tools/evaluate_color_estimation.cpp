@@ -2,11 +2,7 @@
 // a bag and scores every pixel's classification against the bag's true labels (Schulz & Fox, Table
 // 1, Fig. 6).
 //
-//   evaluate_color_estimation --bag FILE [--filter switching|single] [--prior joint|independent]
-//       [--unobserved COLOUR] [--priors_dir config/color_priors] [--modes dark,bright] [--single
-//       all]
-//       [--mixing best_mode|imm] [--output results/evaluate_color_estimation] [--name LABEL]
-//       [--<color_estimator parameter> V ...]   (its table: docs/nodes/color_estimator.md)
+//   evaluate_color_estimation --help   (every option with its default, unit and range)
 //
 // switching: one mode per prior in --modes; single: one Kalman filter from the prior --single.
 // independent: the same priors with every cross-colour covariance zeroed. --unobserved withholds
@@ -27,48 +23,57 @@
 #include "adaptive_perception/color/color_estimator.h"
 #include "adaptive_perception/ros/bag_frames.h"
 #include "adaptive_perception/ros/params.h"
-#include "config_args.h"
-#include "tool_args.h"
+#include "command_line.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "evaluate_color_estimation --bag FILE [--filter switching|single] [--prior "
-                   "joint|independent] "
-                   "[--unobserved COLOUR] [--priors_dir DIR] [--modes dark,bright] [--single all] "
-                   "[--mixing best_mode|imm] [--<color_estimator parameter> V ...] "
-                   "[--output DIR] [--name LABEL] [--no_plot]");
-  const std::string bag = args.get("bag", "");
-  const std::string filter = args.get("filter", "switching");
-  const std::string prior_kind = args.get("prior", "joint");
-  const std::string unobserved = args.get("unobserved", "");
-  const std::string priors_dir = args.get("priors_dir", "config/color_priors");
-  const std::string modes_arg = args.get("modes", "dark,bright");
-  const std::string single = args.get("single", "all");
-  const std::string mixing = args.get("mixing", "best_mode");
-  const std::string output = args.get("output", "results/evaluate_color_estimation");
-  const std::string name = args.get("name", fs::path(bag).stem().string());
-  const bool plot = !args.has("no_plot");
-  // color_estimator's parameters (color::ColorEstimatorConfig::fields(), the same names and
-  // ranges). Scored as the node classifies: maximum likelihood behind the "unknown" gate;
-  // --unknown_mahalanobis 1e9 gives the paper's plain maximum likelihood over the map colours.
+  tools::CommandLine cli("evaluate_color_estimation",
+                         "Runs the colour estimator with known camera poses over a bag and scores "
+                         "every pixel's classification against the bag's true labels (Schulz & "
+                         "Fox, Table 1, Fig. 6).");
+  std::string bag;
+  cli.option("bag", &bag, "field bag with true labels")->required();
+  std::string filter = "switching";
+  cli.option("filter", &filter, "one mode per prior in --modes, or one Kalman filter (--single)")
+      ->check(CLI::IsMember({"switching", "single"}));
+  std::string prior_kind = "joint";
+  cli.option("prior", &prior_kind, "the priors as learned, or with cross-colour covariances zeroed")
+      ->check(CLI::IsMember({"joint", "independent"}));
+  std::string unobserved;
+  cli.option("unobserved", &unobserved,
+             "a colour whose observations are withheld from the filter (still scored)");
+  std::string priors_dir = "config/color_priors";
+  cli.option("priors_dir", &priors_dir, "folder of the lighting priors (<mode>.yaml)");
+  std::string modes_arg = "dark,bright";
+  cli.option("modes", &modes_arg, "the switching filter's modes (comma-separated prior names)");
+  std::string single = "all";
+  cli.option("single", &single, "the single filter's prior");
+  std::string mixing = "best_mode";
+  cli.option("mixing", &mixing, "mode mixing of the switching filter: best_mode or imm");
+  std::string output = "results/evaluate_color_estimation";
+  cli.option("output", &output, "folder for the results and plots");
+  std::string name;
+  cli.option("name", &name, "label of the run (empty: the bag's file name)");
+  bool no_plot = false;
+  cli.flag("no_plot", &no_plot, "skip the plots");
+  // color_estimator's parameters (the same names and ranges). Scored as the node classifies:
+  // maximum likelihood behind the "unknown" gate; --unknown_mahalanobis 1e9 gives the paper's
+  // plain maximum likelihood over the map colours.
   color::ColorEstimatorConfig cfg;
-  tools::applyFields(args, color::ColorEstimatorConfig::fields(), &cfg);
-  args.finish();
-  if (bag.empty()) args.fail("--bag FILE is required");
-  if (filter != "switching" && filter != "single")
-    args.fail("--filter must be switching or single");
-  if (prior_kind != "joint" && prior_kind != "independent")
-    args.fail("--prior must be joint or independent");
+  cli.fields(color::ColorEstimatorConfig::fields(), &cfg);
+  cli.parse(argc, argv);
+  if (name.empty()) name = fs::path(bag).stem().string();
+  const bool plot = !no_plot;
 
   try {
     cfg.switching.mixing = color::parseModeMixing(mixing);
     if (!unobserved.empty()) {
       const auto c = world::parseColorClass(unobserved);
       if (!c || *c == world::kBackground)
-        args.fail("--unobserved: unknown colour '" + unobserved + "'");
+        cli.fail("--unobserved: unknown colour '" + unobserved + "'");
       cfg.withheld_class = *c;
     }
     std::vector<std::string> mode_names;

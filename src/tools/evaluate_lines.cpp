@@ -2,8 +2,7 @@
 // (simulator bags) it scores the segments against the walls in view; on real logs (no truth) it
 // reports speed. Either way it draws one scan with its segments (PNG).
 //
-//   evaluate_lines --bag FILE [--output results/evaluate_lines] [--split_method
-//                  recursive|hull_tree] [--<field> V ...] [--plot_scan N] [--name LABEL]
+//   evaluate_lines --help   (every option with its default, unit and range)
 // --<field>: any of line_extractor's parameters (laser::LineExtractionConfig::fields(), the same
 // names and ranges), e.g. --range_noise_std_m, the laser's range noise the extractor assumes.
 //
@@ -30,27 +29,35 @@
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
-#include "config_args.h"
-#include "tool_args.h"
+#include "command_line.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "evaluate_lines --bag FILE [--output DIR] [--split_method recursive|hull_tree] "
-                   "[--<line_extractor parameter> V ...] [--plot_scan N] [--name LABEL] "
-                   "[--no_plot]");
-  const std::string bag_path = args.get("bag", "");
-  const std::string output = args.get("output", "results/evaluate_lines");
-  const std::string method = args.get("split_method", "recursive");
-  const long plot_scan = args.getInt("plot_scan", -1);
+  tools::CommandLine cli("evaluate_lines",
+                         "Runs the line extractor over every scan of a bag: scores the segments "
+                         "against ground_truth/walls where the bag has them (simulator bags), "
+                         "else reports speed; draws one scan with its segments.");
+  std::string bag_path;
+  cli.option("bag", &bag_path, "laser bag")->required();
+  std::string output = "results/evaluate_lines";
+  cli.option("output", &output, "folder for results.yaml and scan.png");
+  std::string method = "recursive";
+  cli.option("split_method", &method, "split step: recursive or hull_tree");
+  long plot_scan = -1;
+  cli.option("plot_scan", &plot_scan, "index of the scan drawn (-1: the middle one)");
+  // line_extractor's parameters (the same names and ranges), e.g. --range_noise_std_m.
   laser::LineExtractionConfig cfg;
-  tools::applyFields(args, laser::LineExtractionConfig::fields(), &cfg);
-  const std::string name = args.get("name", fs::path(bag_path).stem().string());
-  const bool plot = !args.has("no_plot");
-  args.finish();
-  if (bag_path.empty()) args.fail("--bag FILE is required");
+  cli.fields(laser::LineExtractionConfig::fields(), &cfg);
+  std::string name;
+  cli.option("name", &name, "label of the run (empty: the bag's file name)");
+  bool no_plot = false;
+  cli.flag("no_plot", &no_plot, "skip the drawing");
+  cli.parse(argc, argv);
+  if (name.empty()) name = fs::path(bag_path).stem().string();
+  const bool plot = !no_plot;
   try {
     cfg.split_method = laser::parseSplitMethod(method);
     laser::LineExtractor extractor(cfg);

@@ -1,9 +1,7 @@
 // evaluate_localization: runs the Rao-Blackwellised localizer offline over a field bag from a
 // uniform (global) start, against ground_truth/pose and the bag's true labels.
 //
-//   evaluate_localization --bag FILE [--filter switching|single] [--threads 1] [--seed 1]
-//       [--init global|truth] [--priors_dir config/color_priors] [--output DIR] [--name LABEL]
-//       [--<parameter> VALUE ...]
+//   evaluate_localization --help   (every option with its default, unit and range)
 // Every parameter of rbpf_localizer's table (docs/nodes/rbpf_localizer.md) that comes from
 // localization::RbpfConfig is an option of the same name, range and default (--help lists them).
 //
@@ -31,9 +29,9 @@
 #include "adaptive_perception/localization/rbpf_localizer.h"
 #include "adaptive_perception/ros/bag_frames.h"
 #include "adaptive_perception/ros/params.h"
-#include "config_args.h"
+#include "command_line.h"
 #include "progress.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
@@ -52,26 +50,31 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
   localization::RbpfConfig cfg;
-  tools::Args args(argc, argv,
-                   "evaluate_localization --bag FILE [--filter switching|single] [--threads T] "
-                   "[--seed N] [--init global|truth] [--priors_dir DIR] [--output DIR] "
-                   "[--name LABEL] [--<parameter> VALUE ...]",
-                   "parameters (default, allowed):\n" +
-                       tools::fieldsHelp(localization::RbpfConfig::fields(), cfg));
-  const std::string bag = args.get("bag", "");
-  tools::applyFields(args, localization::RbpfConfig::fields(), &cfg);
-  const std::string filter = args.get("filter", "switching");
-  cfg.threads = static_cast<int>(args.getInt("threads", 1));
-  cfg.seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  const std::string priors_dir = args.get("priors_dir", "config/color_priors");
-  const std::string output = args.get("output", "results/evaluate_localization");
-  const std::string name = args.get("name", fs::path(bag).stem().string());
-  const std::string init = args.get("init", "global");
-  args.finish();
-  if (init != "global" && init != "truth") args.fail("--init must be global or truth");
-  if (bag.empty()) args.fail("--bag FILE is required");
-  if (filter != "switching" && filter != "single")
-    args.fail("--filter must be switching or single");
+  tools::CommandLine cli("evaluate_localization",
+                         "Runs the Rao-Blackwellised localizer offline over a field bag from a "
+                         "uniform (global) start, against ground_truth/pose and the bag's true "
+                         "labels.");
+  std::string bag;
+  cli.option("bag", &bag, "field bag with ground truth")->required();
+  std::string filter = "switching";
+  cli.option("filter", &filter, "lighting filter: switching (one mode per prior) or single")
+      ->check(CLI::IsMember({"switching", "single"}));
+  cli.option("threads", &cfg.threads, "threads (the result is the same for any count)");
+  cli.option("seed", &cfg.seed, "random seed");
+  std::string init = "global";
+  cli.option("init", &init, "start: uniform over the field (global) or at the true pose")
+      ->check(CLI::IsMember({"global", "truth"}));
+  std::string priors_dir = "config/color_priors";
+  cli.option("priors_dir", &priors_dir, "folder of the lighting priors");
+  std::string output = "results/evaluate_localization";
+  cli.option("output", &output, "folder for results.yaml, frames.csv and the trajectories");
+  std::string name;
+  cli.option("name", &name, "label of the run (empty: the bag's file name)");
+  // Every parameter of rbpf_localizer's table that comes from the core config: the same name,
+  // range and default.
+  cli.fields(localization::RbpfConfig::fields(), &cfg);
+  cli.parse(argc, argv);
+  if (name.empty()) name = fs::path(bag).stem().string();
   try {
     const std::string dir = ros_params::resolvePackagePath(priors_dir);
     std::vector<color::LightingPrior> priors;

@@ -2,10 +2,7 @@
 // paper's way (papers/004 sections 5-7) and with the topological Bayes filter. With --reference
 // and --query it runs the standard protocol on two traversals instead (place_traversal.h).
 //
-//   evaluate_places --database DB.sqlite (--bag FILE | --list CSV) [--images_per_place 15]
-//                   [--window 5] [--spaces all] [--methods paper|all|chi_square,...]
-//                   [--stay_probability 0.8] [--likelihood_sharpness 4] [--use_sequence 0]
-//                   [--output DIR]
+//   evaluate_places --help   (every option with its default, unit and range)
 //
 // 1. The paper's protocol: for each test place, --images_per_place of its images (spread evenly)
 //    form one test set; every colour space and method gives a place and a confidence (eqs. 5-7),
@@ -45,7 +42,7 @@
 #include "labelled_images.h"
 #include "place_traversal.h"
 #include "progress.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 using places::Distance;
@@ -60,39 +57,50 @@ std::string pct(double c) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "evaluate_places --database DB.sqlite (--bag FILE | --list CSV) "
-                   "[--images_per_place N] [--window M] [--spaces all|rgb,...] "
-                   "[--methods paper|all|chi_square,jeffrey,ks,ks_cumulative,intersection] "
-                   "[--cue fused|thumbnail|gradient|chromaticity|layout|histogram] "
-                   "[--stay_probability P] [--likelihood_sharpness K] [--use_sequence 0|1] "
-                   "[--output DIR]\n"
-                   "   or: evaluate_places --reference A --query B [--tolerance_frames N] "
-                   "[--ground_truth CSV] "
-                   "[--method thumbnail|gradient|chromaticity|layout|words|fused|sequence] "
-                   "[--sequence_frames L] [--min_velocity V] [--max_velocity V] [--velocity_steps K] "
-                   "[--thumbnail_weight W] [--gradient_weight W] "
-                   "[--chromaticity_weight W] [--layout_weight W] [--words_weight W] [--database F] [--output DIR]");
-  if (args.has("reference") || args.has("query")) return tools::runTraversalEvaluation(args);
-  const std::string db_path = args.get("database", "");
-  const std::string bag = args.get("bag", "");
-  const std::string list = args.get("list", "");
-  const long per_place = args.getInt("images_per_place", 15);
-  const long window = args.getInt("window", 5);
-  const std::string spaces_arg = args.get("spaces", "");
-  const std::string methods_arg = args.get("methods", "paper");
+  tools::CommandLine cli("evaluate_places",
+                         "Recognises the places of labelled test images against a place database "
+                         "(papers/004 sections 5-7, and the topological Bayes filter); with "
+                         "--reference and --query, the standard protocol on two traversals.");
+  std::string db_path;
+  cli.option("database", &db_path,
+             "place database (labelled images; in traversal mode: the stored references)");
+  std::string output = "results/evaluate_places";
+  cli.option("output", &output, "folder for the results");
+  const std::string group = "Labelled test images (--database with --bag or --list)";
+  std::string bag;
+  cli.option("bag", &bag, "bag of labelled test images")->group(group);
+  std::string list;
+  cli.option("list", &list, "CSV list of labelled test images")->group(group);
+  long per_place = 15;
+  cli.option("images_per_place", &per_place, config::closed(1, 1e9),
+             "test images per place (spread evenly)")
+      ->group(group);
+  std::string spaces_arg;
+  cli.option("spaces", &spaces_arg, "colour spaces of the tables: all or a comma-separated list")
+      ->group(group);
+  std::string methods_arg = "paper";
+  cli.option("methods", &methods_arg,
+             "distances of the tables: paper, all or a comma-separated list of chi_square, "
+             "jeffrey, ks, ks_cumulative, intersection")
+      ->group(group);
   places::PlaceRecognizerConfig rc;
-  rc.cue = args.get("cue", rc.cue);
-  places::PlaceFilterConfig& fc = rc.filter;
-  fc.stay_probability = args.getDouble("stay_probability", fc.stay_probability);
-  fc.likelihood_sharpness = args.getDouble("likelihood_sharpness", fc.likelihood_sharpness);
-  rc.use_sequence = args.getInt("use_sequence", rc.use_sequence ? 1 : 0) != 0;
-  const std::string output = args.get("output", "results/evaluate_places");
-  args.finish();
-  if (db_path.empty()) args.fail("--database DB.sqlite is required");
-  if (bag.empty() == list.empty()) args.fail("give exactly one of --bag FILE and --list CSV");
-  if (per_place < 1) args.fail("--images_per_place must be >= 1");
-  if (window < 1) args.fail("--window must be >= 1");
+  cli.option("cue", &rc.cue,
+             "the answer's cue: fused, thumbnail, gradient, chromaticity, layout or histogram")
+      ->group(group);
+  // histogram_place_recognizer's parameters of the same names and ranges; the fusion weights
+  // apply in both protocols.
+  cli.fields(places::PlaceRecognizerConfig::fields(), &rc,
+             {"window", "stay_probability", "likelihood_sharpness", "use_sequence",
+              "thumbnail_weight", "gradient_weight", "chromaticity_weight", "layout_weight"});
+  cli.option("words_weight", &rc.fusion.words, config::closed(0, 1e6),
+             "weight of the bag of SIFT words in the fused cue (traversals only)");
+  tools::TraversalOptions traversal;
+  tools::addTraversalOptions(cli, &traversal);
+  cli.parse(argc, argv);
+  if (!traversal.reference.empty() || !traversal.query.empty())
+    return tools::runTraversalEvaluation(cli, traversal, rc.fusion, db_path, output);
+  if (db_path.empty()) cli.fail("--database DB.sqlite is required");
+  if (bag.empty() == list.empty()) cli.fail("give exactly one of --bag FILE and --list CSV");
   try {
     rc.validate();
     const places::PlaceDatabase db = places::PlaceDatabase::open(db_path, true);
@@ -260,7 +268,6 @@ int main(int argc, char** argv) {
     // 3. Sequences with --cue (histogram: the best combination): sliding window and Bayes filter.
     rc.color_space = places::spaceName(best->space);
     rc.method = places::distanceName(best->method);
-    rc.window = static_cast<int>(window);
     places::PlaceRecognizer recognizer(rc);
     recognizer.setDatabase(index, db.adjacencyLists(index), dindex);
     long window_right = 0, filter_right = 0;
@@ -309,7 +316,7 @@ int main(int argc, char** argv) {
     y << YAML::Key << "histogram_single_image_accuracy" << YAML::Value
       << best->single_correct / n;
     y << YAML::Key << "single_image_accuracy" << YAML::Value << answering->single_correct / n;
-    y << YAML::Key << "window" << YAML::Value << window;
+    y << YAML::Key << "window" << YAML::Value << rc.window;
     y << YAML::Key << "window_accuracy" << YAML::Value << window_right / n;
     y << YAML::Key << "filter_accuracy" << YAML::Value << filter_right / n;
     y << YAML::Key << "queries_per_s" << YAML::Value << qps;

@@ -2,10 +2,7 @@
 // labelled test images against the training frames of a place database, scored as ImageCLEF 2009
 // RobotVision does (+1 correct, -0.5 wrong, 0 not classified).
 //
-//   evaluate_room_classification --database DB.sqlite (--bag FILE | --list CSV)
-//       [--mode single|mcl] [--particles 100] [--best_frames 20] [--min_share 0.6]
-//       [--max_features 200] [--candidates 30] [--structure_weight 0] [--structure_floor 0.6]
-//       [--seed 1] [--max_images N] [--output DIR]
+//   evaluate_room_classification --help   (every option with its default, unit and range)
 //
 // The database needs training frames with features (train_places --features; poses too for mcl).
 // Mode `single` classifies every image alone (the paper's obligatory track, Table 3). Mode `mcl`
@@ -30,39 +27,41 @@
 #include "adaptive_perception/localization/appearance_mcl.h"
 #include "adaptive_perception/places/room_classifier.h"
 #include "labelled_images.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
-  tools::Args args(
-      argc, argv,
-      "evaluate_room_classification --database DB.sqlite (--bag FILE | --list CSV) "
-      "[--mode single|mcl] [--particles N] [--best_frames N] [--min_share S] "
-      "[--max_features N] [--candidates N] [--structure_weight W] [--structure_floor F] "
-      "[--seed N] [--max_images N] [--output DIR]");
-  const std::string db_path = args.get("database", "");
-  const std::string bag = args.get("bag", "");
-  const std::string list = args.get("list", "");
-  const std::string mode = args.get("mode", "single");
+  tools::CommandLine cli("evaluate_room_classification",
+                         "SIFT image-to-room classification (papers/002 section 4.1.1) of "
+                         "labelled test images against the training frames of a place database, "
+                         "scored as ImageCLEF 2009 RobotVision does.");
+  std::string db_path;
+  cli.option("database", &db_path, "place database with training frames and features")
+      ->required();
+  std::string bag;
+  cli.option("bag", &bag, "bag of labelled test images");
+  std::string list;
+  cli.option("list", &list, "CSV list of labelled test images");
+  std::string mode = "single";
+  cli.option("mode", &mode, "every image alone (single) or the appearance Monte Carlo localizer")
+      ->check(CLI::IsMember({"single", "mcl"}));
+  // The room classifier's and the localizer's parameters (the same names and ranges as
+  // appearance_localizer's and histogram_place_recognizer's).
   places::RoomClassifierConfig cfg;
-  cfg.best_frames = static_cast<int>(args.getInt("best_frames", cfg.best_frames));
-  cfg.min_share = args.getDouble("min_share", cfg.min_share);
-  cfg.sift.max_features = static_cast<int>(args.getInt("max_features", cfg.sift.max_features));
-  cfg.index.candidates = static_cast<int>(args.getInt("candidates", cfg.index.candidates));
-  cfg.structure.weight = args.getDouble("structure_weight", cfg.structure.weight);
-  cfg.structure.floor = args.getDouble("structure_floor", cfg.structure.floor);
-  const long max_images = args.getInt("max_images", 0);
+  cli.fields(places::RoomClassifierConfig::fields(), &cfg);
   localization::AppearanceMclConfig mcl_cfg;
-  mcl_cfg.particles = static_cast<int>(args.getInt("particles", mcl_cfg.particles));
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  const std::string output = args.get("output", "results/evaluate_room_classification");
-  args.finish();
-  if (db_path.empty()) args.fail("--database DB.sqlite is required");
-  if (bag.empty() == list.empty()) args.fail("give exactly one of --bag FILE and --list CSV");
-  if (mode != "single" && mode != "mcl") args.fail("--mode must be single or mcl, got " + mode);
+  cli.fields(localization::AppearanceMclConfig::fields(), &mcl_cfg);
+  long max_images = 0;
+  cli.option("max_images", &max_images, config::closed(0, 1e9), "test images (0: all)");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  std::string output = "results/evaluate_room_classification";
+  cli.option("output", &output, "folder for the results");
+  cli.parse(argc, argv);
+  if (bag.empty() == list.empty()) cli.fail("give exactly one of --bag FILE and --list CSV");
   try {
     cfg.validate();
     const places::PlaceDatabase db = places::PlaceDatabase::open(db_path, true);

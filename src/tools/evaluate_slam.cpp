@@ -1,10 +1,7 @@
 // evaluate_slam: line extraction + line-landmark EKF SLAM offline over a laser bag (simulator or a
 // converted CARMEN log), against ground_truth/pose when the bag has it.
 //
-//   evaluate_slam --bag FILE [--variant standard|anchor|external] [--association jcbb|nn]
-//                 [--relations FILE] [--make_relations FILE] [--external_std_m 0.1] [--seed N]
-//                 [--max_scans N] [--odom_noise_scale 1] [--output DIR] [--name TITLE]
-//                 [--<ekf_slam_mapper parameter> V ...] [--<line_extractor parameter> V ...]
+//   evaluate_slam --help   (every option with its default, unit and range)
 // The mapper's and the extractor's parameters are their config tables' fields, with the nodes'
 // names and ranges (slam::LaserSlamConfig::fields(), laser::LineExtractionConfig::fields(); the
 // tables in docs/nodes/ekf_slam_mapper.md and line_extractor.md), e.g. --front_end 0,
@@ -81,9 +78,9 @@
 #include "adaptive_perception/slam/occupancy_grid.h"
 #include "adaptive_perception/slam/relations.h"
 #include "adaptive_perception/world/camera_model.h"
-#include "config_args.h"
+#include "command_line.h"
 #include "progress.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
@@ -173,40 +170,50 @@ math::SE2 anchorFrame(const slam::LineEkfSlam& ekf, const std::vector<slam::Line
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "evaluate_slam --bag FILE [--variant standard|anchor|external] "
-                   "[--association jcbb|nn] [--relations FILE] [--make_relations FILE] "
-                   "[--external_std_m S] [--seed N] [--max_scans N] [--odom_noise_scale K] "
-                   "[--output DIR] [--name TITLE] [--<ekf_slam_mapper parameter> V ...] "
-                   "[--<line_extractor parameter> V ...] (the parameter tables: "
-                   "docs/nodes/ekf_slam_mapper.md, docs/nodes/line_extractor.md)");
-  const std::string bag_path = args.get("bag", "");
+  tools::CommandLine cli("evaluate_slam",
+                         "Line extraction and line-landmark EKF SLAM offline over a laser bag "
+                         "(simulator or a converted CARMEN log), against ground_truth/pose when "
+                         "the bag has it, or the benchmark's relations.");
+  std::string bag_path;
+  cli.option("bag", &bag_path, "laser bag (carmen_to_bag, simulate_laser)")->required();
   slam::LaserSlamConfig slam_cfg;
   slam::LineEkfSlamConfig& cfg = slam_cfg.ekf;
-  const std::string association =
-      args.get("association", slam::associationName(slam::LineEkfSlamConfig{}.association.method));
-  const std::string variant =
-      args.get("variant", slam::variantName(slam::LineEkfSlamConfig{}.variant));
-  // Every field of the node's table (slam::LaserSlamConfig::fields(): the same names and ranges as
-  // ekf_slam_mapper's parameters), e.g. --retire_after_updates 50, --loop_closing 0.
-  tools::applyFields(args, slam::LaserSlamConfig::fields(), &slam_cfg);
-  const std::string relations_path = args.get("relations", "");
-  const std::string make_relations = args.get("make_relations", "");
-  const double external_std = args.getDouble("external_std_m", 0.1);
-  math::Rng rng(static_cast<std::uint64_t>(args.getInt("seed", 1)));
-  const long long max_scans = args.getInt("max_scans", 0);
-  const std::string output = args.get("output", "results/evaluate_slam");
-  const std::string name = args.get("name", fs::path(bag_path).stem().string());
-  const double odom_scale = args.getDouble("odom_noise_scale", 1.0);
+  std::string association = slam::associationName(cfg.association.method);
+  cli.option("association", &association, "data association: jcbb or nn");
+  std::string variant = slam::variantName(cfg.variant);
+  cli.option("variant", &variant, "filter variant: standard, anchor or external");
+  std::string relations_path;
+  cli.option("relations", &relations_path, "relations file scored against (the benchmark's)");
+  std::string make_relations;
+  cli.option("make_relations", &make_relations,
+             "writes relations from the bag's ground truth to this file");
+  double external_std = 0.1;
+  cli.option("external_std_m", &external_std, config::aboveZero(1e3),
+             "variant external: standard deviation of the external position fixes, m");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  long long max_scans = 0;
+  cli.option("max_scans", &max_scans, config::closed(0, 1e12), "scans processed (0: all)");
+  std::string output = "results/evaluate_slam";
+  cli.option("output", &output, "folder for the results and plots");
+  std::string name;
+  cli.option("name", &name, "title of the run (empty: the bag's file name)");
+  double odom_scale = 1.0;
+  cli.option("odom_noise_scale", &odom_scale, config::aboveZero(1e3),
+             "scales every odometry noise parameter of the motion models");
+  // ekf_slam_mapper's and line_extractor's parameters (the same names and ranges), e.g.
+  // --retire_after_updates 50, --loop_closing 0.
+  cli.fields(slam::LaserSlamConfig::fields(), &slam_cfg);
+  laser::LineExtractionConfig lines;
+  cli.fields(laser::LineExtractionConfig::fields(), &lines);
+  cli.parse(argc, argv);
+  if (name.empty()) name = fs::path(bag_path).stem().string();
+  math::Rng rng(seed);
   const bool loop_closing = slam_cfg.loop_closing;
   for (localization::MotionModelConfig* m : {&cfg.motion, &slam_cfg.front_end_motion})
     for (double* a : {&m->alpha1, &m->alpha2, &m->alpha3, &m->alpha4, &m->min_translation_std_m,
                       &m->min_rotation_std_rad})
       *a *= odom_scale;
-  laser::LineExtractionConfig lines;
-  tools::applyFields(args, laser::LineExtractionConfig::fields(), &lines);
-  args.finish();
-  if (bag_path.empty()) args.fail("--bag FILE is required");
   try {
     cfg.association.method = slam::parseAssociation(association);
     cfg.variant = slam::parseVariant(variant);

@@ -2,10 +2,7 @@
 // frames from the same first box, the trackers a user would pick instead: OpenCV's CSRT and KCF
 // (opencv-contrib) and CamShift; scores all of them by the benchmarks' one-pass evaluation.
 //
-//   evaluate_tracking (--sequence DIR | --bag FILE | --video FILE [--ground_truth CSV])
-//       [--init x,y,w,h] [--mode box|condensation|ellipse] [--peers csrt,kcf,camshift|none]
-//       [--color_space rgb|opponent] [--dynamics FILE.yaml] [--seed 1] [--start_frame 0]
-//       [--max_frames N] [--output DIR] [--video_out] [--<condensation_tracker parameter> V ...]
+//   evaluate_tracking --help   (every option with its default, unit and range)
 //
 // --sequence reads an OTB or VOT folder as the benchmarks ship it (io/benchmark_sequence.h); what
 // it skipped or cut is printed as `evaluate_tracking: note: ...`, and an image that cannot be read
@@ -55,9 +52,9 @@
 #include "adaptive_perception/tracking/box_condensation_tracker.h"
 #include "adaptive_perception/tracking/condensation_tracker.h"
 #include "adaptive_perception/tracking/ellipse_tracker.h"
-#include "config_args.h"
+#include "command_line.h"
 #include "progress.h"
-#include "tool_args.h"
+#include "command_line.h"
 #include "tracking_sequence.h"
 
 using namespace adaptive_perception;
@@ -238,54 +235,66 @@ std::optional<cv::Rect2d> parseBox(const std::string& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "evaluate_tracking (--sequence DIR | --bag FILE | --video FILE "
-                   "[--ground_truth CSV]) [--init x,y,w,h] [--mode box|condensation|ellipse] "
-                   "[--peers csrt,kcf,camshift|none] [--color_space rgb|opponent] "
-                   "[--dynamics FILE.yaml] [--seed N] [--start_frame N] [--max_frames N] "
-                   "[--output DIR] [--video_out] [--<condensation_tracker parameter> V ...]");
-  const std::string sequence = args.get("sequence", "");
-  const std::string bag = args.get("bag", "");
-  const std::string video = args.get("video", "");
-  std::string truth_csv = args.get("ground_truth", "");
-  const std::string init_arg = args.get("init", "");
-  const std::string mode = args.get("mode", "box");
-  const std::string peers_arg = args.get("peers", "csrt,kcf,camshift");
-  const std::string space = args.get("color_space", "opponent");
+  tools::CommandLine cli("evaluate_tracking",
+                         "Runs the project's tracker over a sequence and, on the same frames from "
+                         "the same first box, OpenCV's CSRT, KCF and CamShift; scores all of them "
+                         "by the benchmarks' one-pass evaluation.");
+  std::string sequence;
+  cli.option("sequence", &sequence, "OTB or VOT sequence folder");
+  std::string bag;
+  cli.option("bag", &bag, "tracking bag (simulate_tracking)");
+  std::string video;
+  cli.option("video", &video, "video file");
+  std::string truth_csv;
+  cli.option("ground_truth", &truth_csv,
+             "the video's ground truth (CSV; empty: the CSV of the same name beside it)");
+  std::string init_arg;
+  cli.option("init", &init_arg, "first box x,y,w,h in px (empty: the ground truth's)");
+  std::string mode = "box";
+  cli.option("mode", &mode, "our tracker")
+      ->check(CLI::IsMember({"box", "condensation", "ellipse"}));
+  std::string peers_arg = "csrt,kcf,camshift";
+  cli.option("peers", &peers_arg, "peers run beside it: comma-separated, or none");
+  std::string space = "opponent";
+  cli.option("color_space", &space, "colour space of the histograms: rgb or opponent");
+  std::string dynamics;
+  cli.option("dynamics", &dynamics, "learned AR(2) dynamics (YAML, learn_tracking_dynamics)");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  long start_frame = 0;
+  cli.option("start_frame", &start_frame, config::closed(0, 1e9), "first frame tracked");
+  long max_frames = 0;
+  cli.option("max_frames", &max_frames, config::closed(0, 1e9), "frames tracked (0: all)");
+  std::string output = "results/evaluate_tracking";
+  cli.option("output", &output, "folder for the results");
+  bool video_out = false;
+  cli.flag("video_out", &video_out, "also writes a video of the boxes");
+  // condensation_tracker's parameters (the same names and ranges).
   tracking::BoxTrackerConfig bc;
   tracking::CondensationConfig cc;
   tracking::EllipseTrackerConfig ec;
-  tools::applyFields(args, tracking::BoxTrackerConfig::fields(), &bc);
-  tools::applyFields(args, tracking::CondensationConfig::fields(), &cc);
-  tools::applyFields(args, tracking::EllipseTrackerConfig::fields(), &ec);
-  const std::string dynamics = args.get("dynamics", "");
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  const long start_frame = args.getInt("start_frame", 0);
-  const long max_frames = args.getInt("max_frames", 0);
-  const std::string output = args.get("output", "results/evaluate_tracking");
-  const bool video_out = args.has("video_out");
-  args.finish();
+  cli.fields(tracking::BoxTrackerConfig::fields(), &bc);
+  cli.fields(tracking::CondensationConfig::fields(), &cc);
+  cli.fields(tracking::EllipseTrackerConfig::fields(), &ec);
+  cli.parse(argc, argv);
   if (sequence.empty() + bag.empty() + video.empty() != 2)
-    args.fail("give exactly one of --sequence DIR, --bag FILE and --video FILE");
-  if (start_frame < 0) args.fail("--start_frame must be >= 0");
+    cli.fail("give exactly one of --sequence DIR, --bag FILE and --video FILE");
   if (!video.empty() && truth_csv.empty()) {  // simulate_tracking's CSV beside the video
     const fs::path beside = fs::path(video).replace_extension(".csv");
     if (fs::exists(beside)) truth_csv = beside.string();
   }
-  if (mode != "box" && mode != "condensation" && mode != "ellipse")
-    args.fail("--mode must be box, condensation or ellipse, got " + mode);
   std::vector<std::string> peers;
   if (peers_arg != "none") {
     std::stringstream ss(peers_arg);
     for (std::string p; std::getline(ss, p, ',');) {
       if (p != "csrt" && p != "kcf" && p != "camshift")
-        args.fail("--peers: unknown tracker '" + p + "' (csrt, kcf, camshift or none)");
+        cli.fail("--peers: unknown tracker '" + p + "' (csrt, kcf, camshift or none)");
       peers.push_back(p);
     }
   }
   std::optional<cv::Rect2d> init;
   if (!init_arg.empty() && !(init = parseBox(init_arg)))
-    args.fail("--init must be x,y,w,h with w, h >= 4 pixels, got '" + init_arg + "'");
+    cli.fail("--init must be x,y,w,h with w, h >= 4 pixels, got '" + init_arg + "'");
   try {
     cc.quantizer.space = tracking::parseColorSpace(space);
     if (!dynamics.empty()) cc.dynamics = tracking::Ar2Model::loadYaml(dynamics);

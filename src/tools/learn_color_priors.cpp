@@ -1,8 +1,6 @@
 // learn_color_priors: learns K lighting priors (eq. 10) from bags recorded in earlier environments.
 //
-//   learn_color_priors --bag_dir DIR [--k 2] [--output_dir config/color_priors] [--names
-//   dark,bright]
-//                      [--seed 1] [--all_name all] [--overwrite]
+//   learn_color_priors --help   (every option with its default, unit and range)
 //
 // Each bag in DIR is one data set (one environment under one lighting). Pixel labels come from the
 // bag's camera/labels (the simulator's true labels, standing in for the paper's hand-labelled
@@ -20,30 +18,38 @@
 #include "adaptive_perception/color/prior_learning.h"
 #include "adaptive_perception/ros/bag_frames.h"
 #include "adaptive_perception/world/label_renderer.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "learn_color_priors --bag_dir DIR [--k 2] [--output_dir config/color_priors] "
-                   "[--names dark,bright] [--seed 1] [--all_name all] [--overwrite]");
-  const std::string bag_dir = args.get("bag_dir", "");
-  const int k = static_cast<int>(args.getInt("k", 2));
-  const std::string out_dir = args.get("output_dir", "config/color_priors");
-  std::string names_arg = args.get("names", k == 2 ? "dark,bright" : "");
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  const std::string all_name = args.get("all_name", "all");
-  const bool overwrite = args.has("overwrite");
-  args.finish();
-  if (bag_dir.empty()) args.fail("--bag_dir is required");
+  tools::CommandLine cli("learn_color_priors",
+                         "Learns K lighting priors (eq. 10) from bags recorded in earlier "
+                         "environments.");
+  std::string bag_dir;
+  cli.option("bag_dir", &bag_dir, "folder of the training bags")->required();
+  int k = 2;
+  cli.option("k", &k, config::closed(1, 100), "lighting modes K");
+  std::string out_dir = "config/color_priors";
+  cli.option("output_dir", &out_dir, "folder of the priors written (<name>.yaml)");
+  std::string names_arg;
+  cli.option("names", &names_arg,
+             "the modes' names, comma-separated (empty: dark,bright for K = 2, else mode_N)");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  std::string all_name = "all";
+  cli.option("all_name", &all_name, "name of the one prior learned from every bag");
+  bool overwrite = false;
+  cli.flag("overwrite", &overwrite, "replace priors that exist");
+  cli.parse(argc, argv);
+  if (names_arg.empty() && k == 2) names_arg = "dark,bright";
   std::vector<std::string> names;
   for (std::stringstream ss(names_arg); std::getline(ss, names_arg, ',');)
     names.push_back(names_arg);
   while (static_cast<int>(names.size()) < k)
     names.push_back("mode_" + std::to_string(names.size()));
-  if (static_cast<int>(names.size()) != k) args.fail("--names needs exactly K names");
+  if (static_cast<int>(names.size()) != k) cli.fail("--names needs exactly K names");
 
   try {
     std::vector<std::string> bags;

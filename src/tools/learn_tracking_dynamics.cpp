@@ -1,8 +1,7 @@
 // learn_tracking_dynamics: estimates the CONDENSATION dynamics A (A1, A0, d) and B of papers/001
 // section 3.3 ("estimated a priori from a training sequence") from a sequence with ground truth.
 //
-//   learn_tracking_dynamics (--bag FILE | --video FILE [--ground_truth CSV]) --output FILE.yaml
-//       [--color_space opponent|rgb] [--full] [--inner 0.6] [--overwrite]
+//   learn_tracking_dynamics --help   (every option with its default, unit and range)
 //
 // Per frame the target's colour distribution is the colours inside the ellipse inscribed in its
 // true box, shrunk to --inner of it (so little background gets in); its state is [centroid,
@@ -18,31 +17,38 @@
 #include "adaptive_perception/tracking/color_distribution.h"
 #include "adaptive_perception/tracking/color_histogram.h"
 #include "adaptive_perception/tracking/dynamics.h"
-#include "tool_args.h"
+#include "command_line.h"
 #include "tracking_sequence.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "learn_tracking_dynamics (--bag FILE | --video FILE [--ground_truth CSV]) "
-                   "--output FILE.yaml [--color_space opponent|rgb] [--full] [--inner F] "
-                   "[--overwrite]");
-  const std::string bag = args.get("bag", "");
-  const std::string video = args.get("video", "");
-  std::string truth_csv = args.get("ground_truth", "");
-  const std::string output = args.get("output", "");
-  const std::string space_name = args.get("color_space", "opponent");
-  const bool full = args.has("full");
-  const double inner = args.getDouble("inner", 0.6);
-  const bool overwrite = args.has("overwrite");
-  args.finish();
-  if (bag.empty() == video.empty()) args.fail("give exactly one of --bag FILE and --video FILE");
-  if (output.empty()) args.fail("--output FILE.yaml is required");
-  if (!(inner > 0.0 && inner <= 1.0)) args.fail("--inner must be in (0, 1]");
+  tools::CommandLine cli("learn_tracking_dynamics",
+                         "Estimates the CONDENSATION dynamics A (A1, A0, d) and B of papers/001 "
+                         "section 3.3 from a sequence with ground truth.");
+  std::string bag;
+  cli.option("bag", &bag, "tracking bag (simulate_tracking)");
+  std::string video;
+  cli.option("video", &video, "video file");
+  std::string truth_csv;
+  cli.option("ground_truth", &truth_csv,
+             "the video's ground truth (CSV; empty: the CSV of the same name beside it)");
+  std::string output;
+  cli.option("output", &output, "the dynamics to write (YAML)")->required();
+  std::string space_name = "opponent";
+  cli.option("color_space", &space_name, "colour space of the histograms: rgb or opponent");
+  bool full = false;
+  cli.flag("full", &full, "fits full matrices (default: one AR(2) per dimension)");
+  double inner = 0.6;
+  cli.option("inner", &inner, config::aboveZero(1),
+             "colours are taken inside the true box shrunk to this fraction");
+  bool overwrite = false;
+  cli.flag("overwrite", &overwrite, "replace the file if it exists");
+  cli.parse(argc, argv);
+  if (bag.empty() == video.empty()) cli.fail("give exactly one of --bag FILE and --video FILE");
   if (fs::exists(output) && !overwrite)
-    args.fail("'" + output + "' exists; pass --overwrite to replace it");
+    cli.fail("'" + output + "' exists; pass --overwrite to replace it");
   if (!video.empty() && truth_csv.empty()) {
     const fs::path beside = fs::path(video).replace_extension(".csv");
     if (fs::exists(beside)) truth_csv = beside.string();

@@ -1,7 +1,7 @@
 // monobot_experiment: the one-dimensional SLAM study of Garulli et al. 2005 (section 2.2,
 // Figs. 4-6) for the standard, anchored and external-sensor models (slam/monobot.h).
 //
-//   monobot_experiment [--runs 100] [--landmarks 1] [--seed 1] [--output DIR]
+//   monobot_experiment --help   (every option with its default, unit and range)
 //
 // For each model: the first run's time series (true and estimated robot, landmark 1, 2-sigma
 // bounds, measurement, Kalman gains) in DIR/<model>_run.csv (plot: scripts/plot_monobot.py), and
@@ -23,21 +23,24 @@
 
 #include "adaptive_perception/slam/monobot.h"
 #include "adaptive_perception/slam/observability.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "monobot_experiment [--runs 100] [--landmarks 1] [--seed 1] [--output DIR]");
-  const int runs = static_cast<int>(args.getInt("runs", 100));
+  tools::CommandLine cli("monobot_experiment",
+                         "The one-dimensional SLAM study of Garulli et al. 2005 (section 2.2, "
+                         "Figs. 4-6) for the standard, anchored and external-sensor models.");
+  int runs = 100;
+  cli.option("runs", &runs, config::closed(2, 1e6), "Monte Carlo runs");
   slam::MonobotConfig cfg;
-  cfg.landmarks = static_cast<int>(args.getInt("landmarks", 1));
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  const std::string output = args.get("output", "results/monobot");
-  args.finish();
-  if (runs < 2) args.fail("--runs must be >= 2");
+  cli.option("landmarks", &cfg.landmarks, "landmarks, all at one place");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  std::string output = "results/monobot";
+  cli.option("output", &output, "folder for the results and plots");
+  cli.parse(argc, argv);
   try {
     cfg.validate();
     fs::create_directories(output);

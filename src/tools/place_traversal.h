@@ -2,8 +2,7 @@
 // evaluate_places --reference A --query B: the standard place-recognition protocol on two ordered
 // traversals of one route (places/traversal_matcher.h, places/traversal_metrics.h).
 //
-//   evaluate_places --reference A --query B [--tolerance_frames 1] [--ground_truth CSV]
-//                   [--method sequence] [--sequence_frames 20] [--database F] [--output DIR]
+//   evaluate_places --reference A --query B [options: evaluate_places --help]
 //
 // A and B are folders of images (name order) or CSV lists of image paths (io/image_folder.h).
 // --database F keeps the reference traversal in a place database (places/place_database.h): when F
@@ -41,7 +40,7 @@
 #include "adaptive_perception/places/traversal_matcher.h"
 #include "adaptive_perception/places/traversal_metrics.h"
 #include "progress.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 namespace adaptive_perception::tools {
 
@@ -166,35 +165,56 @@ inline places::ReferenceTraversal describeReferences(const std::vector<std::stri
 }
 }  // namespace traversal_detail
 
-inline int runTraversalEvaluation(Args& args) {
+/// The traversal protocol's own options; --database, --output and the fusion weights are
+/// evaluate_places's, shared with the paper's protocol.
+struct TraversalOptions {
+  std::string reference, query, ground_truth;
+  long tolerance_frames = 1;
+  places::TraversalMatcherConfig matcher;
+};
+
+inline void addTraversalOptions(CommandLine& cli, TraversalOptions* o) {
+  const std::string group = "Two traversals (--reference and --query)";
+  places::TraversalMatcherConfig& m = o->matcher;
+  cli.option("reference", &o->reference, "reference traversal: folder of images or CSV list")
+      ->group(group);
+  cli.option("query", &o->query, "query traversal: folder of images or CSV list")->group(group);
+  cli.option("tolerance_frames", &o->tolerance_frames, config::closed(0, 1e9),
+             "query i's true references: i - N .. i + N, frames")
+      ->group(group);
+  cli.option("ground_truth", &o->ground_truth,
+             "CSV query_index,reference_index,tolerance (from 1) instead of the same index")
+      ->group(group);
+  cli.option("method", &m.method,
+             "method of the summary line: thumbnail, gradient, chromaticity, layout, words, "
+             "fused or sequence")
+      ->group(group);
+  cli.option("sequence_frames", &m.sequence.sequence_frames, "frames of a sequence match")
+      ->group(group);
+  cli.option("min_velocity", &m.sequence.min_velocity, "slowest sequence slope, references per query")
+      ->group(group);
+  cli.option("max_velocity", &m.sequence.max_velocity, "fastest sequence slope, references per query")
+      ->group(group);
+  cli.option("velocity_steps", &m.sequence.velocity_steps, "slopes tried between the two")
+      ->group(group);
+}
+
+/// Runs the protocol; `db_path`, `output` and `fusion` as evaluate_places read them.
+inline int runTraversalEvaluation(CommandLine& cli, TraversalOptions opts,
+                                  const places::FusionWeights& fusion, const std::string& db_path,
+                                  const std::string& output) {
   namespace fs = std::filesystem;
-  using places::TraversalMatcherConfig;
-  const std::string ref_path = args.get("reference", "");
-  const std::string query_path = args.get("query", "");
-  const long tolerance = args.getInt("tolerance_frames", 1);
-  const std::string gt_path = args.get("ground_truth", "");
-  TraversalMatcherConfig cfg;
-  cfg.method = args.get("method", cfg.method);
-  cfg.sequence.sequence_frames =
-      static_cast<int>(args.getInt("sequence_frames", cfg.sequence.sequence_frames));
-  cfg.sequence.min_velocity = args.getDouble("min_velocity", cfg.sequence.min_velocity);
-  cfg.sequence.max_velocity = args.getDouble("max_velocity", cfg.sequence.max_velocity);
-  cfg.sequence.velocity_steps =
-      static_cast<int>(args.getInt("velocity_steps", cfg.sequence.velocity_steps));
-  cfg.fusion.thumbnail = args.getDouble("thumbnail_weight", cfg.fusion.thumbnail);
-  cfg.fusion.gradient = args.getDouble("gradient_weight", cfg.fusion.gradient);
-  cfg.fusion.chromaticity = args.getDouble("chromaticity_weight", cfg.fusion.chromaticity);
-  cfg.fusion.layout = args.getDouble("layout_weight", cfg.fusion.layout);
-  cfg.fusion.words = args.getDouble("words_weight", cfg.fusion.words);
-  const std::string output = args.get("output", "results/evaluate_places");
-  const std::string db_path = args.get("database", "");
-  args.finish();
+  const std::string& ref_path = opts.reference;
+  const std::string& query_path = opts.query;
+  const long tolerance = opts.tolerance_frames;
+  const std::string& gt_path = opts.ground_truth;
+  places::TraversalMatcherConfig& cfg = opts.matcher;
+  cfg.fusion = fusion;
   const bool stored = !db_path.empty() && std::filesystem::exists(db_path);
   if (query_path.empty() || (ref_path.empty() && !stored))
-    args.fail(
+    cli.fail(
         "traversal mode needs --query B and --reference A (or --database F naming an "
         "existing reference traversal)");
-  if (tolerance < 0) args.fail("--tolerance_frames must be >= 0");
   try {
     cfg.validate();
     const std::vector<std::string> listed =
@@ -244,7 +264,7 @@ inline int runTraversalEvaluation(Args& args) {
     }
     std::vector<places::TraversalMatcher> matchers;
     for (const std::string& m : methods) {
-      TraversalMatcherConfig c = cfg;
+      places::TraversalMatcherConfig c = cfg;
       c.method = m;
       matchers.emplace_back(refs, c);
     }

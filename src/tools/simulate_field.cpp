@@ -1,9 +1,6 @@
 // simulate_field: a legged robot on the four-legged-league field, written to a bag.
 //
-//   simulate_field --output FILE.bag [--script bright|dark|switching|drift|kidnap] [--seed N]
-//                  [--environment_seed N] [--duration_s S] [--rate_hz HZ] [--odom_rate_hz HZ]
-//                  [--switch_period_s S] [--field FILE.yaml] [--start_time_s T] [--overwrite]
-//                  [--no_compression]
+//   simulate_field --help   (every option with its default, unit and range)
 //
 // Same arguments give a byte-identical bag. Topics (DESIGN.md): camera/image_raw (yuv422),
 // camera/camera_info, camera/labels (mono8 class ids, 255 = background), odom + tf odom ->
@@ -30,7 +27,7 @@
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/sim/field_simulator.h"
 #include "tick_schedule.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace T = adaptive_perception::ros_topics;
@@ -40,27 +37,31 @@ std::string slash(const char* topic) { return std::string("/") + topic; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::Args args(
-      argc, argv,
-      "simulate_field --output FILE.bag [--script bright|dark|switching|drift|kidnap] "
-      "[--seed N] [--environment_seed N] [--duration_s S] [--rate_hz HZ] [--odom_rate_hz HZ] "
-      "[--switch_period_s S] "
-      "[--field FILE.yaml] [--start_time_s T] [--overwrite] [--no_compression]");
-  const std::string output = args.get("output", "");
+  tools::CommandLine cli("simulate_field",
+                         "A legged robot on the four-legged-league field, written to a bag "
+                         "(deterministic for the seeds).");
+  std::string output;
+  cli.option("output", &output, "the bag to write")->required();
   sim::FieldSimConfig cfg;
-  const std::string script = args.get("script", "bright");
-  cfg.seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  cfg.environment_seed = static_cast<std::uint64_t>(args.getInt("environment_seed", 0));
-  cfg.duration_s = args.getDouble("duration_s", 20.0);
-  cfg.camera_rate_hz = args.getDouble("rate_hz", 10.0);
-  cfg.odom_rate_hz = args.getDouble("odom_rate_hz", 30.0);
-  cfg.switch_period_s = args.getDouble("switch_period_s", cfg.switch_period_s);
-  const std::string field = args.get("field", "config/field_4legged.yaml");
-  const double start_time_s = args.getDouble("start_time_s", 1.6e9);
-  const bool overwrite = args.has("overwrite");
-  const bool compress = !args.has("no_compression");
-  args.finish();
-  if (output.empty()) args.fail("--output FILE.bag is required");
+  std::string script = "bright";
+  cli.option("script", &script, "lighting script: bright, dark, switching, drift or kidnap");
+  cli.option("seed", &cfg.seed, "robot route, odometry and image noise");
+  cli.option("environment_seed", &cfg.environment_seed, "the venue (0: the nominal lab)");
+  cli.option("duration_s", &cfg.duration_s, "simulated time, s");
+  cli.option("rate_hz", &cfg.camera_rate_hz, "camera rate, Hz");
+  cli.option("odom_rate_hz", &cfg.odom_rate_hz, "odometry rate, Hz");
+  cli.option("switch_period_s", &cfg.switch_period_s,
+             "script switching: the light changes this often, s");
+  std::string field = "config/field_4legged.yaml";
+  cli.option("field", &field, "field description (YAML; relative: from the package)");
+  double start_time_s = 1.6e9;
+  cli.option("start_time_s", &start_time_s, config::closed(1, 4e9), "the bag's first stamp, s");
+  bool overwrite = false;
+  cli.flag("overwrite", &overwrite, "replace the bag if it exists");
+  bool no_compression = false;
+  cli.flag("no_compression", &no_compression, "writes the bag uncompressed");
+  cli.parse(argc, argv);
+  const bool compress = !no_compression;
 
   try {
     cfg.script = sim::parseLightingScript(script);

@@ -1,10 +1,7 @@
 // simulate_indoor: a robot with a camera driving once through the indoor building
 // (config/worlds/indoor_building.yaml) under one lighting condition, written to a bag and/or PNGs.
 //
-//   simulate_indoor --lighting night|cloudy|sunny --seed N --output FILE.bag
-//                   [--camera perspective|omni] [--images_out DIR] [--world FILE.yaml]
-//                   [--camera_rate_hz 2] [--odom_rate_hz 20] [--duration_s S] [--overwrite]
-//                   [--width_px 309 --height_px 240 (perspective) | 320 x 240 (omni)]
+//   simulate_indoor --help   (every option with its default, unit and range)
 //
 // Topics: camera/image_raw (bgr8; frame camera_link, x forward), camera/camera_info (perspective
 // only), odom + tf odom -> base_link, tf_static base_link -> camera_link, ground_truth/pose
@@ -40,40 +37,48 @@
 #include "adaptive_perception/world/camera_model.h"
 #include "progress.h"
 #include "tick_schedule.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace T = adaptive_perception::ros_topics;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "simulate_indoor --lighting night|cloudy|sunny --seed N --output FILE.bag "
-                   "[--camera perspective|omni] [--images_out DIR] [--world FILE.yaml] "
-                   "[--camera_rate_hz HZ] [--odom_rate_hz HZ] [--duration_s S] [--overwrite] "
-                   "[--width_px W --height_px H]");
-  const std::string world_path = args.get("world", "config/worlds/indoor_building.yaml");
-  const std::string lighting_name = args.get("lighting", "cloudy");
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  const std::string output = args.get("output", "");
-  const std::string images_out = args.get("images_out", "");
-  const std::string camera_name = args.get("camera", "perspective");
-  const double camera_rate = args.getDouble("camera_rate_hz", 2.0);
-  const double odom_rate = args.getDouble("odom_rate_hz", 20.0);
-  const double duration_arg = args.getDouble("duration_s", -1.0);
-  const bool overwrite = args.has("overwrite");
-  const long width = args.getInt("width_px", 0), height = args.getInt("height_px", 0);
-  args.finish();
-  if (output.empty() && images_out.empty()) args.fail("--output FILE.bag or --images_out DIR");
-  if (camera_name != "perspective" && camera_name != "omni")
-    args.fail("--camera must be perspective or omni, got '" + camera_name + "'");
-  if (!(camera_rate > 0.0 && camera_rate <= 30.0)) args.fail("--camera_rate_hz must be in (0, 30]");
+  tools::CommandLine cli("simulate_indoor",
+                         "A robot with a camera driving once through the indoor building under one "
+                         "lighting condition, written to a bag and/or PNGs.");
+  std::string world_path = "config/worlds/indoor_building.yaml";
+  cli.option("world", &world_path, "the building (YAML; relative: from the package)");
+  std::string lighting_name = "cloudy";
+  cli.option("lighting", &lighting_name, "night, cloudy or sunny");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  std::string output;
+  cli.option("output", &output, "the bag to write");
+  std::string images_out;
+  cli.option("images_out", &images_out, "folder for PNGs and images.csv");
+  std::string camera_name = "perspective";
+  cli.option("camera", &camera_name, "camera model")
+      ->check(CLI::IsMember({"perspective", "omni"}));
+  double camera_rate = 2.0;
+  cli.option("camera_rate_hz", &camera_rate, config::aboveZero(30), "camera rate, Hz");
+  double odom_rate = 20.0;
+  cli.option("odom_rate_hz", &odom_rate, "odometry rate, Hz, in [camera_rate_hz, 1000]");
+  double duration_arg = -1.0;
+  cli.option("duration_s", &duration_arg, "simulated time, s (<= 0: the whole route)");
+  bool overwrite = false;
+  cli.flag("overwrite", &overwrite, "replace the bag and images.csv if they exist");
+  long width = 0, height = 0;
+  cli.option("width_px", &width, "image width, px, in 8..4096 (0: the camera's own)");
+  cli.option("height_px", &height, "image height, px, in 8..4096 (0: the camera's own)");
+  cli.parse(argc, argv);
+  if (output.empty() && images_out.empty()) cli.fail("--output FILE.bag or --images_out DIR");
   if (!(odom_rate >= camera_rate && odom_rate <= 1000.0))
-    args.fail("--odom_rate_hz must be in [camera_rate_hz, 1000]");
+    cli.fail("--odom_rate_hz must be in [camera_rate_hz, 1000]");
   if (!output.empty() && fs::exists(output) && !overwrite)
-    args.fail("'" + output + "' exists; pass --overwrite to replace it");
+    cli.fail("'" + output + "' exists; pass --overwrite to replace it");
   if (!images_out.empty() && fs::exists(fs::path(images_out) / "images.csv") && !overwrite)
-    args.fail("'" + images_out + "/images.csv' exists; pass --overwrite to replace it");
+    cli.fail("'" + images_out + "/images.csv' exists; pass --overwrite to replace it");
   try {
     const sim::IndoorLightingKind kind = sim::parseIndoorLighting(lighting_name);
     const sim::IndoorWorld world =
@@ -82,7 +87,7 @@ int main(int argc, char** argv) {
     cam.omni = camera_name == "omni";
     if (width > 0 || height > 0) {
       if (width < 8 || height < 8 || width > 4096 || height > 4096)
-        args.fail("--width_px and --height_px must both be in 8..4096");
+        cli.fail("--width_px and --height_px must both be in 8..4096");
       if (cam.omni) {
         // Scale the donut with the image.
         const double k = std::min(width / 320.0, height / 240.0);

@@ -1,8 +1,7 @@
 // simulate_laser: a robot with a 2-D laser driving a route through a polygon world, written to a
 // bag.
 //
-//   simulate_laser --world config/worlds/office.yaml --output FILE.bag [--duration_s 60] [--seed 1]
-//                  [--odom_rate_hz 20] [--overwrite]
+//   simulate_laser --help   (every option with its default, unit and range)
 //
 // Topics: scan (LaserScan in `laser`), odom + tf odom -> base_link, tf_static base_link -> laser,
 // ground_truth/pose (PoseStamped in map), ground_truth/walls (adaptive_perception/LineSegmentArray
@@ -27,27 +26,30 @@
 #include "adaptive_perception/sim/laser_simulator.h"
 #include "adaptive_perception/world/camera_model.h"
 #include "tick_schedule.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace T = adaptive_perception::ros_topics;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "simulate_laser --world FILE.yaml --output FILE.bag [--duration_s S] [--seed N] "
-                   "[--odom_rate_hz HZ] [--overwrite]");
-  const std::string world_path = args.get("world", "config/worlds/office.yaml");
-  const std::string output = args.get("output", "");
-  const double duration = args.getDouble("duration_s", 60.0);
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  const double odom_rate = args.getDouble("odom_rate_hz", 20.0);
-  const bool overwrite = args.has("overwrite");
-  args.finish();
-  if (output.empty()) args.fail("--output FILE.bag is required");
-  if (!(duration > 0.0 && duration <= 36000.0)) args.fail("--duration_s must be in (0, 36000]");
-  if (!(odom_rate >= 1.0 && odom_rate <= 1000.0)) args.fail("--odom_rate_hz must be in [1, 1000]");
+  tools::CommandLine cli("simulate_laser",
+                         "A robot with a 2-D laser driving a route through a polygon world, "
+                         "written to a bag (deterministic for a seed).");
+  std::string world_path = "config/worlds/office.yaml";
+  cli.option("world", &world_path, "the world (YAML; relative paths from the package)");
+  std::string output;
+  cli.option("output", &output, "the bag to write")->required();
+  double duration = 60.0;
+  cli.option("duration_s", &duration, config::Range{0, 36000, true, false}, "simulated time, s");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  double odom_rate = 20.0;
+  cli.option("odom_rate_hz", &odom_rate, config::closed(1, 1000), "odometry rate, Hz");
+  bool overwrite = false;
+  cli.flag("overwrite", &overwrite, "replace the bag if it exists");
+  cli.parse(argc, argv);
   if (std::filesystem::exists(output) && !overwrite)
-    args.fail("'" + output + "' exists; pass --overwrite to replace it");
+    cli.fail("'" + output + "' exists; pass --overwrite to replace it");
   try {
     const sim::LaserWorld world =
         sim::LaserWorld::loadYaml(ros_params::resolvePackagePath(world_path));

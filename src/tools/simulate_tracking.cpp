@@ -1,10 +1,7 @@
 // simulate_tracking: the synthetic tracking sequences of papers/001 section 3.4 with ground
 // truth (sim/tracking_scene.h).
 //
-//   simulate_tracking --scenario circles|lambertian_rectangle|distractor|handheld [--seed N]
-//                     [--frames 300] [--width 320] [--height 240] [--rate_hz 30] [--noise_sd 4]
-//                     [--no_clutter] (--output FILE.bag [--encoding bgr8|rgb8|mono8]
-//                     | --video FILE.avi [--ground_truth CSV]) [--overwrite]
+//   simulate_tracking --help   (every option with its default, unit and range)
 //
 // A bag holds camera/image_raw (bgr8 unless --encoding) and ground_truth/box (PolygonStamped, the 4 corners of the
 // target's box, same stamp). A video is Motion-JPEG AVI (OpenCV's own writer, no codec needed)
@@ -24,46 +21,52 @@
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/sim/tracking_scene.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "simulate_tracking --scenario circles|lambertian_rectangle|distractor|handheld "
-                   "[--seed N] [--frames N] [--width PX] [--height PX] [--rate_hz HZ] "
-                   "[--noise_sd L] [--no_clutter] (--output FILE.bag [--encoding "
-                   "bgr8|rgb8|mono8] | --video FILE.avi [--ground_truth CSV]) [--overwrite]");
+  tools::CommandLine cli("simulate_tracking",
+                         "The synthetic tracking sequences of papers/001 section 3.4 with ground "
+                         "truth, written to a bag or a video with a CSV.");
   sim::TrackingSceneConfig cfg;
-  const std::string scenario = args.get("scenario", "circles");
-  const auto seed = static_cast<std::uint64_t>(args.getInt("seed", 1));
-  cfg.frames = static_cast<int>(args.getInt("frames", cfg.frames));
-  cfg.width = static_cast<int>(args.getInt("width", cfg.width));
-  cfg.height = static_cast<int>(args.getInt("height", cfg.height));
-  cfg.rate_hz = args.getDouble("rate_hz", cfg.rate_hz);
-  cfg.noise_sd = args.getDouble("noise_sd", cfg.noise_sd);
-  cfg.clutter = !args.has("no_clutter");
-  const std::string output = args.get("output", "");
-  const std::string video = args.get("video", "");
-  std::string truth_csv = args.get("ground_truth", "");
-  const bool overwrite = args.has("overwrite");
-  const std::string encoding = args.get("encoding", "bgr8");
-  args.finish();
-  if (encoding != "bgr8" && encoding != "rgb8" && encoding != "mono8")
-    args.fail("--encoding: '" + encoding + "' (bgr8, rgb8 or mono8)");
+  std::string scenario = "circles";
+  cli.option("scenario", &scenario, "circles, lambertian_rectangle, distractor or handheld");
+  std::uint64_t seed = 1;
+  cli.option("seed", &seed, "random seed");
+  cli.option("frames", &cfg.frames, "frames");
+  cli.option("width", &cfg.width, "image width, px");
+  cli.option("height", &cfg.height, "image height, px");
+  cli.option("rate_hz", &cfg.rate_hz, "frame rate, Hz");
+  cli.option("noise_sd", &cfg.noise_sd, "image noise, grey levels (standard deviation)");
+  bool no_clutter = false;
+  cli.flag("no_clutter", &no_clutter, "a plain background");
+  std::string output;
+  cli.option("output", &output, "the bag to write");
+  std::string encoding = "bgr8";
+  cli.option("encoding", &encoding, "the bag's image encoding")
+      ->check(CLI::IsMember({"bgr8", "rgb8", "mono8"}));
+  std::string video;
+  cli.option("video", &video, "the video to write (instead of a bag)");
+  std::string truth_csv;
+  cli.option("ground_truth", &truth_csv, "the video's ground truth (empty: beside it, .csv)");
+  bool overwrite = false;
+  cli.flag("overwrite", &overwrite, "replace files that exist");
+  cli.parse(argc, argv);
+  cfg.clutter = !no_clutter;
   if (output.empty() == video.empty())
-    args.fail("give exactly one of --output FILE.bag and --video FILE");
+    cli.fail("give exactly one of --output FILE.bag and --video FILE");
   if (!video.empty() && truth_csv.empty())
     truth_csv = fs::path(video).replace_extension(".csv").string();
   for (const std::string& p : {output, video, truth_csv})
     if (!p.empty() && fs::exists(p) && !overwrite)
-      args.fail("'" + p + "' exists; pass --overwrite to replace it");
+      cli.fail("'" + p + "' exists; pass --overwrite to replace it");
   try {
     cfg.scenario = sim::parseTrackingScenario(scenario);
     cfg.validate();
   } catch (const std::invalid_argument& e) {
-    args.fail(e.what());
+    cli.fail(e.what());
   }
   try {
     sim::TrackingScene scene(cfg, seed);

@@ -1,8 +1,6 @@
 // train_places: builds (or extends) a place database from labelled images.
 //
-//   train_places (--bag FILE | --list CSV) --database DB.sqlite [--images_per_place 15]
-//                [--bins 256] [--spaces all] [--mask none|auto|ring:cx,cy,r_in,r_out]
-//                [--no_adjacency] [--features] [--max_features 200]
+//   train_places --help   (every option with its default, unit and range)
 //
 // Images come from a bag (camera/image_raw labelled by ground_truth/place) or a CSV list of
 // `image_path,place` lines. Per place, --images_per_place images spread evenly over that place's
@@ -30,36 +28,51 @@
 #include "adaptive_perception/places/place_database.h"
 #include "labelled_images.h"
 #include "progress.h"
-#include "tool_args.h"
+#include "command_line.h"
 
 using namespace adaptive_perception;
 
 int main(int argc, char** argv) {
-  tools::Args args(argc, argv,
-                   "train_places (--bag FILE | --list CSV) --database DB.sqlite "
-                   "[--images_per_place N] [--bins B] [--spaces all|rgb,hsv,...] "
-                   "[--mask none|auto|ring:cx,cy,r_in,r_out] [--no_adjacency] [--features] "
-                   "[--max_features N]");
-  const std::string bag = args.get("bag", "");
-  const std::string list = args.get("list", "");
-  const std::string db_path = args.get("database", "");
-  const long per_place = args.getInt("images_per_place", 15);
-  const bool explicit_settings = args.has("bins") || args.has("spaces") || args.has("mask");
-  const long bins = args.getInt("bins", 256);
-  const std::string spaces = args.get("spaces", "all");
-  const std::string mask = args.get("mask", "none");
-  const bool adjacency = !args.has("no_adjacency");
-  const bool features = args.has("features");
+  tools::CommandLine cli("train_places",
+                         "Builds (or extends) a place database from labelled images, in one "
+                         "transaction.");
+  std::string bag;
+  cli.option("bag", &bag, "bag of labelled images (camera/image_raw, ground_truth/place)");
+  std::string list;
+  cli.option("list", &list, "CSV list of image_path,place lines");
+  std::string db_path;
+  cli.option("database", &db_path, "the database (created, or extended)")->required();
+  long per_place = 15;
+  cli.option("images_per_place", &per_place, config::closed(0, 1e9),
+             "images stored per place, spread evenly (0: all)");
+  // A new database takes these; an existing one keeps its own and refuses explicit ones that
+  // differ.
+  long bins = 256;
+  CLI::Option* bins_opt =
+      cli.option("bins", &bins, "histogram bins per channel (a new database)");
+  std::string spaces = "all";
+  CLI::Option* spaces_opt =
+      cli.option("spaces", &spaces, "colour spaces (a new database): all or a comma-separated list");
+  std::string mask = "none";
+  CLI::Option* mask_opt =
+      cli.option("mask", &mask, "image mask (a new database): none, auto or ring:cx,cy,r_in,r_out");
+  bool no_adjacency = false;
+  cli.flag("no_adjacency", &no_adjacency,
+           "consecutive images of different places do not make the places adjacent");
+  bool features = false;
+  cli.flag("features", &features,
+           "also stores SIFT, line-structure descriptors and poses (room classifier, appearance "
+           "localizer)");
   places::SiftConfig sift;
-  sift.max_features = static_cast<int>(args.getInt("max_features", sift.max_features));
-  args.finish();
-  if (bag.empty() == list.empty()) args.fail("give exactly one of --bag FILE and --list CSV");
-  if (db_path.empty()) args.fail("--database DB.sqlite is required");
-  if (per_place < 0) args.fail("--images_per_place must be >= 0");
+  cli.option("max_features", &sift.max_features, "SIFT features kept per image");
+  cli.parse(argc, argv);
+  const bool explicit_settings = bins_opt->count() + spaces_opt->count() + mask_opt->count() > 0;
+  const bool adjacency = !no_adjacency;
+  if (bag.empty() == list.empty()) cli.fail("give exactly one of --bag FILE and --list CSV");
   try {
     sift.validate();
   } catch (const std::invalid_argument& e) {
-    args.fail(std::string("--max_features: ") + e.what());
+    cli.fail(std::string("--max_features: ") + e.what());
   }
   const auto t_start = std::chrono::steady_clock::now();
   try {

@@ -4,7 +4,7 @@
 // stay in the struct's member initialisers; from the table come
 //   - the Config's validate() (Fields::validate: the first field out of range is named),
 //   - a node's parameter loading (ros/config_params.h: loadFields),
-//   - the tools' options (src/tools/config_args.h: applyFields),
+//   - the tools' options (src/tools/command_line.h: CommandLine::fields),
 //   - the parameter table of each node's doc page (describe_parameters, checked by
 //     parameters_documented_test).
 // Nested configs are folded in with nest(), their parameter names unchanged (flat, as ROS users

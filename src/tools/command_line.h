@@ -1,0 +1,151 @@
+#pragma once
+// The tools' command lines, on CLI11 (Debian's libcli11-dev). Each option is declared with the
+// variable it sets (whose value before parsing is the default), a one-line doc that states the
+// unit, and where it matters its allowed range; a config's field table (config/fields.h) adds one
+// option per field with the field's name, range and doc, as the node's ROS parameter of the same
+// name. Then:
+//   - `--help` lists every option with its default ([60]) and range, and exits 0;
+//   - an unknown option, a stray word, a value that is not a number where one is needed, or one out
+//     of range is refused with a message naming it, and the tool exits 2.
+// Options are written `--name value` or `--name=value`; a flag takes no value, so a word after it
+// is refused, never swallowed.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "adaptive_perception/config/fields.h"
+
+namespace adaptive_perception::tools {
+
+class CommandLine {
+ public:
+  /// `description`: what the tool does, first in --help.
+  CommandLine(const std::string& name, const std::string& description) : app_(description, name) {
+    app_.option_defaults()->always_capture_default();
+    app_.get_formatter()->column_width(36);
+  }
+  CommandLine(const CommandLine&) = delete;
+  CommandLine& operator=(const CommandLine&) = delete;
+
+  /// `--name VALUE` into *value; its value now is the default --help shows.
+  template <class T>
+  CLI::Option* option(const std::string& name, T* value, const std::string& doc) {
+    return app_.add_option("--" + name, *value, doc);
+  }
+  /// A number checked against `range` (config::Range: open or closed ends).
+  template <class T>
+  CLI::Option* option(const std::string& name, T* value, config::Range range,
+                      const std::string& doc) {
+    return option(name, value, doc)->check(rangeCheck(range));
+  }
+  /// `--name` alone sets *value to true (default false).
+  CLI::Option* flag(const std::string& name, bool* value, const std::string& doc) {
+    return app_.add_flag("--" + name, *value, doc);
+  }
+  /// One option per field of a config's table (or of those named in `only`): --<field name> with
+  /// the field's default (read from *c now), range and doc. A name shared by two tables sets the
+  /// field in both.
+  template <class C>
+  void fields(const config::Fields<C>& table, C* c, const std::vector<std::string>& only = {}) {
+    for (const std::string& name : only)
+      if (!table.find(name)) throw std::logic_error("no config field named " + name);
+    for (const config::Field<C>& f : table.all()) {
+      if (!only.empty() && std::find(only.begin(), only.end(), f.name) == only.end()) continue;
+      auto& setters = field_setters_[f.name];
+      setters.push_back([c, set = f.set](double v) { set(*c, v); });
+      if (setters.size() > 1) continue;
+      const std::string name = f.name;
+      const config::Kind kind = f.kind;
+      app_.add_option_function<std::string>(
+              "--" + name,
+              [this, name, kind](const std::string& s) {
+                for (const auto& set : field_setters_.at(name)) set(parseNumber(kind, s));
+              },
+              f.doc)
+          ->default_str(config::formatValue(kind, f.get(*c)))
+          ->type_name(kind == config::Kind::kInt      ? "INT"
+                      : kind == config::Kind::kBool ? "BOOL"
+                                                    : "FLOAT")
+          ->check(fieldCheck(kind, f.range));
+    }
+  }
+  /// Parses; on --help prints the options and exits 0, on an error prints it and exits 2. Words
+  /// that are not options of the tool are named first (a mistyped option would otherwise show as
+  /// a missing one).
+  void parse(int argc, char** argv) {
+    app_.allow_extras();
+    try {
+      app_.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+      std::cout << app_.help();
+      std::exit(0);
+    } catch (const CLI::ParseError& e) {
+      failOnExtras();
+      fail(e.what());
+    }
+    failOnExtras();
+  }
+  /// A check the options cannot express (two options that exclude each other, a file that
+  /// exists): prints `error: msg` and exits 2.
+  [[noreturn]] void fail(const std::string& msg) const {
+    std::cerr << app_.get_name() << ": error: " << msg << "\nRun with --help for the options.\n";
+    std::exit(2);
+  }
+  CLI::App& app() { return app_; }
+
+  /// The value of `s` as a field of `kind` reads it (an integer, a boolean 0 | 1 | true | false,
+  /// a real); throws CLI::ValidationError naming the text otherwise.
+  static double parseNumber(config::Kind kind, const std::string& s) {
+    if (kind == config::Kind::kBool) {
+      if (s == "1" || s == "true") return 1.0;
+      if (s == "0" || s == "false") return 0.0;
+      throw CLI::ValidationError("expects 0, 1, true or false, got '" + s + "'");
+    }
+    char* end = nullptr;
+    const double v = kind == config::Kind::kInt ? static_cast<double>(std::strtoll(s.c_str(), &end, 10))
+                                                : std::strtod(s.c_str(), &end);
+    if (s.empty() || *end != '\0')
+      throw CLI::ValidationError(std::string("expects ") +
+                                 (kind == config::Kind::kInt ? "an integer" : "a number") +
+                                 ", got '" + s + "'");
+    return v;
+  }
+
+ private:
+  void failOnExtras() const {
+    const std::vector<std::string> extras = app_.remaining();
+    if (extras.empty()) return;
+    std::string words;
+    for (const std::string& w : extras) words += " " + w;
+    fail("not options of this tool:" + words);
+  }
+  static CLI::Validator fieldCheck(config::Kind kind, config::Range range) {
+    return CLI::Validator(
+        [kind, range](std::string& s) -> std::string {
+          try {
+            const double v = parseNumber(kind, s);
+            if (!range.contains(v))
+              return config::formatValue(kind, v) + " is out of range " + range.text();
+          } catch (const CLI::ValidationError& e) {
+            return e.what();
+          }
+          return "";
+        },
+        kind == config::Kind::kBool ? "" : "in " + range.text());
+  }
+  static CLI::Validator rangeCheck(config::Range range) {
+    return fieldCheck(config::Kind::kDouble, range);
+  }
+
+  CLI::App app_;
+  std::map<std::string, std::vector<std::function<void(double)>>> field_setters_;
+};
+
+}  // namespace adaptive_perception::tools

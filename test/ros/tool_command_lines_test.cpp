@@ -1,0 +1,164 @@
+// The tools' command lines (src/tools/command_line.h): what CommandLine accepts and refuses, and
+// every built tool answering --help and refusing an unknown option.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../../src/tools/command_line.h"
+
+namespace {
+
+using adaptive_perception::tools::CommandLine;
+namespace config = adaptive_perception::config;
+namespace fs = std::filesystem;
+
+struct Settings {
+  int count = 3;
+  double gain = 0.5;
+  bool enabled = false;
+  static const config::Fields<Settings>& fields() {
+    static const config::Fields<Settings> f =
+        config::Fields<Settings>()
+            .add("count", &Settings::count, config::closed(1, 10), "how many")
+            .add("gain", &Settings::gain, config::belowOne(), "a fraction")
+            .add("enabled", &Settings::enabled, "on or off");
+    return f;
+  }
+};
+struct Other {  // shares "gain" with Settings
+  double gain = 0.25;
+  static const config::Fields<Other>& fields() {
+    static const config::Fields<Other> f =
+        config::Fields<Other>().add("gain", &Other::gain, config::belowOne(), "a fraction");
+    return f;
+  }
+};
+
+// Parses `words` (after the program name) with a command line of one string option, one real
+// option in (0, 10], one flag and Settings' and Other's tables.
+struct Parsed {
+  std::string name = "default";
+  double length_m = 1.0;
+  bool force = false;
+  Settings settings;
+  Other other;
+};
+void parse(const std::vector<std::string>& words, Parsed* p) {
+  CommandLine cli("demo", "A test of the command line.");
+  cli.option("name", &p->name, "a name");
+  cli.option("length_m", &p->length_m, config::aboveZero(10), "a length, m");
+  cli.flag("force", &p->force, "a flag");
+  cli.fields(Settings::fields(), &p->settings);
+  cli.fields(Other::fields(), &p->other);
+  std::vector<std::string> all = {"demo"};
+  all.insert(all.end(), words.begin(), words.end());
+  std::vector<char*> argv;
+  for (std::string& w : all) argv.push_back(w.data());
+  cli.parse(static_cast<int>(argv.size()), argv.data());
+}
+
+TEST(CommandLine, KeepsDefaultsAndSetsWhatIsGiven) {
+  Parsed d;
+  parse({}, &d);
+  EXPECT_EQ(d.name, "default");
+  EXPECT_EQ(d.length_m, 1.0);
+  EXPECT_FALSE(d.force);
+  EXPECT_EQ(d.settings.count, 3);
+
+  Parsed p;
+  parse({"--name", "x", "--length_m=2.5", "--force", "--count", "7", "--enabled", "true"}, &p);
+  EXPECT_EQ(p.name, "x");
+  EXPECT_EQ(p.length_m, 2.5);
+  EXPECT_TRUE(p.force);
+  EXPECT_EQ(p.settings.count, 7);
+  EXPECT_TRUE(p.settings.enabled);
+}
+
+TEST(CommandLine, AFieldNameSharedByTwoTablesSetsBoth) {
+  Parsed p;
+  parse({"--gain", "0.75"}, &p);
+  EXPECT_EQ(p.settings.gain, 0.75);
+  EXPECT_EQ(p.other.gain, 0.75);
+}
+
+TEST(CommandLine, RefusesWhatItCannotTakeNamingIt) {
+  testing::FLAGS_gtest_death_test_style = "threadsafe";
+  Parsed p;
+  EXPECT_EXIT(parse({"--no_such_option", "1"}, &p), testing::ExitedWithCode(2), "no_such_option");
+  EXPECT_EXIT(parse({"--length_m", "0"}, &p), testing::ExitedWithCode(2),
+              "length_m.*0 is out of range \\(0, 10\\]");
+  EXPECT_EXIT(parse({"--length_m", "abc"}, &p), testing::ExitedWithCode(2),
+              "length_m.*expects a number, got 'abc'");
+  EXPECT_EXIT(parse({"--count", "2.5"}, &p), testing::ExitedWithCode(2),
+              "count.*expects an integer, got '2.5'");
+  EXPECT_EXIT(parse({"--count", "11"}, &p), testing::ExitedWithCode(2),
+              "count.*11 is out of range \\[1, 10\\]");
+  EXPECT_EXIT(parse({"--gain", "1"}, &p), testing::ExitedWithCode(2),
+              "gain.*1 is out of range \\[0, 1\\)");
+  EXPECT_EXIT(parse({"--enabled", "yes please"}, &p), testing::ExitedWithCode(2),
+              "enabled.*expects 0, 1, true or false");
+  // A flag takes no value: the word after it is refused, not swallowed.
+  EXPECT_EXIT(parse({"--force", "file.bag"}, &p), testing::ExitedWithCode(2), "file.bag");
+}
+
+TEST(CommandLine, HelpListsEveryOptionWithItsDefaultAndRange) {
+  Parsed p;
+  EXPECT_EXIT(parse({"--help"}, &p), testing::ExitedWithCode(0), "");
+  CommandLine cli("demo", "A test of the command line.");
+  cli.option("length_m", &p.length_m, config::aboveZero(10), "a length, m");
+  cli.fields(Settings::fields(), &p.settings);
+  const std::string help = cli.app().help();
+  EXPECT_NE(help.find("A test of the command line."), std::string::npos) << help;
+  EXPECT_NE(help.find("--length_m FLOAT:in (0, 10]=1"), std::string::npos) << help;
+  EXPECT_NE(help.find("a length, m"), std::string::npos) << help;
+  EXPECT_NE(help.find("--count INT:in [1, 10]=3"), std::string::npos) << help;
+  EXPECT_NE(help.find("--gain FLOAT:in [0, 1)=0.5"), std::string::npos) << help;
+  EXPECT_NE(help.find("--enabled BOOL=false"), std::string::npos) << help;
+}
+
+// Runs `command`, returning its exit status and what it printed (stdout and stderr).
+int run(const std::string& command, std::string* output) {
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>&1").c_str(), "r"), pclose);
+  std::array<char, 4096> buf{};
+  output->clear();
+  for (size_t n; (n = fread(buf.data(), 1, buf.size(), pipe.get())) > 0;) output->append(buf.data(), n);
+  const int status = pclose(pipe.release());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(Tools, EveryToolAnswersHelpAndRefusesAnUnknownOption) {
+  // demo_monitor is a ROS node (its settings are parameters); bench_ekf_slam takes Google
+  // Benchmark's own flags.
+  const std::vector<std::string> not_command_line = {"demo_monitor", "bench_ekf_slam"};
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(AP_SOURCE_DIR) / "src/tools")) {
+    if (entry.path().extension() != ".cpp") continue;
+    const std::string tool = entry.path().stem().string();
+    if (std::find(not_command_line.begin(), not_command_line.end(), tool) !=
+        not_command_line.end())
+      continue;
+    const fs::path binary = fs::path(AP_TOOL_DIR) / tool;
+    if (!fs::exists(binary)) {
+      // Only the benchmarks may be missing (Google Benchmark not installed).
+      EXPECT_EQ(tool.rfind("bench_", 0), 0u) << binary << " was not built";
+      continue;
+    }
+    std::string out;
+    EXPECT_EQ(run(binary.string() + " --help", &out), 0) << tool << ":\n" << out;
+    EXPECT_NE(out.find("Usage: " + tool), std::string::npos) << tool << ":\n" << out;
+    EXPECT_NE(out.find("Options:"), std::string::npos) << tool << ":\n" << out;
+    EXPECT_EQ(run(binary.string() + " --no_such_option 1", &out), 2) << tool << ":\n" << out;
+    EXPECT_NE(out.find("no_such_option"), std::string::npos) << tool << ":\n" << out;
+    ++checked;
+  }
+  EXPECT_GE(checked, 15);
+}
+
+}  // namespace
