@@ -180,11 +180,7 @@ void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
     // An image a little older than the last is dropped (ImageGate); time really going back resets
     // the model (ColorEstimator::process).
-    bool went_back = false;
-    const ros_conv::ImageGate::Result verdict =
-        gate_.accept(*msg, &yuv, &went_back);
-    if (verdict == ros_conv::ImageGate::Result::kBadImage) ++skipped_bad_image_;
-    if (verdict != ros_conv::ImageGate::Result::kProcess) return;
+    if (!gate_.admit(*msg, &yuv)) return;
   }
   geometry_msgs::TransformStamped pose;
   try {
@@ -280,7 +276,7 @@ void ColorEstimatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& s
   stat.add("frames", frames_);
   stat.add("frames skipped (no tf)", skipped_no_tf_);
   stat.add("frames dropped (older than the last)", gate_.outOfOrder());
-  stat.add("frames skipped (bad image)", skipped_bad_image_);
+  stat.add("frames skipped (bad image)", skipped_bad_image_ + gate_.badImages());
   stat.add("last log likelihood", last_log_likelihood_);
 }
 

@@ -28,8 +28,8 @@ GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   path_length_ = ros_params::getInRange(pnh, "path_length", kPathLength, 0, 100000);
   publish_tf_ = ros_params::get<bool>(pnh, "publish_tf", true);
 
-  truth_sub_.subscribe(nh, ros_topics::kGroundTruthPose, 20);
-  odom_sub_.subscribe(nh, ros_topics::kOdom, 20);
+  truth_sub_.subscribe(nh, ros_topics::kGroundTruthPose, 100);
+  odom_sub_.subscribe(nh, ros_topics::kOdom, 100);
   sync_ =
       std::make_unique<message_filters::Synchronizer<Policy>>(Policy(50), truth_sub_, odom_sub_);
   sync_->registerCallback(&GroundTruthTfNode::callback, this);

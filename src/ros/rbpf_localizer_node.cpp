@@ -185,11 +185,7 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
     // An image a little older than the last is dropped (ImageGate); time really going back restarts
     // below.
-    bool went_back = false;
-    const ros_conv::ImageGate::Result verdict =
-        gate_.accept(*msg, &yuv, &went_back);
-    if (verdict == ros_conv::ImageGate::Result::kBadImage) ++skipped_bad_image_;
-    if (verdict != ros_conv::ImageGate::Result::kProcess) return;
+    if (!gate_.admit(*msg, &yuv)) return;
   }
   ros_conv::OdomAndMount tf;
   try {
@@ -366,7 +362,7 @@ void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   stat.add("frames", frames_);
   stat.add("frames skipped (no tf)", skipped_no_tf_);
   stat.add("frames dropped (older than the last)", gate_.outOfOrder());
-  stat.add("frames skipped (bad image)", skipped_bad_image_);
+  stat.add("frames skipped (bad image)", skipped_bad_image_ + gate_.badImages());
   stat.add("re-initialisations", resets_);
 }
 

@@ -241,13 +241,8 @@ int main(int argc, char** argv) {
                          "by the benchmarks' one-pass evaluation.");
   std::string sequence;
   cli.option("sequence", &sequence, "OTB or VOT sequence folder");
-  std::string bag;
-  cli.option("bag", &bag, "tracking bag (simulate_tracking)");
-  std::string video;
-  cli.option("video", &video, "video file");
-  std::string truth_csv;
-  cli.option("ground_truth", &truth_csv,
-             "the video's ground truth (CSV; empty: the CSV of the same name beside it)");
+  tools::TrackingSource source;
+  source.addOptions(cli);
   std::string init_arg;
   cli.option("init", &init_arg, "first box x,y,w,h in px (empty: the ground truth's)");
   std::string mode = "box";
@@ -277,12 +272,9 @@ int main(int argc, char** argv) {
   cli.fields(tracking::CondensationConfig::fields(), &cc);
   cli.fields(tracking::EllipseTrackerConfig::fields(), &ec);
   cli.parse(argc, argv);
-  if (sequence.empty() + bag.empty() + video.empty() != 2)
+  if (sequence.empty() + source.bag.empty() + source.video.empty() != 2)
     cli.fail("give exactly one of --sequence DIR, --bag FILE and --video FILE");
-  if (!video.empty() && truth_csv.empty()) {  // simulate_tracking's CSV beside the video
-    const fs::path beside = fs::path(video).replace_extension(".csv");
-    if (fs::exists(beside)) truth_csv = beside.string();
-  }
+  source.findGroundTruth();
   std::vector<std::string> peers;
   if (peers_arg != "none") {
     std::stringstream ss(peers_arg);
@@ -327,7 +319,7 @@ int main(int argc, char** argv) {
       name = seq.name;
       notes = seq.notes;
     } else {
-      name = (bag.empty() ? fs::path(video) : fs::path(bag)).stem().string();
+      name = source.name();
     }
     for (const std::string& n : notes) std::printf("evaluate_tracking: note: %s\n", n.c_str());
 
@@ -416,7 +408,7 @@ int main(int argc, char** argv) {
         onFrame(f);
       }
     } else {
-      tools::forEachTrackingFrame(bag, video, truth_csv, static_cast<int>(last_frame), onFrame);
+      tools::forEachTrackingFrame(source, static_cast<int>(last_frame), onFrame);
     }
     progress.finish();
     if (frames < 2) throw std::runtime_error("fewer than two frames from --start_frame on");

@@ -27,13 +27,8 @@ int main(int argc, char** argv) {
   tools::CommandLine cli("learn_tracking_dynamics",
                          "Estimates the CONDENSATION dynamics A (A1, A0, d) and B of papers/001 "
                          "section 3.3 from a sequence with ground truth.");
-  std::string bag;
-  cli.option("bag", &bag, "tracking bag (simulate_tracking)");
-  std::string video;
-  cli.option("video", &video, "video file");
-  std::string truth_csv;
-  cli.option("ground_truth", &truth_csv,
-             "the video's ground truth (CSV; empty: the CSV of the same name beside it)");
+  tools::TrackingSource source;
+  source.addOptions(cli);
   std::string output;
   cli.option("output", &output, "the dynamics to write (YAML)")->required();
   std::string space_name = "opponent";
@@ -46,18 +41,16 @@ int main(int argc, char** argv) {
   bool overwrite = false;
   cli.flag("overwrite", &overwrite, "replace the file if it exists");
   cli.parse(argc, argv);
-  if (bag.empty() == video.empty()) cli.fail("give exactly one of --bag FILE and --video FILE");
+  if (source.bag.empty() == source.video.empty())
+    cli.fail("give exactly one of --bag FILE and --video FILE");
   if (fs::exists(output) && !overwrite)
     cli.fail("'" + output + "' exists; pass --overwrite to replace it");
-  if (!video.empty() && truth_csv.empty()) {
-    const fs::path beside = fs::path(video).replace_extension(".csv");
-    if (fs::exists(beside)) truth_csv = beside.string();
-  }
+  source.findGroundTruth();
   try {
     const tracking::ColorSpace space = tracking::parseColorSpace(space_name);
     std::vector<tracking::DistributionState> states;
     std::optional<tracking::ColorStats> previous;
-    tools::forEachTrackingFrame(bag, video, truth_csv, 0, [&](const tools::TrackingFrameIn& f) {
+    tools::forEachTrackingFrame(source, 0, [&](const tools::TrackingFrameIn& f) {
       if (!f.truth) return;
       const cv::Rect2d& b = *f.truth;
       const tracking::Contour ell = tracking::ellipseContour(

@@ -10,6 +10,7 @@
 #include <sensor_msgs/Image.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -22,8 +23,32 @@
 
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
+#include "command_line.h"
 
 namespace adaptive_perception::tools {
+
+/// A tracking sequence named on a command line: --bag FILE, or --video FILE with its ground truth
+/// (--ground_truth CSV, by default the CSV of the same name beside the video when there is one).
+struct TrackingSource {
+  std::string bag, video, ground_truth;
+
+  void addOptions(CommandLine& cli) {
+    cli.option("bag", &bag, "tracking bag (simulate_tracking)");
+    cli.option("video", &video, "video file");
+    cli.option("ground_truth", &ground_truth,
+               "the video's ground truth (CSV; empty: the CSV of the same name beside it)");
+  }
+  /// After parsing: the video's ground truth beside it, when none was named.
+  void findGroundTruth() {
+    if (video.empty() || !ground_truth.empty()) return;
+    const std::filesystem::path beside = std::filesystem::path(video).replace_extension(".csv");
+    if (std::filesystem::exists(beside)) ground_truth = beside.string();
+  }
+  /// The sequence's name: the file's stem.
+  std::string name() const {
+    return std::filesystem::path(bag.empty() ? video : bag).stem().string();
+  }
+};
 
 struct TrackingFrameIn {
   int index = 0;
@@ -57,9 +82,11 @@ inline std::map<int, cv::Rect2d> readGroundTruthCsv(const std::string& path) {
 
 /// Calls `fn` per frame in order (at most `max_frames` when > 0); returns the count. Throws
 /// std::runtime_error when the input cannot be opened.
-inline int forEachTrackingFrame(const std::string& bag_path, const std::string& video_path,
-                                const std::string& truth_csv, int max_frames,
+inline int forEachTrackingFrame(const TrackingSource& source, int max_frames,
                                 const std::function<void(const TrackingFrameIn&)>& fn) {
+  const std::string& bag_path = source.bag;
+  const std::string& video_path = source.video;
+  const std::string& truth_csv = source.ground_truth;
   int n = 0;
   if (!bag_path.empty()) {
     rosbag::Bag bag(bag_path, rosbag::bagmode::Read);

@@ -10,14 +10,15 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <mutex>
 #include <vector>
 
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "rostest_support.h"
 
 namespace ros_conv = adaptive_perception::ros_conv;
 namespace math = adaptive_perception::math;
+namespace rostest_support = adaptive_perception::rostest_support;
 
 TEST(EkfSlamMapperLocalize, StaysOnTheTruePathAgainstTheLoadedMapWithoutExtendingIt) {
   ros::NodeHandle nh, p("~");
@@ -25,48 +26,23 @@ TEST(EkfSlamMapperLocalize, StaysOnTheTruePathAgainstTheLoadedMapWithoutExtendin
   const double max_err = p.param("max_position_error_m", 0.2);
   const double max_final = p.param("max_final_position_error_m", 0.1);
   const int min_segments = p.param("min_map_segments", 10);
-  std::mutex mutex;
-  std::map<ros::Time, math::SE2> truth;
-  std::vector<geometry_msgs::PoseWithCovarianceStampedConstPtr> poses;
-  visualization_msgs::MarkerArrayConstPtr last_map;
-  int scans = 0;
-  auto a = nh.subscribe<geometry_msgs::PoseWithCovarianceStamped>(
-      "ekf_slam_mapper/pose", 2000, [&](const geometry_msgs::PoseWithCovarianceStampedConstPtr& m) {
-        std::lock_guard<std::mutex> l(mutex);
-        poses.push_back(m);
-      });
-  auto b = nh.subscribe<geometry_msgs::PoseStamped>(
-      "ground_truth/pose", 5000, [&](const geometry_msgs::PoseStampedConstPtr& m) {
-        std::lock_guard<std::mutex> l(mutex);
-        truth[m->header.stamp] = ros_conv::toSE2(m->pose);
-      });
-  auto c = nh.subscribe<sensor_msgs::LaserScan>("scan", 2000,
-                                                [&](const sensor_msgs::LaserScanConstPtr&) {
-                                                  std::lock_guard<std::mutex> l(mutex);
-                                                  ++scans;
-                                                });
-  auto d = nh.subscribe<visualization_msgs::MarkerArray>(
-      "ekf_slam_mapper/map", 5, [&](const visualization_msgs::MarkerArrayConstPtr& m) {
-        std::lock_guard<std::mutex> l(mutex);
-        last_map = m;
-      });
+  rostest_support::TopicRecord<geometry_msgs::PoseWithCovarianceStamped> poses(
+      nh, "ekf_slam_mapper/pose", 2000, true);
+  rostest_support::TopicRecord<geometry_msgs::PoseStamped> truth_poses(nh, "ground_truth/pose",
+                                                                        5000, true);
+  rostest_support::TopicRecord<sensor_msgs::LaserScan> scans(nh, "scan", 2000);
+  rostest_support::TopicRecord<visualization_msgs::MarkerArray> map(nh, "ekf_slam_mapper/map", 5);
   ros::AsyncSpinner spinner(2);
   spinner.start();
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(100.0);
-  while (ros::WallTime::now() < deadline) {
-    {
-      std::lock_guard<std::mutex> l(mutex);
-      if (scans >= expected) break;
-    }
-    ros::WallDuration(0.1).sleep();
-  }
+  rostest_support::waitUntil([&] { return scans.count() >= expected; }, 100.0, 0.1);
   ros::WallDuration(2.0).sleep();
-  std::lock_guard<std::mutex> l(mutex);
-  ASSERT_EQ(scans, expected);
-  ASSERT_GE(static_cast<int>(poses.size()), expected - 10) << "the mapper answered the scans";
+  ASSERT_EQ(scans.count(), expected);
+  ASSERT_GE(poses.count(), expected - 10) << "the mapper answered the scans";
+  std::map<ros::Time, math::SE2> truth;
+  for (const auto& m : truth_poses.all()) truth[m->header.stamp] = ros_conv::toSE2(m->pose);
   double worst = 0.0, final_err = -1.0;
   int compared = 0;
-  for (const auto& m : poses) {
+  for (const auto& m : poses.all()) {
     const auto it = truth.find(m->header.stamp);
     if (it == truth.end()) continue;
     const math::SE2 est = ros_conv::toSE2(m->pose.pose);
@@ -80,6 +56,7 @@ TEST(EkfSlamMapperLocalize, StaysOnTheTruePathAgainstTheLoadedMapWithoutExtendin
   EXPECT_GE(compared, expected - 10);
   EXPECT_LT(worst, max_err);
   EXPECT_LT(final_err, max_final);
+  const auto last_map = map.last();
   ASSERT_TRUE(last_map);
   int fixed = 0, in_state = 0, tentative = 0;
   for (const auto& m : last_map->markers) {

@@ -16,15 +16,16 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <mutex>
 
 #include "adaptive_perception/SaveMap.h"
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/slam/occupancy_grid.h"
+#include "rostest_support.h"
 
 namespace ros_conv = adaptive_perception::ros_conv;
 namespace math = adaptive_perception::math;
+namespace rostest_support = adaptive_perception::rostest_support;
 
 TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
   ros::NodeHandle nh, p("~");
@@ -32,62 +33,26 @@ TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
   const double max_err = p.param("max_final_position_error_m", 0.15);
   const double max_yaw = p.param("max_final_yaw_error_rad", 0.05);
   const int min_lm = p.param("min_landmarks", 10), max_lm = p.param("max_landmarks", 60);
-  std::mutex mutex;
-  std::map<ros::Time, math::SE2> truth;
-  geometry_msgs::PoseWithCovarianceStampedConstPtr last_pose;
-  visualization_msgs::MarkerArrayConstPtr last_map;
-  nav_msgs::PathConstPtr last_path;
-  nav_msgs::OccupancyGridConstPtr last_grid;
-  int scans = 0, poses = 0, grids = 0;
-  auto a = nh.subscribe<geometry_msgs::PoseWithCovarianceStamped>(
-      "ekf_slam_mapper/pose", 2000, [&](const geometry_msgs::PoseWithCovarianceStampedConstPtr& m) {
-        std::lock_guard<std::mutex> l(mutex);
-        last_pose = m;
-        ++poses;
-      });
-  auto b = nh.subscribe<geometry_msgs::PoseStamped>(
-      "ground_truth/pose", 5000, [&](const geometry_msgs::PoseStampedConstPtr& m) {
-        std::lock_guard<std::mutex> l(mutex);
-        truth[m->header.stamp] = ros_conv::toSE2(m->pose);
-      });
-  auto c = nh.subscribe<sensor_msgs::LaserScan>("scan", 2000,
-                                                [&](const sensor_msgs::LaserScanConstPtr&) {
-                                                  std::lock_guard<std::mutex> l(mutex);
-                                                  ++scans;
-                                                });
-  auto d = nh.subscribe<visualization_msgs::MarkerArray>(
-      "ekf_slam_mapper/map", 5, [&](const visualization_msgs::MarkerArrayConstPtr& m) {
-        std::lock_guard<std::mutex> l(mutex);
-        last_map = m;
-      });
-  auto e =
-      nh.subscribe<nav_msgs::Path>("ekf_slam_mapper/path", 5, [&](const nav_msgs::PathConstPtr& m) {
-        std::lock_guard<std::mutex> l(mutex);
-        last_path = m;
-      });
-  auto f = nh.subscribe<nav_msgs::OccupancyGrid>("map", 5,
-                                                 [&](const nav_msgs::OccupancyGridConstPtr& m) {
-                                                   std::lock_guard<std::mutex> l(mutex);
-                                                   last_grid = m;
-                                                   ++grids;
-                                                 });
+  rostest_support::TopicRecord<geometry_msgs::PoseWithCovarianceStamped> poses(
+      nh, "ekf_slam_mapper/pose", 2000);
+  rostest_support::TopicRecord<geometry_msgs::PoseStamped> truth_poses(nh, "ground_truth/pose",
+                                                                        5000, true);
+  rostest_support::TopicRecord<sensor_msgs::LaserScan> scans(nh, "scan", 2000);
+  rostest_support::TopicRecord<visualization_msgs::MarkerArray> map(nh, "ekf_slam_mapper/map", 5);
+  rostest_support::TopicRecord<nav_msgs::Path> path_record(nh, "ekf_slam_mapper/path", 5);
+  rostest_support::TopicRecord<nav_msgs::OccupancyGrid> grids(nh, "map", 5);
   tf2_ros::Buffer tf_buffer;
   tf2_ros::TransformListener tf_listener(tf_buffer);
   ros::AsyncSpinner spinner(2);
   spinner.start();
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(100.0);
-  while (ros::WallTime::now() < deadline) {
-    {
-      std::lock_guard<std::mutex> l(mutex);
-      if (scans >= expected) break;
-    }
-    ros::WallDuration(0.1).sleep();
-  }
+  rostest_support::waitUntil([&] { return scans.count() >= expected; }, 100.0, 0.1);
   ros::WallDuration(2.0).sleep();
+  std::map<ros::Time, math::SE2> truth;
+  for (const auto& m : truth_poses.all()) truth[m->header.stamp] = ros_conv::toSE2(m->pose);
   {
-    std::lock_guard<std::mutex> l(mutex);
-    ASSERT_EQ(scans, expected);
-    EXPECT_GE(poses, expected - 10) << "the mapper answered the scans";
+    ASSERT_EQ(scans.count(), expected);
+    EXPECT_GE(poses.count(), expected - 10) << "the mapper answered the scans";
+    const auto last_pose = poses.last();
     ASSERT_TRUE(last_pose);
     EXPECT_EQ(last_pose->header.frame_id, "map");
     const auto it = truth.find(last_pose->header.stamp);
@@ -98,8 +63,10 @@ TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
     EXPECT_LT(std::fabs(math::angleDiff(est.yaw_rad, it->second.yaw_rad)), max_yaw);
     std::printf("ekf_slam_mapper_loop: final_position_error_m=%.3f\n", err);
     EXPECT_GT(last_pose->pose.covariance[0], 0.0);
+    const auto last_path = path_record.last();
     ASSERT_TRUE(last_path);
     EXPECT_GE(static_cast<int>(last_path->poses.size()), expected - 10);
+    const auto last_map = map.last();
     ASSERT_TRUE(last_map);
     int segments = 0;
     for (const auto& m : last_map->markers)
@@ -112,9 +79,9 @@ TEST(EkfSlamMapperLoop, ClosesTheLoopAndEndsAtTheTruePose) {
   // cells, the walls' hits make occupied ones, and dynamic_map serves the same grid.
   ros::WallDuration(3.0).sleep();  // the last render after the bag's end (map_update_interval_s 2)
   {
-    std::lock_guard<std::mutex> l(mutex);
+    const auto last_grid = grids.last();
     ASSERT_TRUE(last_grid) << "no occupancy grid on map";
-    EXPECT_GE(grids, 3);
+    EXPECT_GE(grids.count(), 3);
     EXPECT_EQ(last_grid->header.frame_id, "map");
     EXPECT_FLOAT_EQ(last_grid->info.resolution, 0.05f);
     ASSERT_EQ(last_grid->data.size(),

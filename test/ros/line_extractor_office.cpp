@@ -4,16 +4,17 @@
 #include <sensor_msgs/LaserScan.h>
 
 #include <map>
-#include <mutex>
 
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/laser/line_evaluation.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "rostest_support.h"
 
 using adaptive_perception::LineSegmentArray;
 using adaptive_perception::LineSegmentArrayConstPtr;
 namespace laser = adaptive_perception::laser;
 namespace ros_conv = adaptive_perception::ros_conv;
+namespace rostest_support = adaptive_perception::rostest_support;
 
 namespace {
 
@@ -22,36 +23,17 @@ TEST(LineExtractorOffice, PublishesTheWallsInView) {
   const int expected = p.param("expected_scans", 301);
   const double min_precision = p.param("min_precision", 0.95),
                min_recall = p.param("min_recall", 0.95);
-  std::mutex mutex;
-  std::map<ros::Time, LineSegmentArrayConstPtr> lines, truth;
-  int scans = 0;
-  auto a = nh.subscribe<LineSegmentArray>("lines", 500, [&](const LineSegmentArrayConstPtr& m) {
-    std::lock_guard<std::mutex> l(mutex);
-    lines[m->header.stamp] = m;
-  });
-  auto b = nh.subscribe<LineSegmentArray>("ground_truth/walls", 500,
-                                          [&](const LineSegmentArrayConstPtr& m) {
-                                            std::lock_guard<std::mutex> l(mutex);
-                                            truth[m->header.stamp] = m;
-                                          });
-  auto c =
-      nh.subscribe<sensor_msgs::LaserScan>("scan", 500, [&](const sensor_msgs::LaserScanConstPtr&) {
-        std::lock_guard<std::mutex> l(mutex);
-        ++scans;
-      });
+  rostest_support::TopicRecord<LineSegmentArray> line_record(nh, "lines", 500, true);
+  rostest_support::TopicRecord<LineSegmentArray> truth_record(nh, "ground_truth/walls", 500, true);
+  rostest_support::TopicRecord<sensor_msgs::LaserScan> scans(nh, "scan", 500);
   ros::AsyncSpinner spinner(2);
   spinner.start();
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(60.0);
-  while (ros::WallTime::now() < deadline) {
-    {
-      std::lock_guard<std::mutex> l(mutex);
-      if (scans >= expected) break;
-    }
-    ros::WallDuration(0.1).sleep();
-  }
+  rostest_support::waitUntil([&] { return scans.count() >= expected; }, 60.0, 0.1);
   ros::WallDuration(1.0).sleep();
-  std::lock_guard<std::mutex> l(mutex);
-  ASSERT_EQ(scans, expected);
+  ASSERT_EQ(scans.count(), expected);
+  std::map<ros::Time, LineSegmentArrayConstPtr> lines, truth;
+  for (const auto& m : line_record.all()) lines[m->header.stamp] = m;
+  for (const auto& m : truth_record.all()) truth[m->header.stamp] = m;
   // The node keeps up: (almost) every scan gets its segments, stamped and framed like the scan.
   EXPECT_GE(static_cast<int>(lines.size()), expected - 3);
   laser::LineScore score;

@@ -49,6 +49,42 @@ inline bool waitUntil(const std::function<bool()>& done, double timeout_s, doubl
   return done();
 }
 
+/// What a test heard on one topic: the last message, how many came and, when asked, all of them
+/// (thread-safe; the callbacks run on the test's spinner).
+template <class M>
+class TopicRecord {
+ public:
+  using Ptr = boost::shared_ptr<const M>;
+  TopicRecord(ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size,
+              bool keep_all = false)
+      : keep_all_(keep_all), sub_(nh.subscribe<M>(topic, queue_size, [this](const Ptr& m) {
+          std::lock_guard<std::mutex> l(mutex_);
+          last_ = m;
+          ++count_;
+          if (keep_all_) all_.push_back(m);
+        })) {}
+  Ptr last() const {
+    std::lock_guard<std::mutex> l(mutex_);
+    return last_;
+  }
+  int count() const {
+    std::lock_guard<std::mutex> l(mutex_);
+    return count_;
+  }
+  std::vector<Ptr> all() const {
+    std::lock_guard<std::mutex> l(mutex_);
+    return all_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  Ptr last_;
+  int count_ = 0;
+  bool keep_all_;
+  std::vector<Ptr> all_;
+  ros::Subscriber sub_;
+};
+
 /// The string last published on `topic` (a player script's /test_phase), thread-safe.
 class PhaseListener {
  public:

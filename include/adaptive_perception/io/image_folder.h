@@ -19,6 +19,17 @@ namespace adaptive_perception::io {
 /// `s` without leading and trailing spaces, tabs and carriage returns (CSV fields, CRLF files).
 std::string trimmed(const std::string& s);
 
+/// One line of a small CSV file that holds data: its number (from 1) and its text, trimmed.
+struct CsvLine {
+  int number = 0;
+  std::string text;
+};
+/// The lines of `path` that hold data (blank lines and `#` comments left out). Throws
+/// "`path`: `cannot_open`" when the file cannot be read.
+std::vector<CsvLine> readCsvLines(const std::string& path, const std::string& cannot_open);
+/// A path as a list names it: absolute as it is, else relative to the list's folder.
+std::string besideList(const std::string& list_path, const std::string& path);
+
 /// True for the image extensions above.
 bool isImageFile(const std::string& path);
 /// Natural order: runs of digits compare by value.

@@ -29,6 +29,12 @@ class ImageGate {
   /// kRestart: the caller restarts its filter; the image is still judged); an image only a little
   /// older than the last is kOutOfOrder.
   Result accept(const sensor_msgs::Image& msg, cv::Mat* image, bool* time_went_back);
+  /// accept() for a node whose filter restarts by itself when time goes back: true to process the
+  /// image (*image filled); false for an image too soon, out of order or bad (counted here).
+  bool admit(const sensor_msgs::Image& msg, cv::Mat* image) {
+    bool went_back = false;
+    return accept(msg, image, &went_back) == Result::kProcess;
+  }
   long badImages() const { return bad_images_; }
   long outOfOrder() const { return order_.dropped(); }
 

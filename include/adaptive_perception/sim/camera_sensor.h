@@ -7,19 +7,17 @@
 
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/sim/field_environment.h"
+#include "adaptive_perception/sim/sensor_response.h"
 #include "adaptive_perception/world/label_renderer.h"
 
 namespace adaptive_perception::sim {
 
 struct CameraSensorConfig {
-  double white_point_k = 5000.0;  // white balance fixed for this colour temperature
-  double gamma = 2.2;             // output = linear^(1/gamma)
-  double vignetting = 0.45;       // relative luminance loss at the image corners
-  double vignetting_chroma_u =
-      8.0;                       // U shift (8-bit levels) at the corners (the ERS-7's blue corners)
-  double luma_read_noise = 1.5;  // 8-bit levels
-  double luma_shot_noise = 0.06;  // variance per level of signal
-  double chroma_noise = 2.0;      // 8-bit levels, U and V independently
+  // White point 5000 K, vignetting 0.45, gamma 2.2; the noise is the luminance's: read 1.5 levels,
+  // shot 0.06 per level.
+  SensorResponse sensor = {5000.0, 0.45, 2.2, 1.5, 0.06};
+  double vignetting_chroma_u = 8.0;  // U shift (8-bit levels) at the corners (the ERS-7's blue)
+  double chroma_noise = 2.0;         // 8-bit levels, U and V independently
 
   void validate() const;  // throws std::invalid_argument naming the bad field
 };

@@ -23,6 +23,7 @@
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/sim/indoor_world.h"
+#include "adaptive_perception/sim/sensor_response.h"
 
 namespace adaptive_perception::sim {
 
@@ -60,11 +61,7 @@ struct IndoorCameraConfig {
   double height_m = 1.0;          // optical centre above the floor
   double exposure_target = 0.18;  // auto-exposure: mean linear luminance of the image
   double exposure_jitter = 0.08;  // relative, per image
-  double white_point_k = 5000.0;  // fixed white balance
-  double vignetting = 0.25;       // relative luminance loss at the corners
-  double read_noise = 1.5;        // 8-bit levels
-  double shot_noise = 0.05;       // variance per level of signal
-  double gamma = 2.2;
+  SensorResponse sensor;  // white balance, vignetting, gamma, noise (in each RGB channel)
 
   int width() const { return omni ? omni_width_px : width_px; }
   int height() const { return omni ? omni_height_px : height_px; }

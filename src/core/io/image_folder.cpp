@@ -26,6 +26,23 @@ bool parseInt(const std::string& text, long* out) {
 }
 }  // namespace
 
+std::vector<CsvLine> readCsvLines(const std::string& path, const std::string& cannot_open) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": " + cannot_open);
+  std::vector<CsvLine> out;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    std::string t = trimmed(line);
+    if (!t.empty() && t[0] != '#') out.push_back({n, std::move(t)});
+  }
+  return out;
+}
+
+std::string besideList(const std::string& list_path, const std::string& path) {
+  const fs::path p(path);
+  return p.is_absolute() ? path : (fs::path(list_path).parent_path() / p).string();
+}
+
 std::string trimmed(const std::string& s) {
   const auto a = s.find_first_not_of(" \t\r");
   if (a == std::string::npos) return "";
@@ -96,42 +113,28 @@ std::vector<std::string> readTraversal(const std::string& folder_or_csv) {
       throw std::runtime_error(folder_or_csv + ": no image (jpg, png, bmp, ppm, pgm) in the folder");
     return out;
   }
-  std::ifstream in(folder_or_csv);
-  if (!in) throw std::runtime_error(folder_or_csv + ": no such folder or image list");
-  const fs::path base = fs::path(folder_or_csv).parent_path();
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) {
-    ++n;
-    const std::string t = trimmed(line);
-    if (t.empty() || t[0] == '#') continue;
-    if (out.empty() && t.rfind("image_path", 0) == 0) continue;
-    const std::string path = trimmed(t.substr(0, t.find(',')));
+  for (const CsvLine& l : readCsvLines(folder_or_csv, "no such folder or image list")) {
+    if (out.empty() && l.text.rfind("image_path", 0) == 0) continue;  // a header
+    const std::string path = trimmed(l.text.substr(0, l.text.find(',')));
     if (path.empty())
-      throw std::runtime_error(folder_or_csv + ":" + std::to_string(n) + ": empty image path");
-    const fs::path p(path);
-    out.push_back(p.is_absolute() ? path : (base / p).string());
+      throw std::runtime_error(folder_or_csv + ":" + std::to_string(l.number) +
+                               ": empty image path");
+    out.push_back(besideList(folder_or_csv, path));
   }
   if (out.empty()) throw std::runtime_error(folder_or_csv + ": the image list names no image");
   return out;
 }
 
 std::vector<FrameCorrespondence> readFrameCorrespondences(const std::string& csv_path) {
-  std::ifstream in(csv_path);
-  if (!in) throw std::runtime_error(csv_path + ": cannot open the ground-truth file");
   std::vector<FrameCorrespondence> out;
-  std::string line;
-  int n = 0;
   bool data_seen = false;
-  while (std::getline(in, line)) {
-    ++n;
-    const std::string t = trimmed(line);
-    if (t.empty() || t[0] == '#') continue;
+  for (const CsvLine& l : readCsvLines(csv_path, "cannot open the ground-truth file")) {
+    const std::string& t = l.text;
     std::vector<std::string> fields;
     std::stringstream ss(t);
     std::string f;
     while (std::getline(ss, f, ',')) fields.push_back(f);
-    const std::string where = csv_path + ":" + std::to_string(n) + ": ";
+    const std::string where = csv_path + ":" + std::to_string(l.number) + ": ";
     long v[3];
     const bool numeric = fields.size() == 3 && parseInt(fields[0], &v[0]) &&
                          parseInt(fields[1], &v[1]) && parseInt(fields[2], &v[2]);

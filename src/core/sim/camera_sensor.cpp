@@ -14,12 +14,7 @@ void CameraSensorConfig::validate() const {
       throw std::invalid_argument(std::string(name) + " = " + std::to_string(v) +
                                   " (allowed: " + range + ")");
   };
-  check(white_point_k >= 1000.0 && white_point_k <= 20000.0, "white_point_k", white_point_k,
-        "1000..20000");
-  check(gamma >= 0.5 && gamma <= 4.0, "gamma", gamma, "0.5..4");
-  check(vignetting >= 0.0 && vignetting < 1.0, "vignetting", vignetting, "0..<1");
-  check(luma_read_noise >= 0.0, "luma_read_noise", luma_read_noise, ">= 0");
-  check(luma_shot_noise >= 0.0, "luma_shot_noise", luma_shot_noise, ">= 0");
+  sensor.validate();
   check(chroma_noise >= 0.0, "chroma_noise", chroma_noise, ">= 0");
 }
 
@@ -60,9 +55,8 @@ CameraImage CameraSensor::render(const std::vector<world::RayHit>& hits,
   cv::Mat y(h, w, CV_32F), u(h, w, CV_32F), v(h, w, CV_32F);
   CameraImage out;
   out.labels.create(h, w, CV_8UC1);
-  const double inv_gamma = 1.0 / config_.gamma;
-  const Eigen::Vector3d wb =
-      world::colorTemperatureRgb(config_.white_point_k, config_.white_point_k);
+  const SensorResponse& sensor = config_.sensor;
+  const Eigen::Vector3d wb = world::colorTemperatureRgb(sensor.white_point_k, sensor.white_point_k);
   for (int r = 0; r < h; ++r) {
     for (int c = 0; c < w; ++c) {
       const size_t i = static_cast<size_t>(r) * w + c;
@@ -76,13 +70,10 @@ CameraImage CameraSensor::render(const std::vector<world::RayHit>& hits,
         radiance = env.albedo(hit).cwiseProduct(lighting.irradiance(hit.point_m, hit.normal));
       }
       const double r2 = radial2_[i];
-      Eigen::Vector3d rgb =
-          env.exposure * (1.0 - config_.vignetting * r2) * radiance.cwiseProduct(wb);
-      for (int k = 0; k < 3; ++k)
-        rgb[k] = 255.0 * std::pow(std::clamp(rgb[k], 0.0, 1.0), inv_gamma);
+      Eigen::Vector3d rgb = env.exposure * sensor.falloff(r2) * radiance.cwiseProduct(wb);
+      for (int k = 0; k < 3; ++k) rgb[k] = sensor.level(rgb[k]);
       const Eigen::Vector3d yuv = color::rgbToYuv(rgb);
-      const double luma_sd = std::sqrt(config_.luma_read_noise * config_.luma_read_noise +
-                                       config_.luma_shot_noise * std::max(0.0, yuv[0]));
+      const double luma_sd = sensor.noiseSd(yuv[0]);
       y.at<float>(r, c) = static_cast<float>(yuv[0] + rng.gaussian(0.0, luma_sd));
       u.at<float>(r, c) = static_cast<float>(yuv[1] + config_.vignetting_chroma_u * r2 +
                                              rng.gaussian(0.0, config_.chroma_noise));

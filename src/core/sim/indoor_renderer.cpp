@@ -129,9 +129,8 @@ void IndoorCameraConfig::validate() const {
        "omni elevations need -90 < min_elevation_deg < max_elevation_deg < 90");
   need(height_m > 0.05, "height_m must exceed 0.05");
   need(exposure_target > 0.0 && exposure_target < 1.0, "exposure_target must be in (0, 1)");
-  need(gamma > 0.0 && vignetting >= 0.0 && vignetting < 1.0 && read_noise >= 0.0 &&
-           shot_noise >= 0.0 && exposure_jitter >= 0.0,
-       "gamma > 0, 0 <= vignetting < 1, noise and jitter >= 0");
+  need(exposure_jitter >= 0.0, "exposure_jitter must be >= 0");
+  sensor.validate();
 }
 
 struct IndoorRenderer::Hit {
@@ -160,7 +159,7 @@ IndoorRenderer::IndoorRenderer(IndoorWorld world, IndoorCameraConfig camera)
         rays_body_[v * w + u] = Eigen::Vector3d(cp - sp * z, y, sp + cp * z).normalized();
         const double r2 = (std::pow(u + 0.5 - 0.5 * w, 2) + std::pow(v + 0.5 - 0.5 * h, 2)) /
                           (0.25 * (w * w + h * h));
-        vignette_[v * w + u] = static_cast<float>(1.0 - camera_.vignetting * r2);
+        vignette_[v * w + u] = static_cast<float>(camera_.sensor.falloff(r2));
       }
   } else {
     const double cx = 0.5 * w, cy = 0.5 * h;
@@ -184,7 +183,7 @@ IndoorRenderer::IndoorRenderer(IndoorWorld world, IndoorCameraConfig camera)
             kDeg;
         rays_body_[i] = {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
         const double rr = r / camera_.outer_radius_px;
-        vignette_[i] = static_cast<float>(1.0 - camera_.vignetting * rr * rr);
+        vignette_[i] = static_cast<float>(camera_.sensor.falloff(rr * rr));
       }
   }
   // Daylight reaching each indoor place: window length on its boundary, saturating at 4 m.
@@ -298,7 +297,7 @@ bool IndoorRenderer::sunVisible(const Eigen::Vector3d& p, const IndoorLighting& 
 Eigen::Vector3d IndoorRenderer::skyRadiance(const Eigen::Vector3d& d,
                                             const IndoorLighting& l) const {
   using world::colorTemperatureRgb;
-  const double wp = camera_.white_point_k;
+  const double wp = camera_.sensor.white_point_k;
   if (l.kind == IndoorLightingKind::kNight) return {0.004, 0.005, 0.012};
   const Eigen::Vector3d sky = colorTemperatureRgb(l.sky_temperature_k, wp);
   if (d.z() < 0.0) {  // below the horizon: distant trees and lawns
@@ -317,7 +316,7 @@ Eigen::Vector3d IndoorRenderer::irradiance(const Eigen::Vector3d& p, const Eigen
                                            int place, double lamp_factor,
                                            const IndoorLighting& l) const {
   using world::colorTemperatureRgb;
-  const double wp = camera_.white_point_k;
+  const double wp = camera_.sensor.white_point_k;
   Eigen::Vector3d e = Eigen::Vector3d::Zero();
   const bool outdoor = place < 0 || world_.places[place].outdoor;
   if (!outdoor) {
@@ -357,7 +356,7 @@ Eigen::Vector3d IndoorRenderer::radiance(const Eigen::Vector3d& o, const Eigen::
         const PlaceStyle& s = world_.places[place].style;
         return 1.6 * s.lamp_intensity * l.lamp_scale *
                world::colorTemperatureRgb(s.lamp_color_temperature_k + l.lamp_temperature_shift_k,
-                                          camera_.white_point_k);
+                                          camera_.sensor.white_point_k);
       }
       return Eigen::Vector3d(0.85, 0.85, 0.83)
           .cwiseProduct(irradiance(p, hit.normal, place, 0.45, l));
@@ -426,7 +425,6 @@ cv::Mat IndoorRenderer::render(const math::SE2& pose, const IndoorLighting& l,
   const double gain = camera_.exposure_target / std::max(mean, 1e-6) *
                       std::max(0.2, 1.0 + rng.gaussian(0.0, camera_.exposure_jitter));
   cv::Mat out(h, w, CV_8UC3);
-  const double inv_gamma = 1.0 / camera_.gamma;
   for (int v = 0; v < h; ++v) {
     cv::Vec3b* row = out.ptr<cv::Vec3b>(v);
     for (int u = 0; u < w; ++u) {
@@ -438,10 +436,8 @@ cv::Mat IndoorRenderer::render(const math::SE2& pose, const IndoorLighting& l,
       Eigen::Vector3d px = valid_[i] == 2 ? Eigen::Vector3d(0.0006, 0.0006, 0.0007)
                                           : (lin[i].cast<double>() * gain).eval();
       for (int k = 0; k < 3; ++k) {
-        double level = 255.0 * std::pow(std::clamp(px[k], 0.0, 1.0), inv_gamma);
-        const double sd =
-            std::sqrt(camera_.read_noise * camera_.read_noise + camera_.shot_noise * level);
-        level = std::clamp(level + rng.gaussian(0.0, sd), 0.0, 255.0);
+        double level = camera_.sensor.level(px[k]);
+        level = std::clamp(level + rng.gaussian(0.0, camera_.sensor.noiseSd(level)), 0.0, 255.0);
         row[u][2 - k] = static_cast<unsigned char>(std::lround(level));
       }
     }

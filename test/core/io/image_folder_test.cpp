@@ -70,6 +70,26 @@ TEST_F(ImageFolderTest, CsvListKeepsItsOrderAndResolvesRelativePaths) {
   EXPECT_EQ(files[2], (dir_ / "sub/c.jpg").string());
 }
 
+TEST_F(ImageFolderTest, CsvLinesAreNumberedTrimmedAndWithoutCommentsOrBlanks) {
+  const fs::path csv = dir_ / "lines.csv";
+  write(csv, "# comment\r\n  a,1 \r\n\n\t\nb\n");
+  const std::vector<ap::io::CsvLine> lines = ap::io::readCsvLines(csv.string(), "cannot open it");
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0].number, 2);
+  EXPECT_EQ(lines[0].text, "a,1");
+  EXPECT_EQ(lines[1].number, 5);
+  EXPECT_EQ(lines[1].text, "b");
+  try {
+    ap::io::readCsvLines((dir_ / "none.csv").string(), "cannot open it");
+    ADD_FAILURE() << "a missing file was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), (dir_ / "none.csv").string() + ": cannot open it");
+  }
+  EXPECT_EQ(ap::io::besideList("/data/lists/l.csv", "img/a.png"), "/data/lists/img/a.png");
+  EXPECT_EQ(ap::io::besideList("/data/lists/l.csv", "/abs/a.png"), "/abs/a.png");
+  EXPECT_EQ(ap::io::besideList("l.csv", "a.png"), "a.png");
+}
+
 TEST_F(ImageFolderTest, EmptyOrMissingTraversalsAreNamed) {
   fs::create_directories(dir_ / "empty");
   write(dir_ / "empty" / "notes.txt", "x");
