@@ -4,7 +4,7 @@
 // unit, and where it matters its allowed range; a config's field table (config/fields.h) adds one
 // option per field with the field's name, range and doc, as the node's ROS parameter of the same
 // name. Then:
-//   - `--help` lists every option with its default ([60]) and range, and exits 0;
+//   - `--help` lists every option with its type, range and default, and exits 0;
 //   - an unknown option, a stray word, a value that is not a number where one is needed, or one out
 //     of range is refused with a message naming it, and the tool exits 2.
 // Options are written `--name value` or `--name=value`; a flag takes no value, so a word after it
@@ -16,6 +16,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,11 +25,30 @@
 
 namespace adaptive_perception::tools {
 
+/// --help as the tools print it: `--name TYPE:range` and then the doc ending in `(default: X)`.
+class HelpFormatter : public CLI::Formatter {
+ public:
+  std::string make_option_opts(const CLI::Option* opt) const override {
+    std::string out;
+    if (opt->get_type_size() != 0) {
+      if (!opt->get_type_name().empty()) out += " " + opt->get_type_name();
+      if (opt->get_required()) out += " REQUIRED";
+    }
+    return out;
+  }
+  std::string make_option_desc(const CLI::Option* opt) const override {
+    const std::string& def = opt->get_default_str();
+    if (opt->get_type_size() == 0 || def.empty()) return opt->get_description();
+    return opt->get_description() + " (default: " + def + ")";
+  }
+};
+
 class CommandLine {
  public:
   /// `description`: what the tool does, first in --help.
   CommandLine(const std::string& name, const std::string& description) : app_(description, name) {
     app_.option_defaults()->always_capture_default();
+    app_.formatter(std::make_shared<HelpFormatter>());
     app_.get_formatter()->column_width(36);
   }
   CommandLine(const CommandLine&) = delete;

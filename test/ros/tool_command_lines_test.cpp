@@ -116,11 +116,14 @@ TEST(CommandLine, HelpListsEveryOptionWithItsDefaultAndRange) {
   cli.fields(Settings::fields(), &p.settings);
   const std::string help = cli.app().help();
   EXPECT_NE(help.find("A test of the command line."), std::string::npos) << help;
-  EXPECT_NE(help.find("--length_m FLOAT:in (0, 10]=1"), std::string::npos) << help;
-  EXPECT_NE(help.find("a length, m"), std::string::npos) << help;
-  EXPECT_NE(help.find("--count INT:in [1, 10]=3"), std::string::npos) << help;
-  EXPECT_NE(help.find("--gain FLOAT:in [0, 1)=0.5"), std::string::npos) << help;
-  EXPECT_NE(help.find("--enabled BOOL=false"), std::string::npos) << help;
+  EXPECT_NE(help.find("--length_m FLOAT:in (0, 10]"), std::string::npos) << help;
+  EXPECT_NE(help.find("a length, m (default: 1)"), std::string::npos) << help;
+  EXPECT_NE(help.find("--count INT:in [1, 10]"), std::string::npos) << help;
+  EXPECT_NE(help.find("how many (default: 3)"), std::string::npos) << help;
+  EXPECT_NE(help.find("--gain FLOAT:in [0, 1)"), std::string::npos) << help;
+  EXPECT_NE(help.find("a fraction (default: 0.5)"), std::string::npos) << help;
+  EXPECT_NE(help.find("--enabled BOOL"), std::string::npos) << help;
+  EXPECT_NE(help.find("on or off (default: false)"), std::string::npos) << help;
 }
 
 // Runs `command`, returning its exit status and what it printed (stdout and stderr).
