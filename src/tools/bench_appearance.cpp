@@ -59,8 +59,7 @@ int main(int argc, char** argv) {
   cli.option("particles", &particles, config::closed(1, 100000), "MCL particles");
   long test_frames = 100;
   cli.option("test_frames", &test_frames, config::closed(1, 10000), "test frames");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   places::RoomClassifierConfig cfg;
   cfg.structure.weight = 0.0;  // SIFT alone unless asked: the paper's classifier
   cli.fields(places::RoomClassifierConfig::fields(), &cfg, {"structure_weight"});

@@ -29,8 +29,7 @@ int main(int argc, char** argv) {
   cli.option("poses", &n_poses, config::closed(1, 1000000), "camera poses");
   double seconds = 2.0;
   cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
-  int seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   cli.parse(argc, argv);
 
   const world::FieldMap map = field.empty() ? world::FieldMap() : world::FieldMap::loadYaml(field);

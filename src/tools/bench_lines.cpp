@@ -58,8 +58,7 @@ int main(int argc, char** argv) {
                          "and the split step alone on a worst-case input.");
   double seconds = 1.5;
   cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
-  int seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   cli.parse(argc, argv);
   math::Rng rng(seed);
   std::string summary = "bench_lines:";

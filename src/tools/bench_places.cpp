@@ -60,8 +60,7 @@ int main(int argc, char** argv) {
   cli.option("bins", &bins, config::closed(2, 256), "histogram bins");
   double seconds = 1.0;
   cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   cli.parse(argc, argv);
   try {
     const int space = places::spaceIndex(space_name);

@@ -40,8 +40,7 @@ int main(int argc, char** argv) {
   cli.option("height", &sc.height, "image height, px");
   std::string scenario = "circles";
   cli.option("scenario", &scenario, "simulated scenario (sim/tracking_scene.h)");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   cli.parse(argc, argv);
   cv::setNumThreads(1);  // one core, as the target says
   try {

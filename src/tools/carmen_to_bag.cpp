@@ -44,8 +44,7 @@ int main(int argc, char** argv) {
   cli.option("output", &output, "the bag to write")->required();
   std::string laser_frame = T::kLaserFrame;
   cli.option("laser_frame", &laser_frame, "frame of the front laser's scans");
-  bool overwrite = false;
-  cli.flag("overwrite", &overwrite, "replace the bag if it exists");
+  const bool& overwrite = cli.overwrite("the bag");
   long max_issues = 20;
   cli.option("max_issues", &max_issues, config::closed(0, 1e9),
              "malformed lines reported one by one before a summary");
@@ -55,8 +54,7 @@ int main(int argc, char** argv) {
              "either forced")
       ->check(CLI::IsMember({"auto", "odom_lines", "laser_poses"}));
   cli.parse(argc, argv);
-  if (std::filesystem::exists(output) && !overwrite)
-    cli.fail("'" + output + "' exists; pass --overwrite to replace it");
+  cli.refuseExisting(output);
   try {
     io::CarmenLog log = io::readCarmenLog(input);
     log.sortByTime();

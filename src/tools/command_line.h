@@ -12,7 +12,9 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -68,6 +70,30 @@ class CommandLine {
   /// `--name` alone sets *value to true (default false).
   CLI::Option* flag(const std::string& name, bool* value, const std::string& doc) {
     return app_.add_flag("--" + name, *value, doc);
+  }
+  /// --seed, the random seed: the same seed repeats a run exactly. Default 1; the reference holds
+  /// the parsed value after parse().
+  const std::uint64_t& seed() {
+    seed(&seed_);
+    return seed_;
+  }
+  /// --seed into a config's own seed field (its value now is the default).
+  template <class T>
+  void seed(T* value) {
+    option("seed", value, "random seed: the same seed repeats a run exactly");
+  }
+  /// --overwrite: the tool may replace `what` (as --help names it) where it exists already; the
+  /// reference holds the parsed value after parse().
+  const bool& overwrite(const std::string& what) {
+    flag("overwrite", &overwrite_, "replace " + what + " if it exists");
+    return overwrite_;
+  }
+  /// Nothing the user has is replaced unasked: exits 2 naming `path` when it exists and
+  /// --overwrite was not given.
+  void refuseExisting(const std::string& path) const {
+    std::error_code ec;
+    if (!overwrite_ && std::filesystem::exists(path, ec))
+      fail("'" + path + "' exists; pass --overwrite to replace it");
   }
   /// One option per field of a config's table (or of those named in `only`): --<field name> with
   /// the field's default (read from *c now), range and doc. A name shared by two tables sets the
@@ -165,6 +191,8 @@ class CommandLine {
   }
 
   CLI::App app_;
+  std::uint64_t seed_ = 1;
+  bool overwrite_ = false;
   std::map<std::string, std::vector<std::function<void(double)>>> field_setters_;
 };
 

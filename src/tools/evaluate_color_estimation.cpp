@@ -24,7 +24,6 @@
 #include "adaptive_perception/ros/bag_frames.h"
 #include "adaptive_perception/ros/params.h"
 #include "command_line.h"
-#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;

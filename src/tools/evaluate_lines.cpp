@@ -30,7 +30,6 @@
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "command_line.h"
-#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;

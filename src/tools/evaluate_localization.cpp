@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   cli.option("filter", &filter, "lighting filter: switching (one mode per prior) or single")
       ->check(CLI::IsMember({"switching", "single"}));
   cli.option("threads", &cfg.threads, "threads (the result is the same for any count)");
-  cli.option("seed", &cfg.seed, "random seed");
+  cli.seed(&cfg.seed);
   std::string init = "global";
   cli.option("init", &init, "start: uniform over the field (global) or at the true pose")
       ->check(CLI::IsMember({"global", "truth"}));

@@ -56,8 +56,7 @@ int main(int argc, char** argv) {
   cli.fields(localization::AppearanceMclConfig::fields(), &mcl_cfg);
   long max_images = 0;
   cli.option("max_images", &max_images, config::closed(0, 1e9), "test images (0: all)");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   std::string output = "results/evaluate_room_classification";
   cli.option("output", &output, "folder for the results");
   cli.parse(argc, argv);

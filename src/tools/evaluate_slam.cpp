@@ -190,8 +190,7 @@ int main(int argc, char** argv) {
   double external_std = 0.1;
   cli.option("external_std_m", &external_std, config::aboveZero(1e3),
              "variant external: standard deviation of the external position fixes, m");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   long long max_scans = 0;
   cli.option("max_scans", &max_scans, config::closed(0, 1e12), "scans processed (0: all)");
   std::string output = "results/evaluate_slam";

@@ -254,8 +254,7 @@ int main(int argc, char** argv) {
   cli.option("color_space", &space, "colour space of the histograms: rgb or opponent");
   std::string dynamics;
   cli.option("dynamics", &dynamics, "learned AR(2) dynamics (YAML, learn_tracking_dynamics)");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   long start_frame = 0;
   cli.option("start_frame", &start_frame, config::closed(0, 1e9), "first frame tracked");
   long max_frames = 0;

@@ -36,12 +36,10 @@ int main(int argc, char** argv) {
   std::string names_arg;
   cli.option("names", &names_arg,
              "the modes' names, comma-separated (empty: dark,bright for K = 2, else mode_N)");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   std::string all_name = "all";
   cli.option("all_name", &all_name, "name of the one prior learned from every bag");
-  bool overwrite = false;
-  cli.flag("overwrite", &overwrite, "replace priors that exist");
+  cli.overwrite("a prior");
   cli.parse(argc, argv);
   if (names_arg.empty() && k == 2) names_arg = "dark,bright";
   std::vector<std::string> names;
@@ -89,8 +87,7 @@ int main(int argc, char** argv) {
     const color::PriorLearningConfig lc;
     auto write = [&](const color::LightingPrior& p) {
       const std::string path = (fs::path(out_dir) / (p.name + ".yaml")).string();
-      if (fs::exists(path) && !overwrite)
-        throw std::runtime_error(path + " exists; pass --overwrite to replace it");
+      cli.refuseExisting(path);
       p.saveYaml(path);
       std::printf("  wrote %s (green Y %.1f +- %.1f, white Y %.1f +- %.1f)\n", path.c_str(),
                   p.mean[0], std::sqrt(p.cov(0, 0)), p.mean[3], std::sqrt(p.cov(3, 3)));

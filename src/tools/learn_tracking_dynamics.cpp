@@ -38,13 +38,11 @@ int main(int argc, char** argv) {
   double inner = 0.6;
   cli.option("inner", &inner, config::aboveZero(1),
              "colours are taken inside the true box shrunk to this fraction");
-  bool overwrite = false;
-  cli.flag("overwrite", &overwrite, "replace the file if it exists");
+  cli.overwrite("the file");
   cli.parse(argc, argv);
   if (source.bag.empty() == source.video.empty())
     cli.fail("give exactly one of --bag FILE and --video FILE");
-  if (fs::exists(output) && !overwrite)
-    cli.fail("'" + output + "' exists; pass --overwrite to replace it");
+  cli.refuseExisting(output);
   source.findGroundTruth();
   try {
     const tracking::ColorSpace space = tracking::parseColorSpace(space_name);

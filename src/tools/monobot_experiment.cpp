@@ -36,8 +36,7 @@ int main(int argc, char** argv) {
   cli.option("runs", &runs, config::closed(2, 1e6), "Monte Carlo runs");
   slam::MonobotConfig cfg;
   cli.option("landmarks", &cfg.landmarks, "landmarks, all at one place");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   std::string output = "results/monobot";
   cli.option("output", &output, "folder for the results and plots");
   cli.parse(argc, argv);

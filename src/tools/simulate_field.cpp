@@ -56,11 +56,11 @@ int main(int argc, char** argv) {
   cli.option("field", &field, "field description (YAML; relative: from the package)");
   double start_time_s = 1.6e9;
   cli.option("start_time_s", &start_time_s, config::closed(1, 4e9), "the bag's first stamp, s");
-  bool overwrite = false;
-  cli.flag("overwrite", &overwrite, "replace the bag if it exists");
+  const bool& overwrite = cli.overwrite("the bag");
   bool no_compression = false;
   cli.flag("no_compression", &no_compression, "writes the bag uncompressed");
   cli.parse(argc, argv);
+  cli.refuseExisting(output);
   const bool compress = !no_compression;
 
   try {

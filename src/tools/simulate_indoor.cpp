@@ -51,8 +51,7 @@ int main(int argc, char** argv) {
   cli.option("world", &world_path, "the building (YAML; relative: from the package)");
   std::string lighting_name = "cloudy";
   cli.option("lighting", &lighting_name, "night, cloudy or sunny");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   std::string output;
   cli.option("output", &output, "the bag to write");
   std::string images_out;
@@ -66,8 +65,7 @@ int main(int argc, char** argv) {
   cli.option("odom_rate_hz", &odom_rate, "odometry rate, Hz, in [camera_rate_hz, 1000]");
   double duration_arg = -1.0;
   cli.option("duration_s", &duration_arg, "simulated time, s (<= 0: the whole route)");
-  bool overwrite = false;
-  cli.flag("overwrite", &overwrite, "replace the bag and images.csv if they exist");
+  const bool& overwrite = cli.overwrite("the bag and images.csv");
   long width = 0, height = 0;
   cli.option("width_px", &width, "image width, px, in 8..4096 (0: the camera's own)");
   cli.option("height_px", &height, "image height, px, in 8..4096 (0: the camera's own)");
@@ -75,10 +73,8 @@ int main(int argc, char** argv) {
   if (output.empty() && images_out.empty()) cli.fail("--output FILE.bag or --images_out DIR");
   if (!(odom_rate >= camera_rate && odom_rate <= 1000.0))
     cli.fail("--odom_rate_hz must be in [camera_rate_hz, 1000]");
-  if (!output.empty() && fs::exists(output) && !overwrite)
-    cli.fail("'" + output + "' exists; pass --overwrite to replace it");
-  if (!images_out.empty() && fs::exists(fs::path(images_out) / "images.csv") && !overwrite)
-    cli.fail("'" + images_out + "/images.csv' exists; pass --overwrite to replace it");
+  if (!output.empty()) cli.refuseExisting(output);
+  if (!images_out.empty()) cli.refuseExisting((fs::path(images_out) / "images.csv").string());
   try {
     const sim::IndoorLightingKind kind = sim::parseIndoorLighting(lighting_name);
     const sim::IndoorWorld world =

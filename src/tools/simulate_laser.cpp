@@ -41,15 +41,12 @@ int main(int argc, char** argv) {
   cli.option("output", &output, "the bag to write")->required();
   double duration = 60.0;
   cli.option("duration_s", &duration, config::Range{0, 36000, true, false}, "simulated time, s");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   double odom_rate = 20.0;
   cli.option("odom_rate_hz", &odom_rate, config::closed(1, 1000), "odometry rate, Hz");
-  bool overwrite = false;
-  cli.flag("overwrite", &overwrite, "replace the bag if it exists");
+  const bool& overwrite = cli.overwrite("the bag");
   cli.parse(argc, argv);
-  if (std::filesystem::exists(output) && !overwrite)
-    cli.fail("'" + output + "' exists; pass --overwrite to replace it");
+  cli.refuseExisting(output);
   try {
     const sim::LaserWorld world =
         sim::LaserWorld::loadYaml(ros_params::resolvePackagePath(world_path));

@@ -33,8 +33,7 @@ int main(int argc, char** argv) {
   sim::TrackingSceneConfig cfg;
   std::string scenario = "circles";
   cli.option("scenario", &scenario, "circles, lambertian_rectangle, distractor or handheld");
-  std::uint64_t seed = 1;
-  cli.option("seed", &seed, "random seed");
+  const std::uint64_t& seed = cli.seed();
   cli.option("frames", &cfg.frames, "frames");
   cli.option("width", &cfg.width, "image width, px");
   cli.option("height", &cfg.height, "image height, px");
@@ -51,8 +50,7 @@ int main(int argc, char** argv) {
   cli.option("video", &video, "the video to write (instead of a bag)");
   std::string truth_csv;
   cli.option("ground_truth", &truth_csv, "the video's ground truth (empty: beside it, .csv)");
-  bool overwrite = false;
-  cli.flag("overwrite", &overwrite, "replace files that exist");
+  const bool& overwrite = cli.overwrite("the bag, video or CSV");
   cli.parse(argc, argv);
   cfg.clutter = !no_clutter;
   if (output.empty() == video.empty())
@@ -60,8 +58,7 @@ int main(int argc, char** argv) {
   if (!video.empty() && truth_csv.empty())
     truth_csv = fs::path(video).replace_extension(".csv").string();
   for (const std::string& p : {output, video, truth_csv})
-    if (!p.empty() && fs::exists(p) && !overwrite)
-      cli.fail("'" + p + "' exists; pass --overwrite to replace it");
+    if (!p.empty()) cli.refuseExisting(p);
   try {
     cfg.scenario = sim::parseTrackingScenario(scenario);
     cfg.validate();

@@ -2,9 +2,11 @@
 // every built tool answering --help and refusing an unknown option.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -124,6 +126,48 @@ TEST(CommandLine, HelpListsEveryOptionWithItsDefaultAndRange) {
   EXPECT_NE(help.find("a fraction (default: 0.5)"), std::string::npos) << help;
   EXPECT_NE(help.find("--enabled BOOL"), std::string::npos) << help;
   EXPECT_NE(help.find("on or off (default: false)"), std::string::npos) << help;
+}
+
+// A tool with --seed and --overwrite, as the writing tools declare them; parses `words` and then
+// refuses `path` if it exists without --overwrite. Returns the parsed seed.
+std::uint64_t parseWriter(const std::vector<std::string>& words, const std::string& path) {
+  CommandLine cli("writer", "A test of --seed and --overwrite.");
+  const std::uint64_t& seed = cli.seed();
+  const bool& overwrite = cli.overwrite("the file");
+  std::vector<std::string> all = {"writer"};
+  all.insert(all.end(), words.begin(), words.end());
+  std::vector<char*> argv;
+  for (std::string& w : all) argv.push_back(w.data());
+  cli.parse(static_cast<int>(argv.size()), argv.data());
+  cli.refuseExisting(path);
+  EXPECT_EQ(overwrite, std::find(words.begin(), words.end(), "--overwrite") != words.end());
+  return seed;
+}
+
+TEST(CommandLine, SeedDefaultsToOneAndAnExistingFileIsReplacedOnlyWithOverwrite) {
+  testing::FLAGS_gtest_death_test_style = "threadsafe";
+  const fs::path dir = fs::temp_directory_path() / ("tool_command_lines_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string absent = (dir / "absent.bag").string(), present = (dir / "present.bag").string();
+  std::FILE* f = std::fopen(present.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fclose(f);
+
+  EXPECT_EQ(parseWriter({}, absent), 1u);
+  EXPECT_EQ(parseWriter({"--seed", "42"}, absent), 42u);
+  EXPECT_EXIT(parseWriter({}, present), testing::ExitedWithCode(2),
+              "present.bag' exists; pass --overwrite to replace it");
+  EXPECT_EQ(parseWriter({"--overwrite"}, present), 1u);
+  EXPECT_TRUE(fs::exists(present)) << "refuseExisting only checks; it never removes a file";
+
+  CommandLine cli("writer", "A test of --seed and --overwrite.");
+  cli.seed();
+  cli.overwrite("the file");
+  const std::string help = cli.app().help();
+  EXPECT_NE(help.find("random seed: the same seed repeats a run exactly (default: 1)"),
+            std::string::npos) << help;
+  EXPECT_NE(help.find("replace the file if it exists"), std::string::npos) << help;
+  fs::remove_all(dir);
 }
 
 // Runs `command`, returning its exit status and what it printed (stdout and stderr).
