@@ -6,7 +6,6 @@
 #include <cstdio>
 
 #include "adaptive_perception/PlaceRecognition.h"
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
@@ -45,7 +44,8 @@ std::vector<config::ParameterDoc> AppearanceLocalizerNode::parameters() {
   return rows;
 }
 
-AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : diagnostics_(nh, "appearance_localizer", 0.1, 100.0) {
   namespace P = ros_params;
   const std::string path = P::getName(pnh, "database", kDefaultDatabase);
   P::loadFields(pnh, places::RoomClassifierConfig::fields(), &classifier_config_);
@@ -95,12 +95,7 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
   initial_pose_sub_ = nh.subscribe("initialpose", 2, &AppearanceLocalizerNode::onInitialPose, this);
   global_srv_ = nh.advertiseService("global_localization",
                                     &AppearanceLocalizerNode::onGlobalLocalization, this);
-  diagnostics_.setHardwareID("appearance_localizer");
-  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
-      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
-  diagnostics_.add(*freq_);
   diagnostics_.add("localization", this, &AppearanceLocalizerNode::diagnose);
-  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
   ROS_INFO("appearance_localizer: %zu training frames in %zu rooms from %s, %d particles",
            classifier_->frames().size(), classifier_->rooms().size(), path.c_str(), m.particles);
 }
@@ -165,7 +160,7 @@ void AppearanceLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   ++frames_;
   reinits_ += e.reinitialized;
   stable_ = e.stable;
-  freq_->tick();
+  diagnostics_.tick();
 
   std_msgs::Header h = msg->header;
   h.frame_id = map_frame_;

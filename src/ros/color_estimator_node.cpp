@@ -1,16 +1,12 @@
 #include "adaptive_perception/ros/color_estimator_node.h"
 
-#include <tf2/exceptions.h>
-
 #include <filesystem>
 
 #include "adaptive_perception/ColorModel.h"
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/io/atomic_file.h"
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
-#include "adaptive_perception/ros/tf_lookup.h"
 #include "adaptive_perception/ros/topics.h"
 
 namespace adaptive_perception {
@@ -21,7 +17,6 @@ using ros_params::ParamError;
 namespace {
 // The node's own parameters' defaults (the algorithm's are in color::ColorEstimatorConfig).
 constexpr char kDefaultObservationNoise[] = "pixel_over_count", kDefaultMixing[] = "best_mode";
-constexpr char kFieldFile[] = "config/field_4legged.yaml";
 constexpr double kTfTimeout_s = 0.1;
 }  // namespace
 
@@ -34,24 +29,17 @@ std::vector<config::ParameterDoc> ColorEstimatorNode::parameters() {
        "~observation_noise_floor_var)"},
       {"mixing", "string", kDefaultMixing, "best_mode, imm",
        "best_mode: only the mode that best explains the image is updated (the paper); imm"},
-      {"field_file", "string", kFieldFile, "", "the field map"},
-      ros_conv::CameraModelSource::parameter(),
-      ros_params::frameParameter("map"),
-      {"tf_timeout_s", "double", config::formatValue(config::Kind::kDouble, kTfTimeout_s), "[0, 5]",
-       "wall-clock wait for map -> camera at an image's stamp before it is skipped (s)"}};
+  };
   rows.insert(rows.end(), node.begin(), node.end());
-  const std::vector<config::ParameterDoc> priors = ros_params::lightingPriorParameters();
-  rows.insert(rows.end(), priors.begin(), priors.end());
-  rows.push_back(ros_params::stampOrderParameter());
-  rows.push_back(ros_params::imageTransportParameter());
+  const std::vector<config::ParameterDoc> input =
+      ros_conv::FieldCameraInput::parameters(kTfTimeout_s, "map -> camera");
+  rows.insert(rows.end(), input.begin(), input.end());
   return rows;
 }
 
 ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : nh_(nh),
-      pnh_(pnh),
-      camera_("color_estimator", ros_params::get<std::string>(pnh, "camera_model", "")),
-      tf_listener_(tf_buffer_) {
+    : input_("color_estimator", pnh, kTfTimeout_s),
+      diagnostics_(nh, "color_estimator", 0.5, 100.0, &mutex_) {
   namespace P = ros_params;
   P::loadFields(pnh, color::ColorEstimatorConfig::fields(), &config_);
   const std::string noise = P::get<std::string>(pnh, "observation_noise", kDefaultObservationNoise);
@@ -63,35 +51,17 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     throw ParamError(std::string("parameter ") + pnh.resolveName("observation_noise/mixing") +
                      ": " + e.what());
   }
-  map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
-  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", kTfTimeout_s, 0.0, 5.0);
-  gate_ = ros_conv::ImageGate("color_estimator", 0.0, P::loadStampOrder(pnh),
-                              ros_conv::ImageGate::Output::kYuv);
-
-  std::string filter, dir;
-  priors_ = P::loadLightingPriors(pnh, &filter, &dir);
-  map_ =
-      world::FieldMap::loadYaml(P::resolvePackagePath(P::getName(pnh, "field_file", kFieldFile)));
   config_.validate();
 
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_estimator/color_model", 5);
   classified_pub_ = image_transport::ImageTransport(nh).advertise("color_estimator/classified", 2);
   classified_color_pub_ = image_transport::ImageTransport(nh).advertise("color_estimator/classified_color", 2);
-  // Two deep: an image re-sent older right after a newer one is seen, and dropped, rather than
-  // displacing the newer one in the queue.
-  image_sub_ = image_transport::ImageTransport(nh).subscribe(
-      ros_topics::kCameraImage, 2, &ColorEstimatorNode::onImage, this, ros_params::imageTransportHints(pnh));
-  info_sub_ = nh.subscribe(ros_topics::kCameraInfo, 1, &ColorEstimatorNode::onCameraInfo, this);
+  input_.subscribe(nh, &ColorEstimatorNode::onImage, &ColorEstimatorNode::onCameraInfo, this);
   ros::NodeHandle service_nh = service_queue_.handle(pnh);
   reset_srv_ = service_nh.advertiseService("reset", &ColorEstimatorNode::onReset, this);
   save_srv_ = service_nh.advertiseService("save_prior", &ColorEstimatorNode::onSavePrior, this);
 
-  diagnostics_.setHardwareID("color_estimator");
-  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
-      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
-  diagnostics_.add(*freq_);
   diagnostics_.add("estimator", this, &ColorEstimatorNode::diagnose);
-  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_, &mutex_);
 
   reconfigure_ =
       std::make_unique<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>(
@@ -105,8 +75,7 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   reconfigure_->setCallback([this](adaptive_perception::ColorEstimatorConfig& c, uint32_t level) {
     onReconfigure(c, level);
   });
-  ROS_INFO("color_estimator: %s filter with %zu prior(s) from %s", filter.c_str(), priors_.size(),
-           dir.c_str());
+  ROS_INFO("color_estimator: %s", input_.priorsSummary().c_str());
 }
 
 namespace {
@@ -161,16 +130,14 @@ void ColorEstimatorNode::onReconfigure(adaptive_perception::ColorEstimatorConfig
 
 void ColorEstimatorNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (camera_.onCameraInfo(*msg)) estimator_.reset();
+  if (input_.camera().onCameraInfo(*msg)) estimator_.reset();
 }
 
 bool ColorEstimatorNode::ensureEstimator(int width, int height) {
-  if (!camera_.readyFor(width, height)) {
-    if (camera_.known()) ++skipped_bad_image_;  // size disagrees with camera_info
-    return false;
-  }
+  if (!input_.readyFor(width, height)) return false;
   if (!estimator_)
-    estimator_ = std::make_unique<color::ColorEstimator>(map_, camera_.camera(), priors_, config_);
+    estimator_ = std::make_unique<color::ColorEstimator>(input_.field(), input_.camera().camera(),
+                                                         input_.priors(), config_);
   return true;
 }
 
@@ -180,37 +147,30 @@ void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
     // An image a little older than the last is dropped (ImageGate); time really going back resets
     // the model (ColorEstimator::process).
-    if (!gate_.admit(*msg, &yuv)) return;
+    if (!input_.gate().admit(*msg, &yuv)) return;
   }
-  geometry_msgs::TransformStamped pose;
-  try {
-    pose = ros_conv::lookupTransformWithin(tf_buffer_, map_frame_, msg->header.frame_id,
-                                           msg->header.stamp, tf_timeout_s_);
-  } catch (const tf2::TransformException& e) {
-    ROS_WARN_THROTTLE(5.0, "color_estimator: no pose for the image (%s): frame skipped", e.what());
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++skipped_no_tf_;
-    return;
-  }
+  const std::optional<Eigen::Isometry3d> pose =
+      input_.tf().transform(input_.mapFrame(), msg->header.frame_id, msg->header.stamp, "image");
+  if (!pose) return;
   std::lock_guard<std::mutex> lock(mutex_);
   color::ColorEstimator::Result r;
   try {
     if (!ensureEstimator(yuv.cols, yuv.rows)) return;
-    r = estimator_->process(msg->header.stamp.toSec(), camera_.rectify(yuv),
-                            ros_conv::toIsometry(pose.transform));
+    r = estimator_->process(msg->header.stamp.toSec(), input_.camera().rectify(yuv),
+                            *pose);
   } catch (const std::exception& e) {  // no exception leaves a callback
     ROS_ERROR_THROTTLE(10.0, "color_estimator: frame dropped: %s", e.what());
-    ++skipped_bad_image_;
+    input_.countBadImage();
     return;
   }
   if (r.time_reset)
     ROS_WARN("color_estimator: time went backwards (bag looped?): filter reset to its priors");
   last_log_likelihood_ = r.log_likelihood;
   ++frames_;
-  freq_->tick();
+  diagnostics_.tick();
 
   std_msgs::Header model_header = msg->header;
-  model_header.frame_id = map_frame_;
+  model_header.frame_id = input_.mapFrame();
   const adaptive_perception::ColorModel model =
       ros_conv::toColorModel(estimator_->filter(), model_header);
   model_pub_.publish(model);
@@ -274,9 +234,7 @@ void ColorEstimatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& s
     stat.add("lookup table rebuilds", estimator_->lutRebuilds());
   }
   stat.add("frames", frames_);
-  stat.add("frames skipped (no tf)", skipped_no_tf_);
-  stat.add("frames dropped (older than the last)", gate_.outOfOrder());
-  stat.add("frames skipped (bad image)", skipped_bad_image_ + gate_.badImages());
+  input_.diagnose(stat);
   stat.add("last log likelihood", last_log_likelihood_);
 }
 

@@ -5,7 +5,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "adaptive_perception/TrackedObject.h"
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
@@ -49,7 +48,8 @@ std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
   return rows;
 }
 
-CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : diagnostics_(nh, "condensation_tracker", 1.0, 1000.0) {
   namespace P = ros_params;
   const std::string mode = P::get<std::string>(pnh, "mode", kDefaultMode);
   if (mode != "box" && mode != "condensation" && mode != "ellipse")
@@ -97,12 +97,7 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
       nh.subscribe("condensation_tracker/target", 2, &CondensationTrackerNode::onTarget, this);
   target_srv_ = nh.advertiseService("condensation_tracker/set_target",
                                     &CondensationTrackerNode::onSetTarget, this);
-  diagnostics_.setHardwareID("condensation_tracker");
-  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
-      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
-  diagnostics_.add(*freq_);
   diagnostics_.add("tracking", this, &CondensationTrackerNode::diagnose);
-  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
   ROS_INFO("condensation_tracker: mode %s, %d samples, colour space %s, %s", mode.c_str(),
            mode_ == Mode::kBox ? box_config_.samples : c.samples,
            tracking::colorSpaceName(c.quantizer.space).c_str(),
@@ -318,7 +313,7 @@ void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
                 cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
     overlay_pub_.publish(ros_conv::bgr8ToImage(over, msg->header));
   }
-  freq_->tick();
+  diagnostics_.tick();
   diagnostics_.update();
 }
 

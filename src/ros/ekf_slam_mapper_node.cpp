@@ -6,10 +6,8 @@
 
 #include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/math/chi_square.h"
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
-#include "adaptive_perception/ros/tf_lookup.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/slam/map_io.h"
 #include "adaptive_perception/world/camera_model.h"
@@ -57,8 +55,7 @@ std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
       {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
       {"transform_tolerance_s", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
        "map -> odom is future-dated by this (s), as amcl does"},
-      {"tf_timeout_s", "double", config::formatReal(kTfTimeout_s), "[0, 5]",
-       "wall-clock wait for odom -> base_link at a scan's stamp before it is skipped (s)"},
+      ros_conv::MeasurementTf::parameter(kTfTimeout_s, "odom -> base_link -> laser"),
       {"map_file", "string", kDefaultMapFile, "",
        "~save_map's default path (relative to the node's working directory)"},
       {"path_max_poses", "int", std::to_string(kPathMaxPoses), "[1, 10000000]",
@@ -79,7 +76,8 @@ std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
 }
 
 EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : tf_listener_(tf_buffer_) {
+    : tf_("ekf_slam_mapper", pnh, kTfTimeout_s),
+      diagnostics_(nh, "ekf_slam_mapper", 1.0, 100.0, &mutex_) {
   namespace P = ros_params;
   P::loadFields(pnh, slam::LaserSlamConfig::fields(), &config_);
   slam::LineEkfSlamConfig& c = config_.ekf;
@@ -108,7 +106,6 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
   transform_tolerance_s_ =
       P::getInRange(pnh, "transform_tolerance_s", kTransformTolerance_s, 0.0, 10.0);
-  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", kTfTimeout_s, 0.0, 5.0);
   stamp_order_ = ros_conv::StampOrder("ekf_slam_mapper", "lines", P::loadStampOrder(pnh));
   map_file_ = P::get<std::string>(pnh, "map_file", kDefaultMapFile);
   path_max_poses_ = P::getInRange(pnh, "path_max_poses", kPathMaxPoses, 1, 10000000);
@@ -161,12 +158,7 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
         ros::WallDuration(map_update_interval_s_),
         [this](const ros::SteadyTimerEvent&) { onMapTimer(); });
   }
-  diagnostics_.setHardwareID("ekf_slam_mapper");
-  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
-      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
-  diagnostics_.add(*freq_);
   diagnostics_.add("slam", this, &EkfSlamMapperNode::diagnose);
-  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_, &mutex_);
   ROS_INFO(
       "ekf_slam_mapper: variant %s, association %s, retirement %s, front end %s, loop "
       "closing %s",
@@ -221,17 +213,9 @@ void EkfSlamMapperNode::processLines(const ros::MessageEvent<const LineSegmentAr
         ros_conv::StampOrder::Verdict::kDrop)
       return;
   }
-  ros_conv::OdomAndMount tf;
-  try {
-    tf = ros_conv::lookupOdomAndMount(tf_buffer_, odom_frame_, base_frame_, msg->header.frame_id,
-                                      msg->header.stamp, tf_timeout_s_);
-  } catch (const tf2::TransformException& e) {
-    ROS_WARN_THROTTLE(5.0, "ekf_slam_mapper: no odometry / laser mount for the scan (%s): skipped",
-                      e.what());
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++skipped_no_tf_;
-    return;
-  }
+  const std::optional<ros_conv::OdomAndMount> tf =
+      tf_.odomAndMount(odom_frame_, base_frame_, msg->header.frame_id, msg->header.stamp, "scan");
+  if (!tf) return;
   std::vector<laser::LineSegment> segments;
   long bad = 0;
   for (const auto& seg : ros_conv::fromLineSegmentArray(*msg)) {
@@ -253,8 +237,8 @@ void EkfSlamMapperNode::processLines(const ros::MessageEvent<const LineSegmentAr
   if (!last_stamp_.isZero() && msg->header.stamp < last_stamp_)
     reset("time went backwards (bag looped?)");
   last_stamp_ = msg->header.stamp;
-  const Eigen::Isometry3d& odom = tf.odom_to_base;
-  const math::SE2 mount = world::isometryToPlanar(tf.base_to_sensor);
+  const Eigen::Isometry3d& odom = tf->odom_to_base;
+  const math::SE2 mount = world::isometryToPlanar(tf->base_to_sensor);
   const auto t0 = std::chrono::steady_clock::now();
   // The scan these lines came from: its points for the front end and the loop closer, and the
   // grid's scan. Without it the front end follows the wheel odometry for this scan.
@@ -292,7 +276,7 @@ void EkfSlamMapperNode::processLines(const ros::MessageEvent<const LineSegmentAr
       1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   max_update_ms_ = std::max(max_update_ms_, last_update_ms_);
   ++scans_;
-  freq_->tick();
+  diagnostics_.tick();
   publish(msg->header, odom);
   diagnostics_.update();
 }
@@ -591,7 +575,7 @@ void EkfSlamMapperNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   stat.add("update time last (ms)", last_update_ms_);
   stat.add("update time max (ms)", max_update_ms_);
   stat.add("scans", scans_);
-  stat.add("scans skipped (no tf)", skipped_no_tf_);
+  stat.add("scans skipped (no tf)", tf_.skipped());
   stat.add("scans dropped (older than the last)", stamp_order_.dropped());
   stat.add("scans skipped (update failed)", update_failures_);
   stat.add("segments dropped (bad values)", bad_segments_);

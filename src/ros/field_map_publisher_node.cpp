@@ -108,22 +108,15 @@ visualization_msgs::MarkerArray fieldMapMarkers(const world::FieldMap& map,
   return out;
 }
 
-namespace {
-constexpr char kFieldFile[] = "config/field_4legged.yaml";
-}  // namespace
-
 std::vector<config::ParameterDoc> FieldMapPublisherNode::parameters() {
-  return {{"field_file", "string", kFieldFile, "",
-           "the field's dimensions (YAML); a relative path is looked up in the current "
-           "directory, then in the package"},
+  return {ros_params::fieldFileParameter(),
           {"frame_id", "string", ros_topics::kMapFrame, "", "the frame of the markers"}};
 }
 
 FieldMapPublisherNode::FieldMapPublisherNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
-  const std::string file =
-      ros_params::resolvePackagePath(ros_params::getName(pnh, "field_file", kFieldFile));
+  std::string file;
+  const world::FieldMap map = ros_params::loadFieldMap(pnh, &file);
   const std::string frame = ros_params::getFrameId(pnh, "frame_id", ros_topics::kMapFrame);
-  const world::FieldMap map = world::FieldMap::loadYaml(file);
   pub_ = nh.advertise<visualization_msgs::MarkerArray>(ros_topics::kFieldMap, 1, /*latch=*/true);
   pub_.publish(fieldMapMarkers(map, frame, ros::Time(0)));
   ROS_INFO("field_map_publisher: published %s (%.2f x %.2f m field) in frame '%s'", file.c_str(),

@@ -1,6 +1,5 @@
 #include "adaptive_perception/ros/ground_truth_tf_publisher_node.h"
 
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
@@ -21,7 +20,8 @@ std::vector<config::ParameterDoc> GroundTruthTfNode::parameters() {
            "broadcast map -> odom; false when a localizer owns it (the path is still published)"}};
 }
 
-GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : diagnostics_(nh, "ground_truth", 1.0, 1000.0) {
   map_frame_ = ros_params::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = ros_params::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   base_frame_ = ros_params::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
@@ -36,11 +36,6 @@ GroundTruthTfNode::GroundTruthTfNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   path_pub_ = nh.advertise<nav_msgs::Path>(ros_topics::kGroundTruthPath, 1);
   path_.header.frame_id = map_frame_;
 
-  diagnostics_.setHardwareID("ground_truth");
-  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
-      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
-  diagnostics_.add(*freq_);
-  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
 }
 
 void GroundTruthTfNode::callback(const geometry_msgs::PoseStampedConstPtr& truth,
@@ -65,7 +60,7 @@ void GroundTruthTfNode::callback(const geometry_msgs::PoseStampedConstPtr& truth
   if (publish_tf_)
     broadcaster_.sendTransform(ros_conv::toTransform(map_base * odom_base.inverse(), map_frame_,
                                                      odom_frame_, truth->header.stamp));
-  freq_->tick();
+  diagnostics_.tick();
   diagnostics_.update();
   if (path_length_ > 0) {
     path_.header.stamp = truth->header.stamp;

@@ -1,4 +1,3 @@
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/histogram_place_recognizer_node.h"
 
 #include <algorithm>
@@ -54,7 +53,8 @@ std::vector<config::ParameterDoc> HistogramPlaceRecognizerNode::parameters() {
 }
 
 HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
-                                                           ros::NodeHandle pnh) {
+                                                           ros::NodeHandle pnh)
+    : diagnostics_(nh, "histogram_place_recognizer", 0.1, 100.0) {
   namespace P = ros_params;
   const std::string path = P::getName(pnh, "database", kDefaultDatabase);
   const bool create = P::get<bool>(pnh, "create_if_missing", true);
@@ -117,12 +117,7 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
   adjacency_srv_ =
       pnh.advertiseService("set_adjacency", &HistogramPlaceRecognizerNode::onSetAdjacency, this);
   save_srv_ = pnh.advertiseService("save", &HistogramPlaceRecognizerNode::onSave, this);
-  diagnostics_.setHardwareID("histogram_place_recognizer");
-  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
-      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
-  diagnostics_.add(*freq_);
   diagnostics_.add("place database", this, &HistogramPlaceRecognizerNode::diagnose);
-  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
   ROS_INFO("histogram_place_recognizer: %s mode, database %s: %zu places, %ld images",
            train_mode_ ? "train" : "recognise", path.c_str(), db_->places().size(),
            db_->imageCount());
@@ -207,7 +202,7 @@ void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg
     return;
   }
   ++images_;
-  freq_->tick();
+  diagnostics_.tick();
 
   // Collecting training images: from a service request, or in train mode from the labels.
   std::string target;

@@ -1,4 +1,3 @@
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/line_extractor_node.h"
 
 #include <cmath>
@@ -60,7 +59,8 @@ std::vector<config::ParameterDoc> LineExtractorNode::parameters() {
   return rows;
 }
 
-LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : diagnostics_(nh, "line_extractor", 1.0, 1000.0) {
   namespace P = ros_params;
   laser::LineExtractionConfig c;
   P::loadFields(pnh, laser::LineExtractionConfig::fields(), &c);
@@ -78,11 +78,6 @@ LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   // Every scan is worth its lines to the mapper: 20 scans ride out a 2 s stall at 10 Hz, and keep
   // the delay short when scans come faster than they can be taken (as the mapper's queue).
   scan_sub_ = nh.subscribe(ros_topics::kScan, 20, &LineExtractorNode::onScan, this);
-  diagnostics_.setHardwareID("line_extractor");
-  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
-      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
-  diagnostics_.add(*freq_);
-  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_);
   reconfigure_ =
       std::make_unique<dynamic_reconfigure::Server<adaptive_perception::LineExtractorConfig>>(
           reconfigure_mutex_, pnh);
@@ -136,7 +131,7 @@ void LineExtractorNode::onScan(const ros::MessageEvent<const sensor_msgs::LaserS
   if (markers_pub_.getNumSubscribers() > 0)
     markers_pub_.publish(lineMarkers(lines, "lines", 1.0f, 0.3f, 0.0f));
   ++scans_;
-  freq_->tick();
+  diagnostics_.tick();
   diagnostics_.update();
 }
 

@@ -182,6 +182,22 @@ image_transport::TransportHints imageTransportHints(const ros::NodeHandle& pnh) 
   return image_transport::TransportHints(transport, ros::TransportHints(), pnh);
 }
 
+namespace {
+constexpr char kFieldFile[] = "config/field_4legged.yaml";
+}  // namespace
+
+world::FieldMap loadFieldMap(const ros::NodeHandle& pnh, std::string* path) {
+  const std::string file = resolvePackagePath(getName(pnh, "field_file", kFieldFile));
+  if (path) *path = file;
+  return world::FieldMap::loadYaml(file);
+}
+
+config::ParameterDoc fieldFileParameter() {
+  return {"field_file", "string", kFieldFile, "",
+          "the field's dimensions (YAML); a relative path is looked up in the current directory, "
+          "then in the package"};
+}
+
 config::ParameterDoc imageTransportParameter() {
   return {"image_transport", "string", kDefaultImageTransport, "raw, compressed",
           "the transport of camera/image_raw: raw, or compressed (camera/image_raw/compressed, "

@@ -11,10 +11,8 @@
 #include <thread>
 
 #include "adaptive_perception/color/color_space.h"
-#include "adaptive_perception/ros/diagnostics_heartbeat.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
-#include "adaptive_perception/ros/tf_lookup.h"
 #include "adaptive_perception/ros/topics.h"
 
 namespace adaptive_perception {
@@ -58,7 +56,6 @@ void checkParticleMemory(const ros::NodeHandle& pnh,
 
 namespace {
 // The node's own parameters' defaults (the algorithm's are in localization::RbpfConfig).
-constexpr const char* kFieldFile = "config/field_4legged.yaml";
 const std::vector<double> kInitialPoseStd = {0.2, 0.2, 0.17};
 constexpr double kTransformTolerance_s = 0.1, kTfTimeout_s = 0.1;
 
@@ -72,32 +69,24 @@ std::vector<config::ParameterDoc> RbpfLocalizerNode::parameters() {
   const std::vector<config::ParameterDoc> node = {
       {"threads", "int", "0", "[0, 256]", "threads for the particles (0: all cores)"},
       {"seed", "int", "1", "[0, 1073741824]", "random seed (the same seed replays the same run)"},
-      {"field_file", "string", kFieldFile, "", "the field map"},
       {"initial_pose", "list", "[]", "", "[x_m, y_m, yaw_rad]; empty: global localization"},
       {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
        "its standard deviations (m, m, rad)"},
-      ros_conv::CameraModelSource::parameter(),
-      ros_params::frameParameter("map"),
       ros_params::frameParameter("odom"),
       ros_params::frameParameter("base"),
       {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
       {"transform_tolerance_s", "double", formatValue(Kind::kDouble, kTransformTolerance_s),
-       "[0, 10]", "map -> odom is future-dated by this (s), as amcl does"},
-      {"tf_timeout_s", "double", formatValue(Kind::kDouble, kTfTimeout_s), "[0, 5]",
-       "wall-clock wait for the image's tf before the frame is skipped (s)"}};
+       "[0, 10]", "map -> odom is future-dated by this (s), as amcl does"}};
   rows.insert(rows.end(), node.begin(), node.end());
-  const std::vector<config::ParameterDoc> priors = ros_params::lightingPriorParameters();
-  rows.insert(rows.end(), priors.begin(), priors.end());
-  rows.push_back(ros_params::stampOrderParameter());
-  rows.push_back(ros_params::imageTransportParameter());
+  const std::vector<config::ParameterDoc> input =
+      ros_conv::FieldCameraInput::parameters(kTfTimeout_s, "odom -> base_link -> camera");
+  rows.insert(rows.end(), input.begin(), input.end());
   return rows;
 }
 
 RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : nh_(nh),
-      pnh_(pnh),
-      camera_("rbpf_localizer", ros_params::get<std::string>(pnh, "camera_model", "")),
-      tf_listener_(tf_buffer_) {
+    : input_("rbpf_localizer", pnh, kTfTimeout_s),
+      diagnostics_(nh, "rbpf_localizer", 0.5, 100.0, &mutex_) {
   namespace P = ros_params;
   localization::RbpfConfig& c = config_;
   P::loadFields(pnh, localization::RbpfConfig::fields(), &c);
@@ -105,26 +94,18 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   c.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
   c.seed = static_cast<std::uint64_t>(P::getInRange(pnh, "seed", 1, 0, 1 << 30));
 
-  std::string filter, dir;
-  priors_ = P::loadLightingPriors(pnh, &filter, &dir);
-  checkParticleMemory(pnh, priors_, c);
-  map_ =
-      world::FieldMap::loadYaml(P::resolvePackagePath(P::getName(pnh, "field_file", kFieldFile)));
+  checkParticleMemory(pnh, input_.priors(), c);
 
   math::SE2 initial;
   Eigen::Matrix3d initial_cov;
   if (P::loadInitialPose(pnh, kInitialPoseStd, &initial, &initial_cov))
     pending_pose_ = configured_pose_ = std::make_pair(initial, initial_cov);
 
-  map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   base_frame_ = P::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
   publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
   transform_tolerance_s_ =
       P::getInRange(pnh, "transform_tolerance_s", kTransformTolerance_s, 0.0, 10.0);
-  tf_timeout_s_ = P::getInRange(pnh, "tf_timeout_s", kTfTimeout_s, 0.0, 5.0);
-  gate_ = ros_conv::ImageGate("rbpf_localizer", 0.0, P::loadStampOrder(pnh),
-                              ros_conv::ImageGate::Output::kYuv);
   try {
     config_.validate();
   } catch (const std::invalid_argument& e) {
@@ -136,42 +117,34 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("rbpf_localizer/color_model", 5);
   classified_pub_ = image_transport::ImageTransport(nh).advertise("rbpf_localizer/classified", 2);
   classified_color_pub_ = image_transport::ImageTransport(nh).advertise("rbpf_localizer/classified_color", 2);
-  // Two deep: an image re-sent older right after a newer one is seen, and dropped, rather than
-  // displacing the newer one in the queue.
-  image_sub_ = image_transport::ImageTransport(nh).subscribe(
-      ros_topics::kCameraImage, 2, &RbpfLocalizerNode::onImage, this, ros_params::imageTransportHints(pnh));
-  info_sub_ = nh.subscribe(ros_topics::kCameraInfo, 1, &RbpfLocalizerNode::onCameraInfo, this);
+  input_.subscribe(nh, &RbpfLocalizerNode::onImage, &RbpfLocalizerNode::onCameraInfo, this);
   initial_pose_sub_ = nh.subscribe("initialpose", 1, &RbpfLocalizerNode::onInitialPose, this);
   global_srv_ = service_queue_.handle(nh).advertiseService(
       "global_localization", &RbpfLocalizerNode::onGlobalLocalization, this);
 
-  diagnostics_.setHardwareID("rbpf_localizer");
-  freq_ = std::make_unique<diagnostic_updater::FrequencyStatus>(
-      diagnostic_updater::FrequencyStatusParam(&min_freq_, &max_freq_, 0.1, 10));
-  diagnostics_.add(*freq_);
   diagnostics_.add("localizer", this, &RbpfLocalizerNode::diagnose);
-  diagnostics_timer_ = ros_conv::diagnosticsHeartbeat(nh, &diagnostics_, &mutex_);
-  ROS_INFO("rbpf_localizer: %d particles on %d thread(s), %s filter with %zu prior(s), %s start",
-           c.particles, c.threads, filter.c_str(), priors_.size(),
-           pending_pose_ ? "tracking" : "global");
+  ROS_INFO("rbpf_localizer: %d particles on %d thread(s), %s, %s start", c.particles, c.threads,
+           input_.priorsSummary().c_str(), pending_pose_ ? "tracking" : "global");
 }
 
 void RbpfLocalizerNode::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (!camera_.onCameraInfo(*msg) || !rbpf_) return;
+  if (!input_.camera().onCameraInfo(*msg) || !rbpf_) return;
   ROS_WARN("rbpf_localizer: camera model changed: the filter restarts around its estimate");
   const auto e = rbpf_->estimate();
   pending_pose_ = std::make_pair(e.pose, e.covariance + Eigen::Matrix3d::Identity() * 1e-4);
   rbpf_.reset();
 }
 
+std::unique_ptr<localization::RbpfLocalizer> RbpfLocalizerNode::newLocalizer() const {
+  return std::make_unique<localization::RbpfLocalizer>(input_.field(), input_.camera().camera(),
+                                                       input_.priors(), config_);
+}
+
 bool RbpfLocalizerNode::ensureLocalizer(int width, int height) {
-  if (!camera_.readyFor(width, height)) {
-    if (camera_.known()) ++skipped_bad_image_;  // size disagrees with camera_info
-    return false;
-  }
+  if (!input_.readyFor(width, height)) return false;
   if (!rbpf_) {
-    rbpf_ = std::make_unique<localization::RbpfLocalizer>(map_, camera_.camera(), priors_, config_);
+    rbpf_ = newLocalizer();
     if (pending_pose_) rbpf_->initGaussian(pending_pose_->first, pending_pose_->second);
     pending_pose_.reset();
     last_odom_.reset();
@@ -185,22 +158,14 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
     // An image a little older than the last is dropped (ImageGate); time really going back restarts
     // below.
-    if (!gate_.admit(*msg, &yuv)) return;
+    if (!input_.gate().admit(*msg, &yuv)) return;
   }
-  ros_conv::OdomAndMount tf;
-  try {
-    tf = ros_conv::lookupOdomAndMount(tf_buffer_, odom_frame_, base_frame_, msg->header.frame_id,
-                                      msg->header.stamp, tf_timeout_s_);
-  } catch (const tf2::TransformException& e) {
-    ROS_WARN_THROTTLE(5.0, "rbpf_localizer: no odometry / head pose for the image (%s): skipped",
-                      e.what());
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++skipped_no_tf_;
-    return;
-  }
+  const std::optional<ros_conv::OdomAndMount> tf =
+      input_.tf().odomAndMount(odom_frame_, base_frame_, msg->header.frame_id, msg->header.stamp, "image");
+  if (!tf) return;
   std::lock_guard<std::mutex> lock(mutex_);
   if (!ensureLocalizer(yuv.cols, yuv.rows)) return;
-  const Eigen::Isometry3d odom = tf.odom_to_base;
+  const Eigen::Isometry3d odom = tf->odom_to_base;
   double dt_s = 0.0;
   math::SE2 delta;
   if (last_odom_) {
@@ -212,8 +177,7 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
           -dt_s, configured_pose_ ? "~initial_pose" : "global localization");
       // A new filter, not re-spread particles: the same seed and frame count as at start-up, so a
       // replayed bag gives the same estimates.
-      rbpf_ =
-          std::make_unique<localization::RbpfLocalizer>(map_, camera_.camera(), priors_, config_);
+      rbpf_ = newLocalizer();
       if (configured_pose_) rbpf_->initGaussian(configured_pose_->first, configured_pose_->second);
       ++resets_;
       dt_s = 0.0;
@@ -223,10 +187,10 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   }
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    last_ = rbpf_->step(delta, dt_s, camera_.rectify(yuv), tf.base_to_sensor);
+    last_ = rbpf_->step(delta, dt_s, input_.camera().rectify(yuv), tf->base_to_sensor);
   } catch (const std::exception& e) {
     ROS_ERROR_THROTTLE(10.0, "rbpf_localizer: frame dropped: %s", e.what());
-    ++skipped_bad_image_;
+    input_.countBadImage();
     return;
   }
   last_compute_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -259,7 +223,7 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   last_odom_ = odom;
   last_stamp_ = msg->header.stamp;
   ++frames_;
-  freq_->tick();
+  diagnostics_.tick();
   publish(msg->header, odom, yuv);
   diagnostics_.update();
 }
@@ -268,7 +232,7 @@ void RbpfLocalizerNode::publish(const std_msgs::Header& image_header,
                                 const Eigen::Isometry3d& odom_to_base, const cv::Mat& yuv) {
   const auto e = rbpf_->estimate();
   std_msgs::Header h = image_header;
-  h.frame_id = map_frame_;
+  h.frame_id = input_.mapFrame();
   pose_pub_.publish(ros_conv::toPoseWithCovariance(e.pose, e.covariance, h));
   if (particles_pub_.getNumSubscribers() > 0) {
     geometry_msgs::PoseArray pa;
@@ -279,7 +243,7 @@ void RbpfLocalizerNode::publish(const std_msgs::Header& image_header,
   if (publish_tf_) {
     // map -> odom = (map -> base) * (odom -> base)^-1, future-dated by the tolerance as amcl does.
     tf_broadcaster_.sendTransform(
-        ros_conv::toTransform(ros_conv::mapToOdom(e.pose, odom_to_base), map_frame_, odom_frame_,
+        ros_conv::toTransform(ros_conv::mapToOdom(e.pose, odom_to_base), input_.mapFrame(), odom_frame_,
                               image_header.stamp + ros::Duration(transform_tolerance_s_)));
   }
   const color::SwitchingColorFilter& lighting = rbpf_->best().lighting;
@@ -298,10 +262,11 @@ void RbpfLocalizerNode::publish(const std_msgs::Header& image_header,
 
 void RbpfLocalizerNode::onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg) {
   Eigen::Isometry3d pose = ros_conv::toIsometry(msg->pose.pose);
-  if (!msg->header.frame_id.empty() && msg->header.frame_id != map_frame_) {
+  const std::string& map_frame = input_.mapFrame();
+  if (!msg->header.frame_id.empty() && msg->header.frame_id != map_frame) {
     try {
       pose = ros_conv::toIsometry(
-                 tf_buffer_.lookupTransform(map_frame_, msg->header.frame_id, ros::Time(0))
+                 input_.tf().buffer().lookupTransform(map_frame, msg->header.frame_id, ros::Time(0))
                      .transform) *
              pose;
     } catch (const tf2::TransformException& e) {
@@ -360,9 +325,7 @@ void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
     stat.add("lighting mode", rbpf_->best().lighting.modeName(rbpf_->best().lighting.activeMode()));
   }
   stat.add("frames", frames_);
-  stat.add("frames skipped (no tf)", skipped_no_tf_);
-  stat.add("frames dropped (older than the last)", gate_.outOfOrder());
-  stat.add("frames skipped (bad image)", skipped_bad_image_ + gate_.badImages());
+  input_.diagnose(stat);
   stat.add("re-initialisations", resets_);
 }
 

@@ -93,8 +93,10 @@ TEST(ParametersDocumented, LaunchFileSetsOnlyReadParameters) {
 }
 
 TEST(ParametersDocumented, EveryNameTheSourceReadsIsDocumentedAndEveryNodeRowIsRead) {
-  // The shared readers in params.cpp (priors, initial pose, stamp order) count as the node's.
-  const std::string shared = read("src/ros/params.cpp");
+  // The shared readers count as the node's: params.cpp (priors, field, initial pose, stamp
+  // order), the field camera's input (camera model, map frame) and the tf lookups (timeout).
+  const std::string shared = read("src/ros/params.cpp") + read("src/ros/field_camera_input.cpp") +
+                             read("src/ros/measurement_tf.cpp");
   for (const auto& [node, rows] : ros_params::nodeParameters()) {
     const std::string source = read("src/ros/" + node + "_node.cpp");
     ASSERT_FALSE(source.empty());

@@ -6,7 +6,6 @@
 // Its interface (parameters, subscribed and published topics, services, tf) is documented once,
 // in docs/nodes/appearance_localizer.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <image_transport/image_transport.h>
@@ -23,6 +22,7 @@
 #include "adaptive_perception/localization/appearance_mcl.h"
 #include "adaptive_perception/places/room_classifier.h"
 #include "adaptive_perception/ros/image_gate.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -56,13 +56,10 @@ class AppearanceLocalizerNode {
   ros::Publisher pose_pub_, particles_pub_, room_pub_;
   ros::ServiceServer global_srv_;
   tf2_ros::TransformBroadcaster tf_;
-  diagnostic_updater::Updater diagnostics_;
-  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
-  double min_freq_ = 0.1, max_freq_ = 100.0;
-  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   long frames_ = 0, classified_ = 0, reinits_ = 0;
   bool stable_ = false;
   std::string last_room_;
+  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

@@ -5,15 +5,12 @@
 // Its interface (parameters, subscribed and published topics, services, tf) is documented once,
 // in docs/nodes/color_estimator.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <diagnostic_updater/update_functions.h>
 #include <dynamic_reconfigure/server.h>
 #include <image_transport/image_transport.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Trigger.h>
-#include <tf2_ros/buffer.h>
-#include <tf2_ros/transform_listener.h>
 
 #include <memory>
 #include <mutex>
@@ -23,10 +20,10 @@
 #include "adaptive_perception/SavePrior.h"
 #include "adaptive_perception/color/color_estimator.h"
 #include "adaptive_perception/config/fields.h"
-#include "adaptive_perception/ros/camera_model_source.h"
-#include "adaptive_perception/ros/image_gate.h"
+#include "adaptive_perception/ros/field_camera_input.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -49,21 +46,11 @@ class ColorEstimatorNode {
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
   bool ensureEstimator(int width, int height);
 
-  ros::NodeHandle nh_, pnh_;
   std::mutex mutex_;
   color::ColorEstimatorConfig config_;
-  std::vector<color::LightingPrior> priors_;
-  world::FieldMap map_;
-  ros_conv::CameraModelSource camera_;
+  ros_conv::FieldCameraInput input_;
   std::unique_ptr<color::ColorEstimator> estimator_;
-  std::string map_frame_;
-  double tf_timeout_s_ = 0.0;  // from ~tf_timeout_s
-  ros_conv::ImageGate gate_{"color_estimator", 0.0, {}, ros_conv::ImageGate::Output::kYuv};
 
-  tf2_ros::Buffer tf_buffer_;
-  tf2_ros::TransformListener tf_listener_;
-  image_transport::Subscriber image_sub_;
-  ros::Subscriber info_sub_;
   ros::Publisher model_pub_;
   image_transport::Publisher classified_pub_, classified_color_pub_;
   // reset, save_prior and dynamic_reconfigure answer while an image waits for tf.
@@ -72,12 +59,9 @@ class ColorEstimatorNode {
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>
       reconfigure_;
-  diagnostic_updater::Updater diagnostics_;
-  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
-  double min_freq_ = 0.5, max_freq_ = 100.0;
-  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
-  long frames_ = 0, skipped_no_tf_ = 0, skipped_bad_image_ = 0;
+  long frames_ = 0;
   double last_log_likelihood_ = 0.0;
+  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

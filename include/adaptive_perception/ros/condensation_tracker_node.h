@@ -8,7 +8,6 @@
 // Its interface (parameters, subscribed and published topics, services, tf) is documented once,
 // in docs/nodes/condensation_tracker.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PolygonStamped.h>
 #include <image_transport/image_transport.h>
 #include <ros/ros.h>
@@ -23,6 +22,7 @@
 #include "adaptive_perception/tracking/box_condensation_tracker.h"
 #include "adaptive_perception/tracking/condensation_tracker.h"
 #include "adaptive_perception/tracking/ellipse_tracker.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -59,13 +59,10 @@ class CondensationTrackerNode {
   ros::Publisher object_pub_;
   image_transport::Publisher segmentation_pub_, overlay_pub_;
   ros::ServiceServer target_srv_;
-  diagnostic_updater::Updater diagnostics_;
-  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
-  double min_freq_ = 1.0, max_freq_ = 1000.0;
-  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   long frames_ = 0, lost_frames_ = 0, reacquired_ = 0;
   bool lost_ = false;
   double confidence_ = 0.0;
+  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

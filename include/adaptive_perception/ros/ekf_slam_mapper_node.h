@@ -7,7 +7,6 @@
 // Its interface (parameters, subscribed and published topics, services, tf) is documented once,
 // in docs/nodes/ekf_slam_mapper.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/GetMap.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -15,9 +14,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 #include <std_srvs/Trigger.h>
-#include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
-#include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <Eigen/Geometry>
@@ -28,11 +25,13 @@
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/SaveMap.h"
 #include "adaptive_perception/config/fields.h"
+#include "adaptive_perception/ros/measurement_tf.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
 #include "adaptive_perception/slam/laser_slam.h"
 #include "adaptive_perception/slam/line_ekf_slam.h"
 #include "adaptive_perception/slam/occupancy_grid.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -72,7 +71,7 @@ class EkfSlamMapperNode {
   std::vector<slam::FixedLandmark> known_map_;  // its landmarks
   std::string map_frame_, odom_frame_, base_frame_, map_file_;
   bool publish_tf_ = true;
-  double transform_tolerance_s_ = 0.0, tf_timeout_s_ = 0.0, external_gate_ = 0.0;  // from params
+  double transform_tolerance_s_ = 0.0, external_gate_ = 0.0;  // from params
   int path_max_poses_ = 0;
   ros::Time last_stamp_;
   ros_conv::StampOrder stamp_order_{"ekf_slam_mapper", "lines"};
@@ -90,22 +89,18 @@ class EkfSlamMapperNode {
   long grid_renders_ = 0, scans_without_laser_scan_ = 0;
   double last_grid_s_ = 0.0;
 
-  long scans_ = 0, skipped_no_tf_ = 0, bad_segments_ = 0, resets_ = 0, external_used_ = 0,
+  long scans_ = 0, bad_segments_ = 0, resets_ = 0, external_used_ = 0,
        external_rejected_ = 0, update_failures_ = 0;
   double last_update_ms_ = 0.0, max_update_ms_ = 0.0;
-  double min_freq_ = 1.0, max_freq_ = 100.0;
 
-  tf2_ros::Buffer tf_buffer_;
-  tf2_ros::TransformListener tf_listener_;
+  ros_conv::MeasurementTf tf_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   ros::Subscriber lines_sub_, external_sub_, scan_sub_;
   ros::Publisher pose_pub_, map_pub_, path_pub_, grid_pub_, grid_meta_pub_;
   ros_conv::ServiceQueue service_queue_;  // save_map, dynamic_map and the grid's timer
   ros::ServiceServer save_srv_, get_map_srv_, reset_srv_;
   ros::SteadyTimer map_timer_;
-  diagnostic_updater::Updater diagnostics_;
-  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
-  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

@@ -7,7 +7,6 @@
 // Its interface (parameters, subscribed and published topics, services, tf) is documented once,
 // in docs/nodes/ground_truth_tf_publisher.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <message_filters/subscriber.h>
 #include <message_filters/sync_policies/exact_time.h>
@@ -21,6 +20,7 @@
 #include <memory>
 
 #include "adaptive_perception/config/fields.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -46,10 +46,7 @@ class GroundTruthTfNode {
   ros::Publisher path_pub_;
   nav_msgs::Path path_;
   ros::Time last_stamp_;
-  diagnostic_updater::Updater diagnostics_;
-  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
-  double min_freq_ = 1.0, max_freq_ = 1000.0;
-  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
+  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

@@ -8,7 +8,6 @@
 // Its interface (parameters, subscribed and published topics, services, tf) is documented once,
 // in docs/nodes/histogram_place_recognizer.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <diagnostic_updater/update_functions.h>
 #include <image_transport/image_transport.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
@@ -28,6 +27,7 @@
 #include "adaptive_perception/places/place_database.h"
 #include "adaptive_perception/places/place_recognizer.h"
 #include "adaptive_perception/ros/image_gate.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -79,15 +79,12 @@ class HistogramPlaceRecognizerNode {
   ros::Publisher place_pub_;
   image_transport::Publisher overlay_pub_;
   ros::ServiceServer add_srv_, remove_srv_, adjacency_srv_, save_srv_;
-  diagnostic_updater::Updater diagnostics_;
-  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
-  double min_freq_ = 0.1, max_freq_ = 100.0;
-  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   long images_ = 0, bad_images_ = 0, results_ = 0;
   // Evaluation aid: results against the latest ground_truth/place when one is heard.
   long labelled_ = 0, window_right_ = 0, filter_right_ = 0;
   double last_confidence_ = 0.0;
   std::string last_place_;
+  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

@@ -4,7 +4,6 @@
 // Its interface (parameters, subscribed and published topics, services, tf) is documented once,
 // in docs/nodes/line_extractor.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <diagnostic_updater/update_functions.h>
 #include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
@@ -19,6 +18,7 @@
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/ros/stamp_order.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -43,12 +43,9 @@ class LineExtractorNode {
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<adaptive_perception::LineExtractorConfig>>
       reconfigure_;
-  diagnostic_updater::Updater diagnostics_;
-  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
-  double min_freq_ = 1.0, max_freq_ = 1000.0;
-  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
   ros_conv::StampOrder stamp_order_{"line_extractor", "scan"};
   long scans_ = 0, bad_scans_ = 0;
+  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

@@ -14,6 +14,7 @@
 #include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/ros/stamp_order.h"
+#include "adaptive_perception/world/field_map.h"
 
 namespace adaptive_perception::ros_params {
 
@@ -127,6 +128,11 @@ config::ParameterDoc frameParameter(const std::string& frame);
 /// own nodes read it. Throws ParamError naming a transport that is not installed.
 image_transport::TransportHints imageTransportHints(const ros::NodeHandle& pnh);
 config::ParameterDoc imageTransportParameter();
+/// The field of ~field_file (YAML; default config/field_4legged.yaml, a relative path looked up in
+/// the current directory, then in the package); *path, when given, is set to the file read.
+/// Throws std::runtime_error naming a file that cannot be read or parsed.
+world::FieldMap loadFieldMap(const ros::NodeHandle& pnh, std::string* path = nullptr);
+config::ParameterDoc fieldFileParameter();
 /// The rows of the parameters loadLightingPriors reads (~filter, ~priors, ~single_prior,
 /// ~priors_dir).
 std::vector<config::ParameterDoc> lightingPriorParameters();

@@ -6,16 +6,13 @@
 // Its interface (parameters, subscribed and published topics, services, tf) is documented once,
 // in docs/nodes/rbpf_localizer.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <diagnostic_updater/update_functions.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <image_transport/image_transport.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Empty.h>
-#include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
-#include <tf2_ros/transform_listener.h>
 
 #include <limits>
 #include <memory>
@@ -24,10 +21,10 @@
 
 #include "adaptive_perception/color/color_lut.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
-#include "adaptive_perception/ros/camera_model_source.h"
-#include "adaptive_perception/ros/image_gate.h"
+#include "adaptive_perception/ros/field_camera_input.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -50,46 +47,38 @@ class RbpfLocalizerNode {
   bool onGlobalLocalization(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat);
   bool ensureLocalizer(int width, int height);
+  /// A new filter on the field, camera and priors of input_ (under mutex_).
+  std::unique_ptr<localization::RbpfLocalizer> newLocalizer() const;
   void publish(const std_msgs::Header& image_header, const Eigen::Isometry3d& odom_to_base,
                const cv::Mat& yuv);
 
-  ros::NodeHandle nh_, pnh_;
   std::mutex mutex_;
   localization::RbpfConfig config_;
-  std::vector<color::LightingPrior> priors_;
-  world::FieldMap map_;
-  ros_conv::CameraModelSource camera_;
+  ros_conv::FieldCameraInput input_;
   std::unique_ptr<localization::RbpfLocalizer> rbpf_;
   // A pose to start from (initial_pose parameter or initialpose topic), applied when the localizer
   // is (re)built.
   std::optional<std::pair<math::SE2, Eigen::Matrix3d>> pending_pose_;
   std::optional<std::pair<math::SE2, Eigen::Matrix3d>> configured_pose_;  // ~initial_pose
-  std::string map_frame_, odom_frame_, base_frame_;
+  std::string odom_frame_, base_frame_;
   bool publish_tf_ = true;
-  double transform_tolerance_s_ = 0.0, tf_timeout_s_ = 0.0;  // set from their parameters
+  double transform_tolerance_s_ = 0.0;  // from ~transform_tolerance_s
   std::optional<Eigen::Isometry3d> last_odom_;
   ros::Time last_stamp_;
-  ros_conv::ImageGate gate_{"rbpf_localizer", 0.0, {}, ros_conv::ImageGate::Output::kYuv};
   color::ColorLutCache lut_;
 
-  tf2_ros::Buffer tf_buffer_;
-  tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
-  image_transport::Subscriber image_sub_;
-  ros::Subscriber info_sub_, initial_pose_sub_;
+  ros::Subscriber initial_pose_sub_;
   ros::Publisher pose_pub_, particles_pub_, model_pub_;
   image_transport::Publisher classified_pub_, classified_color_pub_;
   ros_conv::ServiceQueue service_queue_;  // global_localization answers while a step waits
   ros::ServiceServer global_srv_;
-  diagnostic_updater::Updater diagnostics_;
-  ros::SteadyTimer diagnostics_timer_;  // ros/diagnostics_heartbeat.h: reports with no input too
-  double min_freq_ = 0.5, max_freq_ = 100.0;
-  std::unique_ptr<diagnostic_updater::FrequencyStatus> freq_;
-  long frames_ = 0, skipped_no_tf_ = 0, skipped_bad_image_ = 0, resets_ = 0, relocalizations_ = 0,
+  long frames_ = 0, resets_ = 0, relocalizations_ = 0,
        mirror_flips_ = 0;
   double last_check_score_ = std::numeric_limits<double>::quiet_NaN();
   localization::RbpfLocalizer::StepResult last_;
   double last_compute_s_ = 0.0;
+  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception
