@@ -7,6 +7,7 @@
 
 #include "adaptive_perception/PlaceRecognition.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 
@@ -19,29 +20,23 @@ constexpr double kMaxRate_hz = 5.0, kTransformTolerance_s = 0.1;
 }  // namespace
 
 std::vector<config::ParameterDoc> AppearanceLocalizerNode::parameters() {
-  std::vector<config::ParameterDoc> rows = {
-      {"database", "string", kDefaultDatabase, "",
-       "a place database with SIFT training frames and their poses (train_places --features)"}};
-  for (const auto& table :
-       {config::describe(places::RoomClassifierConfig::fields(), places::RoomClassifierConfig()),
-        config::describe(localization::AppearanceMclConfig::fields(),
-                         localization::AppearanceMclConfig())})
-    rows.insert(rows.end(), table.begin(), table.end());
-  const std::vector<config::ParameterDoc> node = {
-      {"use_odom", "bool", "true", "",
-       "move the particles by odom; else by the training run's average step"},
-      {"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
-       "images processed per second of image time at most"},
-      {"publish_tf", "bool", "false", "", "broadcast map -> odom (needs odom)"},
-      {"transform_tolerance", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
-       "map -> odom is stamped this far after its image (s), as amcl does"},
-      ros_params::frameParameter("map"),
-      ros_params::frameParameter("odom"),
-      {"seed", "int", "1", "[0, 1073741824]", "the particles' random seed"}};
-  rows.insert(rows.end(), node.begin(), node.end());
-  rows.push_back(ros_params::stampOrderParameter());
-  rows.push_back(ros_params::imageTransportParameter());
-  return rows;
+  return ros_params::joinRows(
+      {{{"database", "string", kDefaultDatabase, "",
+         "a place database with SIFT training frames and their poses (train_places --features)"}},
+       config::describe(places::RoomClassifierConfig::fields(), places::RoomClassifierConfig()),
+       config::describe(localization::AppearanceMclConfig::fields(),
+                        localization::AppearanceMclConfig()),
+       {{"use_odom", "bool", "true", "",
+         "move the particles by odom; else by the training run's average step"},
+        {"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
+         "images processed per second of image time at most"},
+        {"publish_tf", "bool", "false", "", "broadcast map -> odom (needs odom)"},
+        {"transform_tolerance", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
+         "map -> odom is stamped this far after its image (s), as amcl does"},
+        ros_params::frameParameter("map"),
+        ros_params::frameParameter("odom"),
+        ros_params::seedParameter()},
+       ros_params::imageIntakeParameters()});
 }
 
 AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -60,7 +55,7 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
       P::getInRange(pnh, "transform_tolerance", kTransformTolerance_s, 0.0, 10.0);
   map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
-  const int seed = P::getInRange(pnh, "seed", 1, 0, 1 << 30);
+  const std::uint64_t seed = P::loadSeed(pnh);
 
   const places::PlaceDatabase db = places::PlaceDatabase::open(path, true);
   if (db.recoveredJournal())
@@ -80,7 +75,7 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
   // Kept to start the filter again, with the same seed, when a bag loops.
   make_filter_ = [this, posed, m, seed] {
     mcl_ = std::make_unique<localization::AppearanceMcl>(
-        posed, static_cast<int>(classifier_->rooms().size()), m, static_cast<std::uint64_t>(seed));
+        posed, static_cast<int>(classifier_->rooms().size()), m, seed);
   };
   make_filter_();
 
@@ -89,7 +84,8 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
   particles_pub_ = nh.advertise<geometry_msgs::PoseArray>("appearance_localizer/particles", 2);
   room_pub_ = nh.advertise<PlaceRecognition>("appearance_localizer/room", 10);
   image_sub_ = image_transport::ImageTransport(nh).subscribe(
-      ros_topics::kCameraImage, 2, &AppearanceLocalizerNode::onImage, this, ros_params::imageTransportHints(pnh));
+      ros_topics::kCameraImage, 2, &AppearanceLocalizerNode::onImage, this,
+      ros_params::imageTransportHints(pnh));
   if (use_odom_)
     odom_sub_ = nh.subscribe(ros_topics::kOdom, 50, &AppearanceLocalizerNode::onOdom, this);
   initial_pose_sub_ = nh.subscribe("initialpose", 2, &AppearanceLocalizerNode::onInitialPose, this);

@@ -6,6 +6,7 @@
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 
@@ -21,20 +22,14 @@ constexpr double kTfTimeout_s = 0.1;
 }  // namespace
 
 std::vector<config::ParameterDoc> ColorEstimatorNode::parameters() {
-  std::vector<config::ParameterDoc> rows =
-      config::describe(color::ColorEstimatorConfig::fields(), color::ColorEstimatorConfig());
-  const std::vector<config::ParameterDoc> node = {
-      {"observation_noise", "string", kDefaultObservationNoise, "pixel, pixel_over_count",
-       "noise of an image's colour mean: pixel (nu, as eq. 5) or pixel_over_count (nu / n + "
-       "~observation_noise_floor_var)"},
-      {"mixing", "string", kDefaultMixing, "best_mode, imm",
-       "best_mode: only the mode that best explains the image is updated (the paper); imm"},
-  };
-  rows.insert(rows.end(), node.begin(), node.end());
-  const std::vector<config::ParameterDoc> input =
-      ros_conv::FieldCameraInput::parameters(kTfTimeout_s, "map -> camera");
-  rows.insert(rows.end(), input.begin(), input.end());
-  return rows;
+  return ros_params::joinRows(
+      {config::describe(color::ColorEstimatorConfig::fields(), color::ColorEstimatorConfig()),
+       {{"observation_noise", "string", kDefaultObservationNoise, "pixel, pixel_over_count",
+         "noise of an image's colour mean: pixel (nu, as eq. 5) or pixel_over_count (nu / n + "
+         "~observation_noise_floor_var)"},
+        {"mixing", "string", kDefaultMixing, "best_mode, imm",
+         "best_mode: only the mode that best explains the image is updated (the paper); imm"}},
+       ros_conv::FieldCameraInput::parameters(kTfTimeout_s, "map -> camera")});
 }
 
 ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -55,7 +50,8 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_estimator/color_model", 5);
   classified_pub_ = image_transport::ImageTransport(nh).advertise("color_estimator/classified", 2);
-  classified_color_pub_ = image_transport::ImageTransport(nh).advertise("color_estimator/classified_color", 2);
+  classified_color_pub_ =
+      image_transport::ImageTransport(nh).advertise("color_estimator/classified_color", 2);
   input_.subscribe(nh, &ColorEstimatorNode::onImage, &ColorEstimatorNode::onCameraInfo, this);
   ros::NodeHandle service_nh = service_queue_.handle(pnh);
   reset_srv_ = service_nh.advertiseService("reset", &ColorEstimatorNode::onReset, this);
@@ -156,8 +152,7 @@ void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   color::ColorEstimator::Result r;
   try {
     if (!ensureEstimator(yuv.cols, yuv.rows)) return;
-    r = estimator_->process(msg->header.stamp.toSec(), input_.camera().rectify(yuv),
-                            *pose);
+    r = estimator_->process(msg->header.stamp.toSec(), input_.camera().rectify(yuv), *pose);
   } catch (const std::exception& e) {  // no exception leaves a callback
     ROS_ERROR_THROTTLE(10.0, "color_estimator: frame dropped: %s", e.what());
     input_.countBadImage();

@@ -6,6 +6,7 @@
 
 #include "adaptive_perception/TrackedObject.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 
@@ -18,34 +19,27 @@ constexpr double kMaxRate_hz = 30.0;
 }  // namespace
 
 std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
-  std::vector<config::ParameterDoc> rows = {
-      {"mode", "string", kDefaultMode, "box, condensation, ellipse",
-       "box: CONDENSATION over the target's box (colours against the surroundings and a "
-       "correlation filter; the tracker for real video); condensation: CONDENSATION + affine "
-       "snake (the paper's 3.3); ellipse: the paper's 3.2 alone"}};
-  for (const auto& table :
-       {config::describe(tracking::BoxTrackerConfig::fields(), tracking::BoxTrackerConfig()),
-        config::describe(tracking::CondensationConfig::fields(), tracking::CondensationConfig()),
-        config::describe(tracking::EllipseTrackerConfig::fields(),
-                         tracking::EllipseTrackerConfig())})
-    rows.insert(rows.end(), table.begin(), table.end());
-  const std::vector<config::ParameterDoc> node = {
-      {"color_space", "string", kDefaultColorSpace, "opponent, rgb",
-       "modes condensation and ellipse: opponent = (B-G, G-R, R+G+B), as in the paper's later "
-       "experiments, or rgb"},
-      {"dynamics", "string", "", "",
-       "YAML of A1, A0, d, B from learn_tracking_dynamics; empty: the default model"},
-      {"initial_roi", "list", "[]", "",
-       "[x, y, w, h] pixels in the first image; empty: wait for ~set_target or the target topic"},
-      {"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
-       "images faster than this (by stamp) are skipped"},
-      {"publish_overlay", "bool", "true", "",
-       "condensation_tracker/overlay (only computed with a subscriber)"},
-      {"seed", "int", "1", "[0, 1073741824]", "sampling seed"}};
-  rows.insert(rows.end(), node.begin(), node.end());
-  rows.push_back(ros_params::stampOrderParameter());
-  rows.push_back(ros_params::imageTransportParameter());
-  return rows;
+  return ros_params::joinRows(
+      {{{"mode", "string", kDefaultMode, "box, condensation, ellipse",
+         "box: CONDENSATION over the target's box (colours against the surroundings and a "
+         "correlation filter; the tracker for real video); condensation: CONDENSATION + affine "
+         "snake (the paper's 3.3); ellipse: the paper's 3.2 alone"}},
+       config::describe(tracking::BoxTrackerConfig::fields(), tracking::BoxTrackerConfig()),
+       config::describe(tracking::CondensationConfig::fields(), tracking::CondensationConfig()),
+       config::describe(tracking::EllipseTrackerConfig::fields(), tracking::EllipseTrackerConfig()),
+       {{"color_space", "string", kDefaultColorSpace, "opponent, rgb",
+         "modes condensation and ellipse: opponent = (B-G, G-R, R+G+B), as in the paper's later "
+         "experiments, or rgb"},
+        {"dynamics", "string", "", "",
+         "YAML of A1, A0, d, B from learn_tracking_dynamics; empty: the default model"},
+        {"initial_roi", "list", "[]", "",
+         "[x, y, w, h] pixels in the first image; empty: wait for ~set_target or the target topic"},
+        {"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
+         "images faster than this (by stamp) are skipped"},
+        {"publish_overlay", "bool", "true", "",
+         "condensation_tracker/overlay (only computed with a subscriber)"},
+        ros_params::seedParameter()},
+       ros_params::imageIntakeParameters()});
 }
 
 CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -78,7 +72,7 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   gate_ = ros_conv::ImageGate("condensation_tracker",
                               P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
                               P::loadStampOrder(pnh));
-  seed_ = static_cast<std::uint64_t>(P::getInRange(pnh, "seed", 1, 0, 1 << 30));
+  seed_ = P::loadSeed(pnh);
   const std::vector<double> roi = P::getNumbers(pnh, "initial_roi", {});
   if (!roi.empty()) {
     std::string why;
@@ -89,10 +83,12 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   }
 
   object_pub_ = nh.advertise<TrackedObject>(ros_topics::kTrackedObject, 10);
-  segmentation_pub_ = image_transport::ImageTransport(nh).advertise("condensation_tracker/segmentation", 2);
+  segmentation_pub_ =
+      image_transport::ImageTransport(nh).advertise("condensation_tracker/segmentation", 2);
   overlay_pub_ = image_transport::ImageTransport(nh).advertise("condensation_tracker/overlay", 2);
   image_sub_ = image_transport::ImageTransport(nh).subscribe(
-      ros_topics::kCameraImage, 2, &CondensationTrackerNode::onImage, this, ros_params::imageTransportHints(pnh));
+      ros_topics::kCameraImage, 2, &CondensationTrackerNode::onImage, this,
+      ros_params::imageTransportHints(pnh));
   target_sub_ =
       nh.subscribe("condensation_tracker/target", 2, &CondensationTrackerNode::onTarget, this);
   target_srv_ = nh.advertiseService("condensation_tracker/set_target",
@@ -157,9 +153,7 @@ bool CondensationTrackerNode::onSetTarget(SetTarget::Request& req, SetTarget::Re
 void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat bgr;
   bool restart = false;
-  if (gate_.accept(*msg, &bgr, &restart) !=
-      ros_conv::ImageGate::Result::kProcess)
-    return;
+  if (gate_.accept(*msg, &bgr, &restart) != ros_conv::ImageGate::Result::kProcess) return;
   image_size_ = bgr.size();
   if (restart && last_target_ && !pending_target_) {
     // A looped bag: start again from the last target given, on this image.

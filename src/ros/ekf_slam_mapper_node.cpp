@@ -7,6 +7,7 @@
 #include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/math/chi_square.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/slam/map_io.h"
@@ -32,47 +33,46 @@ constexpr int kPathMaxPoses = 20000;
 }  // namespace
 
 std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
-  std::vector<config::ParameterDoc> rows =
-      config::describe(slam::LaserSlamConfig::fields(), slam::LaserSlamConfig());
   const slam::OccupancyGridConfig grid;
-  const std::vector<config::ParameterDoc> node = {
-      {"variant", "string", kDefaultVariant, "standard, anchor, external",
-       "standard; anchor: two non-parallel lines fixed; external: absolute poses on external_pose"},
-      {"association", "string", kDefaultAssociation, "jcbb, nn",
-       "jcbb: joint compatibility branch and bound; nn: nearest neighbour"},
-      {"initial_map", "string", "", "",
-       "a line map written by ~save_map: localize against it, never extend it (loop closing "
-       "off); empty: map"},
-      {"initial_pose", "list", "[]", "",
-       "[x_m, y_m, yaw_rad] at the first scan; empty: the origin"},
-      {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
-       "its standard deviations (m, m, rad)"},
-      {"external_gate_probability", "double", config::formatReal(kExternalGate), "[0.5, 0.999999]",
-       "external poses whose innovation fails this chi-square gate are rejected"},
-      ros_params::frameParameter("map"),
-      ros_params::frameParameter("odom"),
-      ros_params::frameParameter("base"),
-      {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
-      {"transform_tolerance_s", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
-       "map -> odom is future-dated by this (s), as amcl does"},
-      ros_conv::MeasurementTf::parameter(kTfTimeout_s, "odom -> base_link -> laser"),
-      {"map_file", "string", kDefaultMapFile, "",
-       "~save_map's default path (relative to the node's working directory)"},
-      {"path_max_poses", "int", std::to_string(kPathMaxPoses), "[1, 10000000]",
-       "ekf_slam_mapper/path keeps the newest poses"},
-      {"map_update_interval_s", "double", config::formatReal(kMapUpdateInterval_s), "[0, 3600]",
-       "seconds between occupancy-grid renders (gmapping's map_update_interval); 0: no grid"},
-      {"grid_resolution_m", "double", config::formatReal(grid.resolution_m), "[0.005, 10]",
-       "the grid's cell side (m)"},
-      {"grid_max_range_m", "double", config::formatReal(grid.max_range_m), "[0.1, 1000]",
-       "beams are used up to here; no-returns clear up to here (m)"},
-      {"grid_keyframe_distance_m", "double", config::formatReal(kGridKeyframeDistance_m),
-       "[0, 100]", "the grid keeps a scan after this much motion (m)"},
-      {"grid_keyframe_angle_rad", "double", config::formatReal(kGridKeyframeAngle_rad),
-       "[0, 3.14159]", "... or this much turning (rad)"}};
-  rows.insert(rows.end(), node.begin(), node.end());
-  rows.push_back(ros_params::stampOrderParameter());
-  return rows;
+  return ros_params::joinRows(
+      {config::describe(slam::LaserSlamConfig::fields(), slam::LaserSlamConfig()),
+       {{"variant", "string", kDefaultVariant, "standard, anchor, external",
+         "standard; anchor: two non-parallel lines fixed; external: absolute poses on "
+         "external_pose"},
+        {"association", "string", kDefaultAssociation, "jcbb, nn",
+         "jcbb: joint compatibility branch and bound; nn: nearest neighbour"},
+        {"initial_map", "string", "", "",
+         "a line map written by ~save_map: localize against it, never extend it (loop closing "
+         "off); empty: map"},
+        {"initial_pose", "list", "[]", "",
+         "[x_m, y_m, yaw_rad] at the first scan; empty: the origin"},
+        {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
+         "its standard deviations (m, m, rad)"},
+        {"external_gate_probability", "double", config::formatReal(kExternalGate),
+         "[0.5, 0.999999]",
+         "external poses whose innovation fails this chi-square gate are rejected"},
+        ros_params::frameParameter("map"),
+        ros_params::frameParameter("odom"),
+        ros_params::frameParameter("base"),
+        {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
+        {"transform_tolerance_s", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
+         "map -> odom is future-dated by this (s), as amcl does"},
+        ros_conv::MeasurementTf::parameter(kTfTimeout_s, "odom -> base_link -> laser"),
+        {"map_file", "string", kDefaultMapFile, "",
+         "~save_map's default path (relative to the node's working directory)"},
+        {"path_max_poses", "int", std::to_string(kPathMaxPoses), "[1, 10000000]",
+         "ekf_slam_mapper/path keeps the newest poses"},
+        {"map_update_interval_s", "double", config::formatReal(kMapUpdateInterval_s), "[0, 3600]",
+         "seconds between occupancy-grid renders (gmapping's map_update_interval); 0: no grid"},
+        {"grid_resolution_m", "double", config::formatReal(grid.resolution_m), "[0.005, 10]",
+         "the grid's cell side (m)"},
+        {"grid_max_range_m", "double", config::formatReal(grid.max_range_m), "[0.1, 1000]",
+         "beams are used up to here; no-returns clear up to here (m)"},
+        {"grid_keyframe_distance_m", "double", config::formatReal(kGridKeyframeDistance_m),
+         "[0, 100]", "the grid keeps a scan after this much motion (m)"},
+        {"grid_keyframe_angle_rad", "double", config::formatReal(kGridKeyframeAngle_rad),
+         "[0, 3.14159]", "... or this much turning (rad)"},
+        ros_params::stampOrderParameter()}});
 }
 
 EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)

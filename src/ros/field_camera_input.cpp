@@ -1,5 +1,6 @@
 #include "adaptive_perception/ros/field_camera_input.h"
 
+#include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 
 namespace adaptive_perception::ros_conv {
@@ -16,14 +17,11 @@ FieldCameraInput::FieldCameraInput(const std::string& node, const ros::NodeHandl
 
 std::vector<config::ParameterDoc> FieldCameraInput::parameters(double default_tf_timeout_s,
                                                                const std::string& tf_what) {
-  std::vector<config::ParameterDoc> rows = {
-      ros_params::fieldFileParameter(), CameraModelSource::parameter(),
-      ros_params::frameParameter("map"), MeasurementTf::parameter(default_tf_timeout_s, tf_what)};
-  const std::vector<config::ParameterDoc> priors = ros_params::lightingPriorParameters();
-  rows.insert(rows.end(), priors.begin(), priors.end());
-  rows.push_back(ros_params::stampOrderParameter());
-  rows.push_back(ros_params::imageTransportParameter());
-  return rows;
+  return ros_params::joinRows(
+      {{ros_params::fieldFileParameter(), CameraModelSource::parameter(),
+        ros_params::frameParameter("map"), MeasurementTf::parameter(default_tf_timeout_s, tf_what)},
+       ros_params::lightingPriorParameters(),
+       ros_params::imageIntakeParameters()});
 }
 
 bool FieldCameraInput::readyFor(int width_px, int height_px) {

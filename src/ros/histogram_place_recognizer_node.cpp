@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 
@@ -21,39 +22,34 @@ constexpr int kTrainBatch = 15, kTrainEveryN = 1;
 
 std::vector<config::ParameterDoc> HistogramPlaceRecognizerNode::parameters() {
   const places::PlaceRecognizerConfig rc;
-  std::vector<config::ParameterDoc> rows = {
-      {"database", "string", kDefaultDatabase, "",
-       "the SQLite place database (train_places builds one)"},
-      {"create_if_missing", "bool", "true", "", "start an empty database when the file is missing"},
-      {"mode", "string", kDefaultMode, "recognise, train",
-       "train: images labelled by ground_truth/place are stored"},
-      {"bins", "int", std::to_string(places::HistogramConfig().bins), "[2, 256]",
-       "a new database's histogram bins per band (an existing one must match when set)"},
-      {"spaces", "string", kDefaultSpaces, "", "a new database's colour spaces (histogram.h)"},
-      {"mask", "string", kDefaultMask, "", "a new database's image mask (MaskConfig::parse)"},
-      {"cue", "string", rc.cue, "fused, thumbnail, gradient, chromaticity, layout, histogram",
-       "what images are compared by"},
-      {"color_space", "string", rc.color_space, "",
-       "histogram cue: auto (the paper's most confident space) or a space name"},
-      {"method", "string", rc.method, "",
-       "histogram cue: auto (the most confident of chi_square, jeffrey, ks) or one distance"}};
-  const auto table = config::describe(places::PlaceRecognizerConfig::fields(), rc);
-  rows.insert(rows.end(), table.begin(), table.end());
-  const std::vector<config::ParameterDoc> node = {
-      {"max_rate_hz", "double", config::formatValue(config::Kind::kDouble, kMaxRate_hz),
-       "[0.01, 1000]", "images processed per second of image time at most"},
-      {"train_batch", "int", std::to_string(kTrainBatch), "[1, 100000]",
-       "train mode: images per place per transaction"},
-      {"train_every_n", "int", std::to_string(kTrainEveryN), "[1, 100000]",
-       "train mode: keep one labelled image in N"}};
-  rows.insert(rows.end(), node.begin(), node.end());
-  rows.push_back(ros_params::stampOrderParameter());
-  rows.push_back(ros_params::imageTransportParameter());
-  return rows;
+  return ros_params::joinRows(
+      {{{"database", "string", kDefaultDatabase, "",
+         "the SQLite place database (train_places builds one)"},
+        {"create_if_missing", "bool", "true", "",
+         "start an empty database when the file is missing"},
+        {"mode", "string", kDefaultMode, "recognise, train",
+         "train: images labelled by ground_truth/place are stored"},
+        {"bins", "int", std::to_string(places::HistogramConfig().bins), "[2, 256]",
+         "a new database's histogram bins per band (an existing one must match when set)"},
+        {"spaces", "string", kDefaultSpaces, "", "a new database's colour spaces (histogram.h)"},
+        {"mask", "string", kDefaultMask, "", "a new database's image mask (MaskConfig::parse)"},
+        {"cue", "string", rc.cue, "fused, thumbnail, gradient, chromaticity, layout, histogram",
+         "what images are compared by"},
+        {"color_space", "string", rc.color_space, "",
+         "histogram cue: auto (the paper's most confident space) or a space name"},
+        {"method", "string", rc.method, "",
+         "histogram cue: auto (the most confident of chi_square, jeffrey, ks) or one distance"}},
+       config::describe(places::PlaceRecognizerConfig::fields(), rc),
+       {{"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
+         "images processed per second of image time at most"},
+        {"train_batch", "int", std::to_string(kTrainBatch), "[1, 100000]",
+         "train mode: images per place per transaction"},
+        {"train_every_n", "int", std::to_string(kTrainEveryN), "[1, 100000]",
+         "train mode: keep one labelled image in N"}},
+       ros_params::imageIntakeParameters()});
 }
 
-HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
-                                                           ros::NodeHandle pnh)
+HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : diagnostics_(nh, "histogram_place_recognizer", 0.1, 100.0) {
   namespace P = ros_params;
   const std::string path = P::getName(pnh, "database", kDefaultDatabase);
@@ -108,7 +104,8 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh,
   place_pub_ = nh.advertise<PlaceRecognition>(ros_topics::kPlace, 10);
   overlay_pub_ = image_transport::ImageTransport(pnh).advertise("overlay", 2);
   image_sub_ = image_transport::ImageTransport(nh).subscribe(
-      ros_topics::kCameraImage, 2, &HistogramPlaceRecognizerNode::onImage, this, ros_params::imageTransportHints(pnh));
+      ros_topics::kCameraImage, 2, &HistogramPlaceRecognizerNode::onImage, this,
+      ros_params::imageTransportHints(pnh));
   label_sub_ =
       nh.subscribe(ros_topics::kGroundTruthPlace, 10, &HistogramPlaceRecognizerNode::onLabel, this);
   add_srv_ = pnh.advertiseService("add_images", &HistogramPlaceRecognizerNode::onAddImages, this);

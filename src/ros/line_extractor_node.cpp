@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 
@@ -50,13 +51,12 @@ void showConfig(const laser::LineExtractionConfig& c, const std::string& split_m
 }  // namespace
 
 std::vector<config::ParameterDoc> LineExtractorNode::parameters() {
-  std::vector<config::ParameterDoc> rows =
-      config::describe(laser::LineExtractionConfig::fields(), laser::LineExtractionConfig());
-  rows.push_back({"split_method", "string", kDefaultSplitMethod, "recursive, hull_tree",
-                  "recursive: Table 2's linear farthest-point scan; hull_tree: O(log^2 n) "
-                  "queries over convex hulls, the same output"});
-  rows.push_back(ros_params::stampOrderParameter());
-  return rows;
+  return ros_params::joinRows(
+      {config::describe(laser::LineExtractionConfig::fields(), laser::LineExtractionConfig()),
+       {{"split_method", "string", kDefaultSplitMethod, "recursive, hull_tree",
+         "recursive: Table 2's linear farthest-point scan; hull_tree: O(log^2 n) queries over "
+         "convex hulls, the same output"},
+        ros_params::stampOrderParameter()}});
 }
 
 LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh)

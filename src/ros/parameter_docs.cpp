@@ -30,6 +30,13 @@ const std::map<std::string, std::vector<config::ParameterDoc>>& nodeParameters()
   return nodes;
 }
 
+std::vector<config::ParameterDoc> joinRows(
+    std::initializer_list<std::vector<config::ParameterDoc>> parts) {
+  std::vector<config::ParameterDoc> rows;
+  for (const auto& part : parts) rows.insert(rows.end(), part.begin(), part.end());
+  return rows;
+}
+
 std::string parameterBlockBegin(const std::string& node) {
   return "<!-- parameters: made by `describe_parameters --node " + node +
          " --update`; do not edit by hand -->\n";

@@ -204,6 +204,23 @@ config::ParameterDoc imageTransportParameter() {
           "JPEG or PNG)"};
 }
 
+std::vector<config::ParameterDoc> imageIntakeParameters() {
+  return {stampOrderParameter(), imageTransportParameter()};
+}
+
+namespace {
+constexpr int kDefaultSeed = 1, kMaxSeed = 1 << 30;
+}  // namespace
+
+std::uint64_t loadSeed(const ros::NodeHandle& pnh) {
+  return static_cast<std::uint64_t>(getInRange(pnh, "seed", kDefaultSeed, 0, kMaxSeed));
+}
+
+config::ParameterDoc seedParameter() {
+  return {"seed", "int", std::to_string(kDefaultSeed), config::closed(0, kMaxSeed).text(),
+          "random seed: the same seed replays the same run"};
+}
+
 config::ParameterDoc stampOrderParameter() {
   const config::Range range = config::closed(kMinRestartBack_s, kMaxRestartBack_s);
   return {

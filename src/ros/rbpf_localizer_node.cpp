@@ -12,6 +12,7 @@
 
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 
@@ -62,26 +63,19 @@ constexpr double kTransformTolerance_s = 0.1, kTfTimeout_s = 0.1;
 }  // namespace
 
 std::vector<config::ParameterDoc> RbpfLocalizerNode::parameters() {
-  using config::formatValue;
-  using config::Kind;
-  std::vector<config::ParameterDoc> rows =
-      config::describe(localization::RbpfConfig::fields(), localization::RbpfConfig());
-  const std::vector<config::ParameterDoc> node = {
-      {"threads", "int", "0", "[0, 256]", "threads for the particles (0: all cores)"},
-      {"seed", "int", "1", "[0, 1073741824]", "random seed (the same seed replays the same run)"},
-      {"initial_pose", "list", "[]", "", "[x_m, y_m, yaw_rad]; empty: global localization"},
-      {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
-       "its standard deviations (m, m, rad)"},
-      ros_params::frameParameter("odom"),
-      ros_params::frameParameter("base"),
-      {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
-      {"transform_tolerance_s", "double", formatValue(Kind::kDouble, kTransformTolerance_s),
-       "[0, 10]", "map -> odom is future-dated by this (s), as amcl does"}};
-  rows.insert(rows.end(), node.begin(), node.end());
-  const std::vector<config::ParameterDoc> input =
-      ros_conv::FieldCameraInput::parameters(kTfTimeout_s, "odom -> base_link -> camera");
-  rows.insert(rows.end(), input.begin(), input.end());
-  return rows;
+  return ros_params::joinRows(
+      {config::describe(localization::RbpfConfig::fields(), localization::RbpfConfig()),
+       {{"threads", "int", "0", "[0, 256]", "threads for the particles (0: all cores)"},
+        ros_params::seedParameter(),
+        {"initial_pose", "list", "[]", "", "[x_m, y_m, yaw_rad]; empty: global localization"},
+        {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
+         "its standard deviations (m, m, rad)"},
+        ros_params::frameParameter("odom"),
+        ros_params::frameParameter("base"),
+        {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
+        {"transform_tolerance_s", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
+         "map -> odom is future-dated by this (s), as amcl does"}},
+       ros_conv::FieldCameraInput::parameters(kTfTimeout_s, "odom -> base_link -> camera")});
 }
 
 RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -92,7 +86,7 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   P::loadFields(pnh, localization::RbpfConfig::fields(), &c);
   const int threads = P::getInRange(pnh, "threads", 0, 0, 256);
   c.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-  c.seed = static_cast<std::uint64_t>(P::getInRange(pnh, "seed", 1, 0, 1 << 30));
+  c.seed = P::loadSeed(pnh);
 
   checkParticleMemory(pnh, input_.priors(), c);
 
@@ -116,7 +110,8 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   particles_pub_ = nh.advertise<geometry_msgs::PoseArray>("rbpf_localizer/particles", 2);
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("rbpf_localizer/color_model", 5);
   classified_pub_ = image_transport::ImageTransport(nh).advertise("rbpf_localizer/classified", 2);
-  classified_color_pub_ = image_transport::ImageTransport(nh).advertise("rbpf_localizer/classified_color", 2);
+  classified_color_pub_ =
+      image_transport::ImageTransport(nh).advertise("rbpf_localizer/classified_color", 2);
   input_.subscribe(nh, &RbpfLocalizerNode::onImage, &RbpfLocalizerNode::onCameraInfo, this);
   initial_pose_sub_ = nh.subscribe("initialpose", 1, &RbpfLocalizerNode::onInitialPose, this);
   global_srv_ = service_queue_.handle(nh).advertiseService(
@@ -160,8 +155,8 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     // below.
     if (!input_.gate().admit(*msg, &yuv)) return;
   }
-  const std::optional<ros_conv::OdomAndMount> tf =
-      input_.tf().odomAndMount(odom_frame_, base_frame_, msg->header.frame_id, msg->header.stamp, "image");
+  const std::optional<ros_conv::OdomAndMount> tf = input_.tf().odomAndMount(
+      odom_frame_, base_frame_, msg->header.frame_id, msg->header.stamp, "image");
   if (!tf) return;
   std::lock_guard<std::mutex> lock(mutex_);
   if (!ensureLocalizer(yuv.cols, yuv.rows)) return;
@@ -242,9 +237,9 @@ void RbpfLocalizerNode::publish(const std_msgs::Header& image_header,
   }
   if (publish_tf_) {
     // map -> odom = (map -> base) * (odom -> base)^-1, future-dated by the tolerance as amcl does.
-    tf_broadcaster_.sendTransform(
-        ros_conv::toTransform(ros_conv::mapToOdom(e.pose, odom_to_base), input_.mapFrame(), odom_frame_,
-                              image_header.stamp + ros::Duration(transform_tolerance_s_)));
+    tf_broadcaster_.sendTransform(ros_conv::toTransform(
+        ros_conv::mapToOdom(e.pose, odom_to_base), input_.mapFrame(), odom_frame_,
+        image_header.stamp + ros::Duration(transform_tolerance_s_)));
   }
   const color::SwitchingColorFilter& lighting = rbpf_->best().lighting;
   model_pub_.publish(ros_conv::toColorModel(lighting, h));
@@ -265,10 +260,12 @@ void RbpfLocalizerNode::onInitialPose(const geometry_msgs::PoseWithCovarianceSta
   const std::string& map_frame = input_.mapFrame();
   if (!msg->header.frame_id.empty() && msg->header.frame_id != map_frame) {
     try {
-      pose = ros_conv::toIsometry(
-                 input_.tf().buffer().lookupTransform(map_frame, msg->header.frame_id, ros::Time(0))
-                     .transform) *
-             pose;
+      pose =
+          ros_conv::toIsometry(input_.tf()
+                                   .buffer()
+                                   .lookupTransform(map_frame, msg->header.frame_id, ros::Time(0))
+                                   .transform) *
+          pose;
     } catch (const tf2::TransformException& e) {
       ROS_ERROR("rbpf_localizer: initialpose in frame '%s' ignored: %s",
                 msg->header.frame_id.c_str(), e.what());

@@ -4,6 +4,7 @@
 // rewrites the table in docs/nodes/<node>.md between the markers below, and
 // parameters_documented_test checks that the page, the node's YAML and launch file and its source
 // agree with it.
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -11,6 +12,11 @@
 #include "adaptive_perception/config/fields.h"
 
 namespace adaptive_perception::ros_params {
+
+/// The rows of `parts`, one part after another: a node's table is made of its configs' rows, its
+/// own and the shared ones (params.h).
+std::vector<config::ParameterDoc> joinRows(
+    std::initializer_list<std::vector<config::ParameterDoc>> parts);
 
 /// Node name -> every private parameter it reads.
 const std::map<std::string, std::vector<config::ParameterDoc>>& nodeParameters();

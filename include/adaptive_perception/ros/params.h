@@ -5,6 +5,7 @@
 #include <ros/node_handle.h>
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -124,10 +125,15 @@ config::ParameterDoc stampOrderParameter();
 /// project's name for that frame (ros/topics.h) as its default.
 config::ParameterDoc frameParameter(const std::string& frame);
 /// How an image node takes its camera images: ~image_transport names the transport (raw, the
-/// default, or compressed: ros/compressed_transport.h, or any plugin installed), as image_transport's
-/// own nodes read it. Throws ParamError naming a transport that is not installed.
+/// default, or compressed: ros/compressed_transport.h, or any plugin installed), as
+/// image_transport's own nodes read it. Throws ParamError naming a transport that is not installed.
 image_transport::TransportHints imageTransportHints(const ros::NodeHandle& pnh);
 config::ParameterDoc imageTransportParameter();
+/// The rows of an image node's intake: ~time_back_restart_s and ~image_transport.
+std::vector<config::ParameterDoc> imageIntakeParameters();
+/// ~seed of a node that samples (default 1, [0, 2^30]): the same seed replays the same run.
+std::uint64_t loadSeed(const ros::NodeHandle& pnh);
+config::ParameterDoc seedParameter();
 /// The field of ~field_file (YAML; default config/field_4legged.yaml, a relative path looked up in
 /// the current directory, then in the package); *path, when given, is set to the file read.
 /// Throws std::runtime_error naming a file that cannot be read or parsed.
