@@ -5,9 +5,10 @@
 #     two share a master (rostest starts each on a free port);
 #   - the install check (scripts/check_install.sh);
 #   - the core's unit tests and the fuzz targets' corpus replays, built alone with AddressSanitizer
-#     + UndefinedBehaviorSanitizer (scripts/check_core.sh). That tree builds at the lowest CPU
-#     priority beside the catkin build and the ROS tests; the unit tests run there only, not a second time from the
-#     catkin build (`catkin_make run_tests` still runs them all, as catkin users expect).
+#     + UndefinedBehaviorSanitizer (scripts/check_core.sh). That tree builds and then runs its tests
+#     at the lowest CPU priority beside the catkin build and the ROS tests; the unit tests run there
+#     only, not a second time from the catkin build (`catkin_make run_tests` still runs them all, as
+#     catkin users expect).
 # N counts the catkin test cases, the install check, and the sanitizer run's gtest cases and fuzz
 # replays. Prints the time of each stage. Exits non-zero when any test failed or did not run.
 # The verdict comes from the result XML files (ctest and catkin's run_tests exit 0 on some failures).
@@ -16,11 +17,17 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 stage() { echo "run_tests: $1 after $(( SECONDS / 60 )) min $(( SECONDS % 60 )) s"; }
 "$AP_ROOT/scripts/setup.sh" --no-build || { echo "tests: 0 passed, 1 failed"; exit 1; }
 mkdir -p "$AP_WS"
-# The sanitizer tree, beside everything below at nice 19: it takes only the CPU that the catkin
-# build and the ROS tests leave idle.
-nice -n 19 "$AP_ROOT/scripts/check_core.sh" build > "$AP_WS/check_core_build.log" 2>&1 &
-san_build=$!
-"$AP_ROOT/scripts/setup.sh" || { kill "$san_build" 2> /dev/null; echo "tests: 0 passed, 1 failed"; exit 1; }
+rm -f "$AP_WS/check_core_built_at" "$AP_WS/check_core_tested_at"
+# The sanitizer tree, built and then tested beside everything below at nice 19: it takes only the
+# CPU that the catkin build and the ROS tests leave idle. Each half's end time goes to a file.
+(
+  nice -n 19 "$AP_ROOT/scripts/check_core.sh" build > "$AP_WS/check_core_build.log" 2>&1 || exit 1
+  echo "$SECONDS" > "$AP_WS/check_core_built_at"
+  nice -n 19 "$AP_ROOT/scripts/check_core.sh" test > "$AP_WS/check_core.log" 2>&1
+  echo "$SECONDS" > "$AP_WS/check_core_tested_at"
+) &
+san_job=$!
+"$AP_ROOT/scripts/setup.sh" || { kill "$san_job" 2> /dev/null; echo "tests: 0 passed, 1 failed"; exit 1; }
 stage "setup (apt, catkin build) done"
 cd "$AP_WS"
 set +u; source devel/setup.bash; set -u
@@ -31,7 +38,7 @@ JOBS="${AP_JOBS:-$(nproc)}"
 TEST_JOBS="${AP_TEST_JOBS:-3}"
 if ! catkin_make -j"$JOBS" ros_tests > "$AP_WS/tests_build.log" 2>&1; then
   tail -n 60 "$AP_WS/tests_build.log"; echo "test build FAILED (log: $AP_WS/tests_build.log)"
-  kill "$san_build" 2> /dev/null
+  kill "$san_job" 2> /dev/null
   echo "tests: 0 passed, 1 failed"; exit 1
 fi
 stage "test build done"
@@ -46,15 +53,19 @@ echo "catkin $catkin_line"
 install_ok=1
 "$AP_ROOT/scripts/check_install.sh" || install_ok=0
 stage "install check done"
-if wait "$san_build"; then
-  stage "sanitizer build done"
-  "$AP_ROOT/scripts/check_core.sh" test | tee "$AP_WS/check_core.log"
-  stage "sanitizer tests done"
+at() { local t; t="$(cat "$1")"; echo "after $(( t / 60 )) min $(( t % 60 )) s"; }
+wait "$san_job"
+if [ -f "$AP_WS/check_core_built_at" ]; then
+  echo "run_tests: sanitizer build (background) done $(at "$AP_WS/check_core_built_at")"
+  cat "$AP_WS/check_core.log"
+  [ -f "$AP_WS/check_core_tested_at" ] &&
+    echo "run_tests: sanitizer tests (background) done $(at "$AP_WS/check_core_tested_at")"
   san_line="$(tail -n 1 "$AP_WS/check_core.log")"
 else
   cat "$AP_WS/check_core_build.log"
   san_line="sanitizers: 0 passed, 1 failed"
 fi
+stage "all done"
 num() { echo "$1" | sed -n "s/.* \([0-9]*\) $2.*/\1/p"; }
 p1=$(num "$catkin_line" passed); f1=$(num "$catkin_line" failed)
 p2=$(num "$san_line" passed); f2=$(num "$san_line" failed)

@@ -38,6 +38,8 @@ PACKAGES=(
   libgtest-dev googletest libbenchmark-dev
   # clang with its sanitizer and libFuzzer runtimes (scripts/fuzz.sh; gcc's sanitizers come with build-essential)
   clang libclang-rt-14-dev
+  # lld links the sanitizer tree's test programs (scripts/check_core.sh) in a fraction of ld's time
+  lld
   # plots, rviz under a virtual display
   python3-matplotlib python3-yaml python3-numpy rviz xvfb xauth
 )

@@ -4,15 +4,39 @@
 Prints every failed case, then `tests: N passed, M failed` and exits 1 when M > 0 or when no test ran.
 A skipped case counts as neither passed nor failed and is listed as skipped.
 rostest wrapper cases count only when they failed (see below).
+
+With --programs FILE (ctest's --output-junit, one case a test program: scripts/check_core.sh), a
+program's case counts where no result file of its name is under the root (a program that writes
+none, such as a fuzz replay), or where it failed and its own file shows no failed case: the program
+died outside a case (a leak found at exit) or before writing its file (a crash, a sanitizer report).
 """
 import pathlib
 import sys
 import xml.etree.ElementTree as ET
 
 
-def main(root):
+def failed_case(c):
+    return c.find("failure") is not None or c.find("error") is not None
+
+
+def main(root, programs=None):
     passed, failed, skipped, failures = 0, 0, 0, []
     files = sorted(pathlib.Path(root).rglob("*.xml"))
+    if programs:
+        by_name = {f.stem: f for f in files}
+        for c in ET.parse(programs).getroot().iter("testcase"):
+            own = by_name.get(c.get("name", ""))
+            if own is None:
+                if c.get("status") in ("notrun", "disabled"):
+                    skipped += 1
+                elif failed_case(c):
+                    failed += 1
+                    failures.append(f"{c.get('name')}: failed")
+                else:
+                    passed += 1
+            elif failed_case(c) and not any(failed_case(k) for k in ET.parse(own).getroot().iter("testcase")):
+                failed += 1
+                failures.append(f"{c.get('name')}: the program failed outside its cases (a leak at exit?)")
     for f in files:
         try:
             tree = ET.parse(f)
@@ -39,7 +63,7 @@ def main(root):
             if c.find("skipped") is not None or c.get("status") == "notrun":
                 skipped += 1
                 print(f"  skipped: {name}")
-            elif c.find("failure") is not None or c.find("error") is not None:
+            elif failed_case(c):
                 failed += 1
                 node = c.find("failure") if c.find("failure") is not None else c.find("error")
                 msg = (node.get("message") or node.text or "").strip().splitlines()
@@ -56,4 +80,10 @@ def main(root):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else "."))
+    args = sys.argv[1:]
+    programs = None
+    if "--programs" in args:
+        i = args.index("--programs")
+        programs = args[i + 1]
+        del args[i:i + 2]
+    sys.exit(main(args[0] if args else ".", programs))
