@@ -35,36 +35,16 @@ class FieldBagReplay : public ::testing::Test {
  protected:
   void SetUp() override {
     expected_frames_ = ros::NodeHandle("~").param("expected_frames", 33);
-    subs_.push_back(nh_.subscribe<sensor_msgs::Image>(T::kCameraImage, 100,
-                                                      [this](const sensor_msgs::ImageConstPtr& m) {
-                                                        std::lock_guard<std::mutex> l(c_.mutex);
-                                                        c_.images.push_back(m);
-                                                      }));
-    subs_.push_back(nh_.subscribe<sensor_msgs::Image>(T::kCameraLabels, 100,
-                                                      [this](const sensor_msgs::ImageConstPtr& m) {
-                                                        std::lock_guard<std::mutex> l(c_.mutex);
-                                                        c_.labels.push_back(m);
-                                                      }));
-    subs_.push_back(nh_.subscribe<sensor_msgs::CameraInfo>(
-        T::kCameraInfo, 100, [this](const sensor_msgs::CameraInfoConstPtr& m) {
-          std::lock_guard<std::mutex> l(c_.mutex);
-          c_.infos[m->header.stamp] = m;
-        }));
-    subs_.push_back(nh_.subscribe<geometry_msgs::PoseStamped>(
-        T::kGroundTruthPose, 1000, [this](const geometry_msgs::PoseStampedConstPtr& m) {
-          std::lock_guard<std::mutex> l(c_.mutex);
-          c_.truth[m->header.stamp] = m;
-        }));
-    subs_.push_back(nh_.subscribe<sensor_msgs::JointState>(
-        T::kJointStates, 1000, [this](const sensor_msgs::JointStateConstPtr& m) {
-          std::lock_guard<std::mutex> l(c_.mutex);
-          c_.joints[m->header.stamp] = m;
-        }));
-    subs_.push_back(nh_.subscribe<visualization_msgs::MarkerArray>(
-        T::kFieldMap, 1, [this](const visualization_msgs::MarkerArrayConstPtr& m) {
-          std::lock_guard<std::mutex> l(c_.mutex);
-          c_.markers = m->markers.size();
-        }));
+    keep<sensor_msgs::Image>(T::kCameraImage, 100, [this](auto m) { c_.images.push_back(m); });
+    keep<sensor_msgs::Image>(T::kCameraLabels, 100, [this](auto m) { c_.labels.push_back(m); });
+    keep<sensor_msgs::CameraInfo>(T::kCameraInfo, 100,
+                                  [this](auto m) { c_.infos[m->header.stamp] = m; });
+    keep<geometry_msgs::PoseStamped>(T::kGroundTruthPose, 1000,
+                                     [this](auto m) { c_.truth[m->header.stamp] = m; });
+    keep<sensor_msgs::JointState>(T::kJointStates, 1000,
+                                  [this](auto m) { c_.joints[m->header.stamp] = m; });
+    keep<visualization_msgs::MarkerArray>(T::kFieldMap, 1,
+                                          [this](auto m) { c_.markers = m->markers.size(); });
     spinner_.start();
     // Wait (wall time) for the whole bag.
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(60.0);
@@ -78,6 +58,16 @@ class FieldBagReplay : public ::testing::Test {
       ros::WallDuration(0.1).sleep();
     }
     ros::WallDuration(1.0).sleep();  // let the last tf arrive
+  }
+
+  /// Subscribes `topic`; `store` files each message under the collection's lock.
+  template <class M, class F>
+  void keep(const std::string& topic, uint32_t depth, F store) {
+    subs_.push_back(
+        nh_.subscribe<M>(topic, depth, [this, store](const boost::shared_ptr<M const>& m) {
+          std::lock_guard<std::mutex> l(c_.mutex);
+          store(m);
+        }));
   }
 
   ros::NodeHandle nh_;

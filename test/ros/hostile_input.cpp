@@ -69,6 +69,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <limits>
 #include <map>
@@ -252,122 +253,100 @@ boost::shared_ptr<T> firstOf(const Replayer& r, const std::string& topic) {
 // ---- hostile messages
 // ----------------------------------------------------------------------------
 
+/// Named variants of a good message, each a changed copy stamped 10 ms after the one before it
+/// (from `stamp`), so that no two are taken for one message.
+template <class M>
+class Variants {
+ public:
+  Variants(M good, const ros::Time& stamp) : good_(std::move(good)), stamp_(stamp) {}
+  template <class F>
+  Variants& add(const std::string& name, F change) {
+    M m = good_;
+    change(m);
+    m.header.stamp = stamp_ + ros::Duration(0.01 * static_cast<double>(list_.size() + 1));
+    list_.emplace_back(name, std::move(m));
+    return *this;
+  }
+  /// The good message 1,000 s older than `stamp`: no tf reaches that far back.
+  Variants& addStale() {
+    list_.emplace_back("stale stamp (1,000 s old, no tf)", good_);
+    list_.back().second.header.stamp = stamp_ - ros::Duration(1000.0);
+    return *this;
+  }
+  std::vector<std::pair<std::string, M>> list() const { return list_; }
+
+ private:
+  M good_;
+  ros::Time stamp_;
+  std::vector<std::pair<std::string, M>> list_;
+};
+
 std::vector<std::pair<std::string, sensor_msgs::Image>> hostileImages(
     const sensor_msgs::Image& good, const ros::Time& stamp) {
-  std::vector<std::pair<std::string, sensor_msgs::Image>> cases;
-  auto add = [&](const std::string& name, sensor_msgs::Image m) {
-    m.header.stamp = stamp + ros::Duration(0.01 * static_cast<double>(cases.size() + 1));
-    cases.emplace_back(name, std::move(m));
-  };
-  sensor_msgs::Image m = good;
-  m.encoding = "32FC1";
-  add("unsupported encoding 32FC1", m);
-  m = good;
-  m.encoding = "no_such_encoding";
-  add("unknown encoding", m);
-  m = good;
-  m.width = m.height = m.step = 0;
-  m.data.clear();
-  add("zero-size image", m);
-  m = good;
-  m.step = m.step / 2;
-  add("step smaller than a row", m);
-  m = good;
-  m.data.resize(m.data.size() / 2);
-  add("data shorter than step x height", m);
-  m = good;
-  m.width = m.height = 100000;
-  add("dimensions far larger than the data", m);
-  m = good;
-  m.step = std::numeric_limits<uint32_t>::max();
-  add("step overflowing step x height", m);
-  m = good;
-  m.width = good.width / 2;
-  m.height = good.height / 2;
-  m.step = good.step / 2;
-  m.data.assign(static_cast<std::size_t>(m.step) * m.height, 128);
-  add("valid image of another size", m);
-  if (good.encoding == "yuv422") {
-    m = good;
-    m.width = good.width - 1;
-    add("yuv422 with an odd width", m);
-  }
-  m = good;
-  m.header.frame_id = "no_such_frame";
-  add("frame with no tf", m);
-  m = good;
-  m.header.frame_id.clear();
-  add("empty frame id", m);
-  m = good;
-  cases.emplace_back("stale stamp (1,000 s old, no tf)", m);
-  cases.back().second.header.stamp = stamp - ros::Duration(1000.0);
-  return cases;
+  using M = sensor_msgs::Image;
+  Variants<M> v(good, stamp);
+  v.add("unsupported encoding 32FC1", [](M& m) { m.encoding = "32FC1"; })
+      .add("unknown encoding", [](M& m) { m.encoding = "no_such_encoding"; })
+      .add("zero-size image",
+           [](M& m) {
+             m.width = m.height = m.step = 0;
+             m.data.clear();
+           })
+      .add("step smaller than a row", [](M& m) { m.step = m.step / 2; })
+      .add("data shorter than step x height", [](M& m) { m.data.resize(m.data.size() / 2); })
+      .add("dimensions far larger than the data", [](M& m) { m.width = m.height = 100000; })
+      .add("step overflowing step x height",
+           [](M& m) { m.step = std::numeric_limits<uint32_t>::max(); })
+      .add("valid image of another size", [](M& m) {
+        m.width /= 2;
+        m.height /= 2;
+        m.step /= 2;
+        m.data.assign(static_cast<std::size_t>(m.step) * m.height, 128);
+      });
+  if (good.encoding == "yuv422") v.add("yuv422 with an odd width", [](M& m) { m.width -= 1; });
+  v.add("frame with no tf", [](M& m) { m.header.frame_id = "no_such_frame"; })
+      .add("empty frame id", [](M& m) { m.header.frame_id.clear(); })
+      .addStale();
+  return v.list();
 }
 
 std::vector<std::pair<std::string, sensor_msgs::LaserScan>> hostileScans(
     const sensor_msgs::LaserScan& good, const ros::Time& stamp) {
-  std::vector<std::pair<std::string, sensor_msgs::LaserScan>> cases;
-  auto add = [&](const std::string& name, sensor_msgs::LaserScan m) {
-    m.header.stamp = stamp + ros::Duration(0.01 * static_cast<double>(cases.size() + 1));
-    cases.emplace_back(name, std::move(m));
-  };
+  using M = sensor_msgs::LaserScan;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
-  sensor_msgs::LaserScan m = good;
-  std::fill(m.ranges.begin(), m.ranges.end(), nan);
-  add("all ranges NaN", m);
-  m = good;
-  std::fill(m.ranges.begin(), m.ranges.end(), inf);
-  add("all ranges +inf", m);
-  m = good;
-  std::fill(m.ranges.begin(), m.ranges.end(), -1.0f);
-  add("all ranges negative", m);
-  m = good;
-  for (std::size_t i = 0; i < m.ranges.size(); ++i)
-    if (i % 3 == 0) m.ranges[i] = (i % 2) ? nan : -inf;
-  add("every third range NaN or -inf", m);
-  m = good;
-  m.ranges.clear();
-  m.intensities.clear();
-  add("zero beams", m);
-  m = good;
-  m.ranges.resize(m.ranges.size() * 3, 1.0f);
-  add("more ranges than the angles cover", m);
-  m = good;
-  m.angle_increment = 0.0f;
-  add("zero angle increment", m);
-  m = good;
-  m.angle_increment = nan;
-  add("NaN angle increment", m);
-  m = good;
-  m.angle_min = inf;
-  add("infinite angle_min", m);
-  m = good;
-  m.range_max = 0.0f;
-  add("zero range_max", m);
-  m = good;
-  m.range_min = m.range_max + 1.0f;
-  add("range_min above range_max", m);
-  m = good;
-  m.intensities.assign(3, 1.0f);
-  add("intensities of another length", m);
-  m = good;
-  m.header.frame_id = "no_such_frame";
-  add("frame with no tf", m);
-  return cases;
+  const auto all = [](float r) {
+    return [r](M& m) { std::fill(m.ranges.begin(), m.ranges.end(), r); };
+  };
+  return Variants<M>(good, stamp)
+      .add("all ranges NaN", all(nan))
+      .add("all ranges +inf", all(inf))
+      .add("all ranges negative", all(-1.0f))
+      .add("every third range NaN or -inf",
+           [&](M& m) {
+             for (std::size_t i = 0; i < m.ranges.size(); i += 3)
+               m.ranges[i] = (i % 2) ? nan : -inf;
+           })
+      .add("zero beams",
+           [](M& m) {
+             m.ranges.clear();
+             m.intensities.clear();
+           })
+      .add("more ranges than the angles cover",
+           [](M& m) { m.ranges.resize(m.ranges.size() * 3, 1.0f); })
+      .add("zero angle increment", [](M& m) { m.angle_increment = 0.0f; })
+      .add("NaN angle increment", [&](M& m) { m.angle_increment = nan; })
+      .add("infinite angle_min", [&](M& m) { m.angle_min = inf; })
+      .add("zero range_max", [](M& m) { m.range_max = 0.0f; })
+      .add("range_min above range_max", [](M& m) { m.range_min = m.range_max + 1.0f; })
+      .add("intensities of another length", [](M& m) { m.intensities.assign(3, 1.0f); })
+      .add("frame with no tf", [](M& m) { m.header.frame_id = "no_such_frame"; })
+      .list();
 }
 
 std::vector<std::pair<std::string, ap::LineSegmentArray>> hostileLines(const std::string& frame,
                                                                        const ros::Time& stamp) {
-  std::vector<std::pair<std::string, ap::LineSegmentArray>> cases;
-  auto add = [&](const std::string& name, std::vector<ap::LineSegment> segments,
-                 const std::string& f) {
-    ap::LineSegmentArray m;
-    m.header.frame_id = f;
-    m.header.stamp = stamp + ros::Duration(0.01 * static_cast<double>(cases.size() + 1));
-    m.segments = std::move(segments);
-    cases.emplace_back(name, std::move(m));
-  };
+  using M = ap::LineSegmentArray;
   ap::LineSegment s;
   s.rho = 2.0;
   s.alpha = 0.3;
@@ -377,40 +356,37 @@ std::vector<std::pair<std::string, ap::LineSegmentArray>> hostileLines(const std
   s.end.x = 1.5;
   s.end.y = 2.0;
   s.num_points = 50;
+  M good;
+  good.header.frame_id = frame;
+  good.segments = {s};
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  add("no segments", {}, frame);
-  ap::LineSegment b = s;
-  b.rho = nan;
-  add("NaN rho", {b}, frame);
-  b = s;
-  b.alpha = inf;
-  add("infinite alpha", {b}, frame);
-  b = s;
-  b.rho = -3.0;
-  add("negative rho", {b}, frame);
-  b = s;
-  b.covariance = {-1e-4, 0.0, 0.0, 1e-4};
-  add("negative variance", {b}, frame);
-  b = s;
-  b.covariance = {1e-4, 1.0, 1.0, 1e-4};
-  add("covariance not positive definite", {b}, frame);
-  b = s;
-  b.covariance = {0.0, 0.0, 0.0, 0.0};
-  add("zero covariance", {b}, frame);
-  b = s;
-  b.covariance = {nan, 0.0, 0.0, nan};
-  add("NaN covariance", {b}, frame);
-  b = s;
-  b.start.x = inf;
-  add("infinite endpoint", {b}, frame);
-  add("a thousand identical segments", std::vector<ap::LineSegment>(1000, s), frame);
-  add("frame with no tf", {s}, "no_such_frame");
-  add("empty frame id", {s}, "");
-  cases.emplace_back("stale stamp (1,000 s old, no tf)", cases.front().second);
-  cases.back().second.segments = {s};
-  cases.back().second.header.stamp = stamp - ros::Duration(1000.0);
-  return cases;
+  const auto segment = [](std::function<void(ap::LineSegment&)> change) {
+    return [change](M& m) { change(m.segments[0]); };
+  };
+  return Variants<M>(good, stamp)
+      .add("no segments", [](M& m) { m.segments.clear(); })
+      .add("NaN rho", segment([&](ap::LineSegment& b) { b.rho = nan; }))
+      .add("infinite alpha", segment([&](ap::LineSegment& b) { b.alpha = inf; }))
+      .add("negative rho", segment([](ap::LineSegment& b) { b.rho = -3.0; }))
+      .add("negative variance", segment([](ap::LineSegment& b) {
+             b.covariance = {-1e-4, 0.0, 0.0, 1e-4};
+           }))
+      .add("covariance not positive definite", segment([](ap::LineSegment& b) {
+             b.covariance = {1e-4, 1.0, 1.0, 1e-4};
+           }))
+      .add("zero covariance", segment([](ap::LineSegment& b) {
+             b.covariance = {0.0, 0.0, 0.0, 0.0};
+           }))
+      .add("NaN covariance", segment([&](ap::LineSegment& b) {
+             b.covariance = {nan, 0.0, 0.0, nan};
+           }))
+      .add("infinite endpoint", segment([&](ap::LineSegment& b) { b.start.x = inf; }))
+      .add("a thousand identical segments", [&](M& m) { m.segments.assign(1000, s); })
+      .add("frame with no tf", [](M& m) { m.header.frame_id = "no_such_frame"; })
+      .add("empty frame id", [](M& m) { m.header.frame_id.clear(); })
+      .addStale()
+      .list();
 }
 
 // ---- dynamic_reconfigure and services
@@ -636,9 +612,10 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
       if (r.stamp < newest) ++went_back;
       newest = std::max(newest, r.stamp);
     }
-    std::printf("hostile_input: %s pass B with every input re-sent %.3f s older: %zu outputs, "
-                "%ld for older copies, %ld stamped before an earlier output\n",
-                node.c_str(), jitter, b.size(), older_copies, went_back);
+    std::printf(
+        "hostile_input: %s pass B with every input re-sent %.3f s older: %zu outputs, "
+        "%ld for older copies, %ld stamped before an earlier output\n",
+        node.c_str(), jitter, b.size(), older_copies, went_back);
     EXPECT_EQ(went_back, 0) << node << " took inputs older than one it had taken";
   }
   std::printf("hostile_input: %s survived %d hostile cases; pass B: %zu outputs for %d inputs\n",

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../../src/tools/command_line.h"
@@ -92,22 +93,21 @@ TEST(CommandLine, AFieldNameSharedByTwoTablesSetsBoth) {
 
 TEST(CommandLine, RefusesWhatItCannotTakeNamingIt) {
   testing::FLAGS_gtest_death_test_style = "threadsafe";
+  // The words given, and what the message must name.
+  const std::vector<std::pair<std::vector<std::string>, std::string>> refused = {
+      {{"--no_such_option", "1"}, "no_such_option"},
+      {{"--length_m", "0"}, "length_m.*0 is out of range \\(0, 10\\]"},
+      {{"--length_m", "abc"}, "length_m.*expects a number, got 'abc'"},
+      {{"--count", "2.5"}, "count.*expects an integer, got '2.5'"},
+      {{"--count", "11"}, "count.*11 is out of range \\[1, 10\\]"},
+      {{"--gain", "1"}, "gain.*1 is out of range \\[0, 1\\)"},
+      {{"--enabled", "yes please"}, "enabled.*expects 0, 1, true or false"},
+      // A flag takes no value: the word after it is refused, not swallowed.
+      {{"--force", "file.bag"}, "file.bag"},
+  };
   Parsed p;
-  EXPECT_EXIT(parse({"--no_such_option", "1"}, &p), testing::ExitedWithCode(2), "no_such_option");
-  EXPECT_EXIT(parse({"--length_m", "0"}, &p), testing::ExitedWithCode(2),
-              "length_m.*0 is out of range \\(0, 10\\]");
-  EXPECT_EXIT(parse({"--length_m", "abc"}, &p), testing::ExitedWithCode(2),
-              "length_m.*expects a number, got 'abc'");
-  EXPECT_EXIT(parse({"--count", "2.5"}, &p), testing::ExitedWithCode(2),
-              "count.*expects an integer, got '2.5'");
-  EXPECT_EXIT(parse({"--count", "11"}, &p), testing::ExitedWithCode(2),
-              "count.*11 is out of range \\[1, 10\\]");
-  EXPECT_EXIT(parse({"--gain", "1"}, &p), testing::ExitedWithCode(2),
-              "gain.*1 is out of range \\[0, 1\\)");
-  EXPECT_EXIT(parse({"--enabled", "yes please"}, &p), testing::ExitedWithCode(2),
-              "enabled.*expects 0, 1, true or false");
-  // A flag takes no value: the word after it is refused, not swallowed.
-  EXPECT_EXIT(parse({"--force", "file.bag"}, &p), testing::ExitedWithCode(2), "file.bag");
+  for (const auto& [words, message] : refused)
+    EXPECT_EXIT(parse(words, &p), testing::ExitedWithCode(2), message) << words[0];
 }
 
 TEST(CommandLine, HelpListsEveryOptionWithItsDefaultAndRange) {
@@ -146,9 +146,11 @@ std::uint64_t parseWriter(const std::vector<std::string>& words, const std::stri
 
 TEST(CommandLine, SeedDefaultsToOneAndAnExistingFileIsReplacedOnlyWithOverwrite) {
   testing::FLAGS_gtest_death_test_style = "threadsafe";
-  const fs::path dir = fs::temp_directory_path() / ("tool_command_lines_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("tool_command_lines_" + std::to_string(getpid()));
   fs::create_directories(dir);
-  const std::string absent = (dir / "absent.bag").string(), present = (dir / "present.bag").string();
+  const std::string absent = (dir / "absent.bag").string(),
+                    present = (dir / "present.bag").string();
   std::FILE* f = std::fopen(present.c_str(), "w");
   ASSERT_NE(f, nullptr);
   std::fclose(f);
@@ -165,7 +167,8 @@ TEST(CommandLine, SeedDefaultsToOneAndAnExistingFileIsReplacedOnlyWithOverwrite)
   cli.overwrite("the file");
   const std::string help = cli.app().help();
   EXPECT_NE(help.find("random seed: the same seed repeats a run exactly (default: 1)"),
-            std::string::npos) << help;
+            std::string::npos)
+      << help;
   EXPECT_NE(help.find("replace the file if it exists"), std::string::npos) << help;
   fs::remove_all(dir);
 }
@@ -175,7 +178,8 @@ int run(const std::string& command, std::string* output) {
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>&1").c_str(), "r"), pclose);
   std::array<char, 4096> buf{};
   output->clear();
-  for (size_t n; (n = fread(buf.data(), 1, buf.size(), pipe.get())) > 0;) output->append(buf.data(), n);
+  for (size_t n; (n = fread(buf.data(), 1, buf.size(), pipe.get())) > 0;)
+    output->append(buf.data(), n);
   const int status = pclose(pipe.release());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -188,8 +192,7 @@ TEST(Tools, EveryToolAnswersHelpAndRefusesAnUnknownOption) {
   for (const auto& entry : fs::directory_iterator(fs::path(AP_SOURCE_DIR) / "src/tools")) {
     if (entry.path().extension() != ".cpp") continue;
     const std::string tool = entry.path().stem().string();
-    if (std::find(not_command_line.begin(), not_command_line.end(), tool) !=
-        not_command_line.end())
+    if (std::find(not_command_line.begin(), not_command_line.end(), tool) != not_command_line.end())
       continue;
     const fs::path binary = fs::path(AP_TOOL_DIR) / tool;
     if (!fs::exists(binary)) {

@@ -2,13 +2,14 @@
 #include "adaptive_perception/io/atomic_file.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "../scratch_dir.h"
 
 namespace ap = adaptive_perception;
 namespace fs = std::filesystem;
@@ -24,16 +25,11 @@ std::string readAll(const fs::path& p) {
 
 class AtomicFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("atomic_file_test_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::size_t filesInDir() const {
     return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), {}));
   }
-  fs::path dir_;
+  adaptive_perception::test_support::ScratchDir scratch_{"atomic_file_test"};
+  const fs::path& dir_ = scratch_.path();
 };
 
 TEST_F(AtomicFileTest, WritesAndReplacesWithNoFileLeftBehind) {

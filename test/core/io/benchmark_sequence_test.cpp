@@ -3,13 +3,14 @@
 #include "adaptive_perception/io/benchmark_sequence.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 #include <string>
+
+#include "../scratch_dir.h"
 
 namespace ap = adaptive_perception;
 namespace fs = std::filesystem;
@@ -18,20 +19,13 @@ namespace {
 
 class BenchmarkSequenceTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("benchmark_sequence_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   void image(const fs::path& p) const {
     fs::create_directories(p.parent_path());
     cv::imwrite(p.string(), cv::Mat(8, 8, CV_8UC3, cv::Scalar(10, 20, 30)));
   }
   void text(const fs::path& p, const std::string& s) const { std::ofstream(p) << s; }
-  fs::path dir_;
+  adaptive_perception::test_support::ScratchDir scratch_{"benchmark_sequence"};
+  const fs::path& dir_ = scratch_.path();
 };
 
 TEST_F(BenchmarkSequenceTest, OtbFolderFromFrame0300WithTabsAndAThumbsDb) {

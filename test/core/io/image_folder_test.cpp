@@ -3,12 +3,13 @@
 #include "adaptive_perception/io/image_folder.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+
+#include "../scratch_dir.h"
 
 namespace ap = adaptive_perception;
 namespace fs = std::filesystem;
@@ -17,14 +18,6 @@ namespace {
 
 class ImageFolderTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("image_folder_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   void write(const fs::path& p, const std::string& text) const {
     fs::create_directories(p.parent_path());
     std::ofstream(p) << text;
@@ -37,7 +30,8 @@ class ImageFolderTest : public ::testing::Test {
     }
     return "";
   }
-  fs::path dir_;
+  adaptive_perception::test_support::ScratchDir scratch_{"image_folder"};
+  const fs::path& dir_ = scratch_.path();
 };
 
 TEST(NaturalOrder, ComparesDigitRunsByValue) {

@@ -2,17 +2,18 @@
 #include "adaptive_perception/io/image_list.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+
+#include "../scratch_dir.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
 
 TEST(ImageList, ReadsRelativeAndAbsolutePaths) {
-  const fs::path dir = fs::temp_directory_path() / ("ap_list_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const adaptive_perception::test_support::ScratchDir scratch("ap_list");
+  const fs::path& dir = scratch.path();
   const std::string csv = (dir / "images.csv").string();
   std::ofstream(csv)
       << "image_path,place\n# a comment\n\na.png,kitchen\n /abs/b.png , corridor \r\n";
@@ -34,5 +35,4 @@ TEST(ImageList, ReadsRelativeAndAbsolutePaths) {
   std::ofstream(csv) << "a.png,\n";
   EXPECT_THROW(io::readImageList(csv), std::runtime_error);
   EXPECT_THROW(io::readImageList((dir / "missing.csv").string()), std::runtime_error);
-  fs::remove_all(dir);
 }

@@ -38,6 +38,15 @@ cv::Mat greyImage() {
 }
 
 // The head's camera 0.3 m above the ground, looking ahead and 0.4 rad down.
+/// The filter the localizer gives each particle, on the one shipped prior `name`
+/// (config/color_priors/<name>.yaml).
+color::SwitchingColorFilter lightingOf(const std::string& name) {
+  return color::SwitchingColorFilter(
+      {color::LightingPrior::loadYaml(std::string(AP_SOURCE_DIR) + "/config/color_priors/" + name +
+                                      ".yaml")},
+      RbpfConfig::rbpfModelConfig(), color::SwitchingFilterConfig());
+}
+
 Eigen::Isometry3d cameraOnRobot() {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   t.translation() = Eigen::Vector3d(0.1, 0.0, 0.3);
@@ -161,10 +170,7 @@ TEST(GlobalLocalization, SearchesThenConfirmsThenHandsOverAContest) {
   EXPECT_FALSE(global.searching());
   global.start();
   EXPECT_TRUE(global.searching());
-  const color::SwitchingColorFilter lighting(
-      {color::LightingPrior::loadYaml(std::string(AP_SOURCE_DIR) +
-                                      "/config/color_priors/bright.yaml")},
-      RbpfConfig::rbpfModelConfig(), color::SwitchingFilterConfig());
+  const color::SwitchingColorFilter lighting = lightingOf("bright");
   const cv::Mat yuv = greyImage();
   const Eigen::Isometry3d cam = cameraOnRobot();
   const math::SE2 step(0.05, 0.0, 0.02);
@@ -213,10 +219,7 @@ TEST(RelocalizationMonitor, ChecksEveryIntervalOverTheSearchsFrames) {
   RelocalizationConfig config;
   config.pool_size = 50;
   RelocalizationMonitor monitor(config);
-  const color::SwitchingColorFilter lighting(
-      {color::LightingPrior::loadYaml(std::string(AP_SOURCE_DIR) +
-                                      "/config/color_priors/dark.yaml")},
-      RbpfConfig::rbpfModelConfig(), color::SwitchingFilterConfig());
+  const color::SwitchingColorFilter lighting = lightingOf("dark");
   const cv::Mat yuv = greyImage();
   const Eigen::Isometry3d cam = cameraOnRobot();
   std::vector<int> ended;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <opencv2/imgproc.hpp>
 #include <random>
 #include <stdexcept>
@@ -34,6 +35,26 @@ double distance(const cv::Mat& a, const cv::Mat& b, places::DescriptorKind k) {
                                      places::computeDescriptor(b, k, c))[0];
 }
 
+/// The image under other light: per-channel gains (b, g, r), then an offset (rounded to bgr8).
+std::function<cv::Mat(const cv::Mat&)> gains(double b, double g, double r, double offset = 0.0) {
+  return [=](const cv::Mat& img) {
+    cv::Mat f;
+    img.convertTo(f, CV_32FC3);
+    f = f.mul(cv::Scalar(b, g, r)) + cv::Scalar::all(offset);
+    cv::Mat out;
+    f.convertTo(out, CV_8UC3);
+    return out;
+  };
+}
+
+/// How many times farther another scene (texture(seed + 1)) is from texture(seed) than the same
+/// scene under other light: large for a descriptor that ignores that change of light.
+double otherSceneOverRelit(places::DescriptorKind k, int seed,
+                           const std::function<cv::Mat(const cv::Mat&)>& relight) {
+  const cv::Mat a = texture(seed);
+  return distance(a, texture(seed + 1), k) / distance(a, relight(a), k);
+}
+
 TEST(GlobalDescriptor, LengthsMatchTheConfig) {
   const places::GlobalDescriptorConfig c;
   for (int k = 0; k < places::kNumDescriptorKinds; ++k) {
@@ -48,32 +69,20 @@ TEST(GlobalDescriptor, LengthsMatchTheConfig) {
 }
 
 TEST(GlobalDescriptor, ThumbnailIgnoresGainAndOffset) {
-  const cv::Mat a = texture(1), other = texture(2);
-  cv::Mat darker;
-  a.convertTo(darker, -1, 0.5, 10.0);  // half the gain, a small offset: no clipping
-  const double same = distance(a, darker, places::DescriptorKind::kThumbnail);
-  const double diff = distance(a, other, places::DescriptorKind::kThumbnail);
-  EXPECT_GT(diff, 10.0 * same);
+  // Half the gain, a small offset: no clipping.
+  EXPECT_GT(otherSceneOverRelit(places::DescriptorKind::kThumbnail, 1, gains(0.5, 0.5, 0.5, 10.0)),
+            10.0);
 }
 
 TEST(GlobalDescriptor, GradientIgnoresGain) {
-  const cv::Mat a = texture(3), other = texture(4);
-  cv::Mat brighter;
-  a.convertTo(brighter, -1, 1.25, 0.0);
-  const double same = distance(a, brighter, places::DescriptorKind::kGradient);
-  const double diff = distance(a, other, places::DescriptorKind::kGradient);
-  EXPECT_GT(diff, 5.0 * same);
+  EXPECT_GT(otherSceneOverRelit(places::DescriptorKind::kGradient, 3, gains(1.25, 1.25, 1.25)),
+            5.0);
 }
 
 TEST(GlobalDescriptor, ChromaticityIgnoresTheLightsColour) {
-  const cv::Mat a = texture(5), other = texture(6);
-  cv::Mat warm;
-  a.convertTo(warm, CV_32FC3);
-  warm = warm.mul(cv::Scalar(0.7, 1.0, 1.2));  // bluish to reddish light, per-channel gains
-  warm.convertTo(warm, CV_8UC3);
-  const double same = distance(a, warm, places::DescriptorKind::kChromaticity);
-  const double diff = distance(a, other, places::DescriptorKind::kChromaticity);
-  EXPECT_GT(diff, 3.0 * same);
+  // Bluish to reddish light: per-channel gains.
+  EXPECT_GT(otherSceneOverRelit(places::DescriptorKind::kChromaticity, 5, gains(0.7, 1.0, 1.2)),
+            3.0);
 }
 
 TEST(GlobalDescriptor, GreyImagesHaveOneChromaticity) {
@@ -120,15 +129,17 @@ TEST(GlobalDescriptor, OmniLayoutIgnoresTheRobotTurning) {
   cv::Mat turned;
   cv::rotate(img, turned, cv::ROTATE_90_CLOCKWISE);
   const auto d = [&](const cv::Mat& x, const cv::Mat& y) -> double {
-    return places::descriptorDistances(places::computeDescriptor(x, places::DescriptorKind::kLayout, c),
-                                       places::computeDescriptor(y, places::DescriptorKind::kLayout, c))[0];
+    return places::descriptorDistances(
+        places::computeDescriptor(x, places::DescriptorKind::kLayout, c),
+        places::computeDescriptor(y, places::DescriptorKind::kLayout, c))[0];
   };
   EXPECT_EQ(places::computeDescriptor(img, places::DescriptorKind::kLayout, c).cols,
             (16 / 2 + 1) * 8);
   EXPECT_LT(d(img, turned), 0.5);  // rounding of the stored bytes and of sector boundaries only
   EXPECT_GT(d(img, other), 10.0 * std::max(0.05, d(img, turned)));
   // The perspective regions are not built for it: a quarter turn moves them.
-  EXPECT_GT(distance(img, turned, places::DescriptorKind::kLayout), 5.0 * std::max(0.05, d(img, turned)));
+  EXPECT_GT(distance(img, turned, places::DescriptorKind::kLayout),
+            5.0 * std::max(0.05, d(img, turned)));
   // An omni configuration says so in its settings string (a database records it).
   EXPECT_NE(c.toString().find("layout=sectors16@ring:"), std::string::npos) << c.toString();
   EXPECT_NE(places::GlobalDescriptorConfig().toString().find("layout=regions4x2/8"),

@@ -14,6 +14,8 @@
 #include <sstream>
 #include <thread>
 
+#include "../scratch_dir.h"
+
 using namespace adaptive_perception::places;
 namespace fs = std::filesystem;
 
@@ -22,15 +24,9 @@ namespace {
 class PlaceDatabaseTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("ap_places_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     settings_.bins = 8;
     settings_.spaces = {0, 4};
   }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
 
   // Deterministic histograms: band mass at bin (seed + band) % bins.
@@ -59,7 +55,8 @@ class PlaceDatabaseTest : public ::testing::Test {
     return ss.str();
   }
 
-  fs::path dir_;
+  adaptive_perception::test_support::ScratchDir scratch_{"ap_places"};
+  const fs::path& dir_ = scratch_.path();
   DatabaseSettings settings_;
 };
 

@@ -38,20 +38,37 @@ Eigen::MatrixXd numericJacobian(F f, const Eigen::VectorXd& x, int rows) {
   return j;
 }
 
+/// f of a pose (or of a line) as a function of its vector, for numericJacobian.
+template <typename F>
+auto ofPose(F f) {
+  return [f](const Eigen::VectorXd& v) {
+    return Eigen::VectorXd(vec(f(math::SE2(v[0], v[1], v[2]))));
+  };
+}
+template <typename F>
+auto ofLine(F f) {
+  return [f](const Eigen::VectorXd& v) { return Eigen::VectorXd(vec(f(Line{v[0], v[1]}))); };
+}
+
+/// An analytic Jacobian of f at x against central differences (relative 1e-6).
+template <typename F, typename X>
+testing::AssertionResult matchesCentralDifferences(const Eigen::MatrixXd& analytic, F f,
+                                                   const X& x) {
+  const Eigen::MatrixXd numeric = numericJacobian(f, vec(x), static_cast<int>(analytic.rows()));
+  if (analytic.isApprox(numeric, 1e-6)) return testing::AssertionSuccess();
+  return testing::AssertionFailure() << "analytic\n" << analytic << "\nnumeric\n" << numeric;
+}
+
 TEST(LineModel, PredictJacobiansMatchNumericalDifferentiation) {
   const math::SE2 p(1.0, -2.0, 0.7), d(0.3, -0.1, 0.2);
   Eigen::Matrix3d fx, fv;
   slam::predictPose(p, d, &fx, &fv);
-  const auto by_pose = [&](const Eigen::VectorXd& v) {
-    return Eigen::VectorXd(
-        vec(slam::predictPose(math::SE2(v[0], v[1], v[2]), d, nullptr, nullptr)));
-  };
-  const auto by_delta = [&](const Eigen::VectorXd& v) {
-    return Eigen::VectorXd(
-        vec(slam::predictPose(p, math::SE2(v[0], v[1], v[2]), nullptr, nullptr)));
-  };
-  EXPECT_TRUE(fx.isApprox(numericJacobian(by_pose, vec(p), 3), 1e-6)) << fx;
-  EXPECT_TRUE(fv.isApprox(numericJacobian(by_delta, vec(d), 3), 1e-6)) << fv;
+  EXPECT_TRUE(matchesCentralDifferences(
+      fx, ofPose([&](const math::SE2& q) { return slam::predictPose(q, d, nullptr, nullptr); }),
+      p));
+  EXPECT_TRUE(matchesCentralDifferences(
+      fv, ofPose([&](const math::SE2& q) { return slam::predictPose(p, q, nullptr, nullptr); }),
+      d));
 }
 
 // Both branches: the robot on the origin's side of the line, and beyond it (rho flips).
@@ -61,15 +78,11 @@ TEST(LineModel, ObservationJacobiansMatchNumericalDifferentiation) {
     Eigen::Matrix<double, 2, 3> hr;
     Eigen::Matrix2d hl;
     slam::observeLine(p, l, &hr, &hl);
-    const auto by_pose = [&](const Eigen::VectorXd& v) {
-      return Eigen::VectorXd(
-          vec(slam::observeLine(math::SE2(v[0], v[1], v[2]), l, nullptr, nullptr)));
-    };
-    const auto by_line = [&](const Eigen::VectorXd& v) {
-      return Eigen::VectorXd(vec(slam::observeLine(p, Line{v[0], v[1]}, nullptr, nullptr)));
-    };
-    EXPECT_TRUE(Eigen::MatrixXd(hr).isApprox(numericJacobian(by_pose, vec(p), 2), 1e-6)) << hr;
-    EXPECT_TRUE(Eigen::MatrixXd(hl).isApprox(numericJacobian(by_line, vec(l), 2), 1e-6)) << hl;
+    EXPECT_TRUE(matchesCentralDifferences(
+        hr, ofPose([&](const math::SE2& q) { return slam::observeLine(q, l, nullptr, nullptr); }),
+        p));
+    EXPECT_TRUE(matchesCentralDifferences(
+        hl, ofLine([&](const Line& m) { return slam::observeLine(p, m, nullptr, nullptr); }), l));
   }
 }
 
@@ -83,15 +96,11 @@ TEST(LineModel, InverseObservationRoundTripsAndItsJacobiansMatch) {
       const Line back = slam::observeLine(p, m, nullptr, nullptr);
       EXPECT_NEAR(back.rho_m, z.rho_m, 1e-12);
       EXPECT_NEAR(math::angleDiff(back.alpha_rad, z.alpha_rad), 0.0, 1e-12);
-      const auto by_pose = [&](const Eigen::VectorXd& v) {
-        return Eigen::VectorXd(
-            vec(slam::lineToMap(math::SE2(v[0], v[1], v[2]), z, nullptr, nullptr)));
-      };
-      const auto by_obs = [&](const Eigen::VectorXd& v) {
-        return Eigen::VectorXd(vec(slam::lineToMap(p, Line{v[0], v[1]}, nullptr, nullptr)));
-      };
-      EXPECT_TRUE(Eigen::MatrixXd(gr).isApprox(numericJacobian(by_pose, vec(p), 2), 1e-6)) << gr;
-      EXPECT_TRUE(Eigen::MatrixXd(gz).isApprox(numericJacobian(by_obs, vec(z), 2), 1e-6)) << gz;
+      EXPECT_TRUE(matchesCentralDifferences(
+          gr, ofPose([&](const math::SE2& q) { return slam::lineToMap(q, z, nullptr, nullptr); }),
+          p));
+      EXPECT_TRUE(matchesCentralDifferences(
+          gz, ofLine([&](const Line& o) { return slam::lineToMap(p, o, nullptr, nullptr); }), z));
     }
   }
 }

@@ -5,13 +5,14 @@
 #include "adaptive_perception/slam/occupancy_grid.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
+
+#include "../scratch_dir.h"
 
 namespace fs = std::filesystem;
 using namespace adaptive_perception;
@@ -46,12 +47,6 @@ int valueAt(const slam::OccupancyGrid& g, double x, double y) {
   if (!g.cellOf(x, y, &cx, &cy)) return -2;  // outside the grid
   return g.at(cx, cy);
 }
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("ap_grid_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 }  // namespace
 
@@ -120,7 +115,7 @@ TEST(OccupancyGrid, LongReturnsClearAndNoReturnsAreUnused) {
 }
 
 TEST(OccupancyGrid, MapServerFilesRoundTrip) {
-  TempDir dir;
+  const adaptive_perception::test_support::ScratchDir dir("ap_grid");
   slam::OccupancyGrid g;
   g.resolution_m = 0.1;
   g.origin_x_m = -1.25;
@@ -128,10 +123,10 @@ TEST(OccupancyGrid, MapServerFilesRoundTrip) {
   g.width = 3;
   g.height = 2;
   g.data = {100, 0, -1, 0, 0, 100};  // row 0 (bottom), then row 1 (top)
-  const fs::path yaml = dir.path / "office.yaml";
+  const fs::path yaml = dir.path() / "office.yaml";
   slam::writeMapServerFiles(g, yaml.string());
   // The PGM as map_saver writes it: P5, the top row first, occupied 0 / free 254 / unknown 205.
-  std::ifstream pgm(dir.path / "office.pgm", std::ios::binary);
+  std::ifstream pgm(dir.path() / "office.pgm", std::ios::binary);
   std::stringstream ss;
   ss << pgm.rdbuf();
   const std::string bytes = ss.str();
@@ -156,9 +151,9 @@ TEST(OccupancyGrid, MapServerFilesRoundTrip) {
 }
 
 TEST(OccupancyGrid, MalformedMapFilesAreNamed) {
-  TempDir dir;
+  const adaptive_perception::test_support::ScratchDir dir("ap_grid");
   const auto expectError = [&](const std::string& text, const std::string& fragment) {
-    const fs::path p = dir.path / "bad.yaml";
+    const fs::path p = dir.path() / "bad.yaml";
     std::ofstream(p) << text;
     try {
       slam::readMapServerFiles(p.string());
@@ -182,7 +177,7 @@ TEST(OccupancyGrid, MalformedMapFilesAreNamed) {
   slam::OccupancyGrid g;
   g.width = g.height = 1;
   g.data = {0};
-  EXPECT_THROW(slam::writeMapServerFiles(g, (dir.path / "no" / "such" / "m.yaml").string()),
+  EXPECT_THROW(slam::writeMapServerFiles(g, (dir.path() / "no" / "such" / "m.yaml").string()),
                std::runtime_error);
 }
 

@@ -43,16 +43,24 @@ TEST(PoseGraph2D, ConsistentChainIsItsOwnOptimum) {
   EXPECT_EQ(g.numLoopEdges(), 1);
 }
 
+/// Nodes 0..4 at 1 m steps along x, four edges measuring those steps, and an edge saying node 4
+/// is 3.6 m from node 0 (a loop edge, under the robust loss, or an ordinary one), all weighted
+/// alike.
+slam::PoseGraph2D fourStepsAndALoopOf3_6m(bool robust_loop) {
+  slam::PoseGraph2D g;
+  for (int i = 0; i <= 4; ++i) g.addNode(math::SE2(i * 1.0, 0.0, 0.0));
+  for (int i = 1; i <= 4; ++i) g.addEdge(i - 1, i, math::SE2(1.0, 0.0, 0.0), info(0.1, 0.01));
+  g.addEdge(0, 4, math::SE2(3.6, 0.0, 0.0), info(0.1, 0.01), robust_loop);
+  return g;
+}
+
 TEST(PoseGraph2D, LoopEdgeSpreadsTheErrorLikeLeastSquares) {
   // Four translations of 1 m along x measured with equal weight, a loop edge saying node 4 is 3.6 m
   // from node 0 (pure translations, no rotation). Were the loop an ordinary edge, least squares
   // would make each step 1 - 0.4 / 5 = 0.92 m (the next test); the Cauchy loss on the loop edge
   // (its whitened residual is about 3) makes it pull less, so the span lies in (3.68, 4) and
   // the steps stay equal.
-  slam::PoseGraph2D g;
-  for (int i = 0; i <= 4; ++i) g.addNode(math::SE2(i * 1.0, 0.0, 0.0));
-  for (int i = 1; i <= 4; ++i) g.addEdge(i - 1, i, math::SE2(1.0, 0.0, 0.0), info(0.1, 0.01));
-  g.addEdge(0, 4, math::SE2(3.6, 0.0, 0.0), info(0.1, 0.01), true);
+  slam::PoseGraph2D g = fourStepsAndALoopOf3_6m(true);
   g.optimize();
   const double span = g.node(4).x_m - g.node(0).x_m;
   EXPECT_GT(span, 3.68 - 1e-6);
@@ -65,10 +73,7 @@ TEST(PoseGraph2D, LoopEdgeSpreadsTheErrorLikeLeastSquares) {
 TEST(PoseGraph2D, LinearCaseWithoutRobustLossMatchesTheClosedForm) {
   // The same graph with the loop as an ordinary edge: weighted least squares over five equal
   // residuals -> each step 0.92 m, the span 3.68 m.
-  slam::PoseGraph2D g;
-  for (int i = 0; i <= 4; ++i) g.addNode(math::SE2(i * 1.0, 0.0, 0.0));
-  for (int i = 1; i <= 4; ++i) g.addEdge(i - 1, i, math::SE2(1.0, 0.0, 0.0), info(0.1, 0.01));
-  g.addEdge(0, 4, math::SE2(3.6, 0.0, 0.0), info(0.1, 0.01), false);
+  slam::PoseGraph2D g = fourStepsAndALoopOf3_6m(false);
   g.optimize();
   EXPECT_NEAR(g.node(4).x_m, 3.68, 1e-6);
   EXPECT_NEAR(g.node(1).x_m, 0.92, 1e-6);
@@ -131,8 +136,8 @@ TEST(LoopClosingMapper, ClosesADriftingLoopInASyntheticRoom) {
   ASSERT_EQ(out.size(), truth.size());
   double worst_in = 0.0, worst_out = 0.0;
   for (size_t i = truth.size() / 2; i < truth.size(); ++i) {  // the second lap
-    worst_in = std::max(worst_in,
-                        std::hypot(locals[i].x_m - truth[i].x_m, locals[i].y_m - truth[i].y_m));
+    worst_in =
+        std::max(worst_in, std::hypot(locals[i].x_m - truth[i].x_m, locals[i].y_m - truth[i].y_m));
     worst_out =
         std::max(worst_out, std::hypot(out[i].x_m - truth[i].x_m, out[i].y_m - truth[i].y_m));
   }
@@ -157,8 +162,8 @@ TEST(LoopClosingMapper, TheWideSearchClosesALoopBeyondTheLocalWindow) {
     slam::LoopClosingConfig c;
     c.max_candidates_per_node = 0;  // no local loop closing
     c.wide_search = wide;
-    c.wide_min_loop_m = 15.0;      // the room's laps are 20.4 m
-    c.wide_drift_per_m = 0.2;      // this estimator drifts far faster than a laser odometry
+    c.wide_min_loop_m = 15.0;  // the room's laps are 20.4 m
+    c.wide_drift_per_m = 0.2;  // this estimator drifts far faster than a laser odometry
     c.wide_drift_rad_per_m = 0.01;
     c.max_range_m = 12.0;
     slam::LoopClosingMapper mapper(c);
@@ -178,10 +183,11 @@ TEST(LoopClosingMapper, TheWideSearchClosesALoopBeyondTheLocalWindow) {
   slam::LoopClosingMapper with_mapper, without_mapper;
   const auto [with_wide, local_err] = run(true, &with_mapper);
   const auto [without_wide, local_err2] = run(false, &without_mapper);
-  std::printf("wide search: last lap worst error %.3f m (local estimator %.3f m, without the wide "
-              "search %.3f m); %ld attempts, %ld matches, %ld confirmed, %d loop edges\n",
-              with_wide, local_err, without_wide, with_mapper.wideAttempts(),
-              with_mapper.wideMatches(), with_mapper.wideConfirmed(), with_mapper.loopClosures());
+  std::printf(
+      "wide search: last lap worst error %.3f m (local estimator %.3f m, without the wide "
+      "search %.3f m); %ld attempts, %ld matches, %ld confirmed, %d loop edges\n",
+      with_wide, local_err, without_wide, with_mapper.wideAttempts(), with_mapper.wideMatches(),
+      with_mapper.wideConfirmed(), with_mapper.loopClosures());
   EXPECT_GT(local_err, 1.5);  // beyond the local window
   EXPECT_GE(with_mapper.wideConfirmed(), 1);
   EXPECT_EQ(with_mapper.loopClosures(), 2 * with_mapper.wideConfirmed());
@@ -229,9 +235,10 @@ TEST(LoopClosingMapper, AChainEdgeWhereTheLocalEstimatorJumpsTakesTheFrontEnd) {
   };
   int replaced_with = 0, replaced_without = 0;
   const double with_ref = run(true, &replaced_with), without_ref = run(false, &replaced_without);
-  std::printf("a 0.2 rad jump of the local estimator: worst yaw after it %.4f rad with the front "
-              "end's reference (%d chain edge(s) replaced), %.4f without\n",
-              with_ref, replaced_with, without_ref);
+  std::printf(
+      "a 0.2 rad jump of the local estimator: worst yaw after it %.4f rad with the front "
+      "end's reference (%d chain edge(s) replaced), %.4f without\n",
+      with_ref, replaced_with, without_ref);
   EXPECT_EQ(replaced_with, 1);
   EXPECT_EQ(replaced_without, 0);
   EXPECT_NEAR(without_ref, 0.2, 0.01);
@@ -246,8 +253,8 @@ TEST(LoopClosingMapper, AChainEdgeWhereTheLocalEstimatorJumpsTakesTheFrontEnd) {
 // from that geometry, beam by beam, is the reference; at the true offset the share is 0.
 TEST(FreeSpaceViolationShare, AWrongAlignmentPutsWallsInTheOtherScansFreeSpace) {
   using adaptive_perception::test::Segment;
-  const std::vector<Segment> room{{{-2, -2}, {2, -2}}, {{2, -2}, {2, 2}}, {{2, 2}, {-2, 2}},
-                                  {{-2, 2}, {-2, -2}}};
+  const std::vector<Segment> room{
+      {{-2, -2}, {2, -2}}, {{2, -2}, {2, 2}}, {{2, 2}, {-2, 2}}, {{-2, 2}, {-2, -2}}};
   const math::SE2 a_pose(0.0, 0.0, 0.0), b_pose(-1.0, 0.0, 0.0);
   const std::vector<Eigen::Vector2d> a =
       adaptive_perception::test::scanOf(room, a_pose, nullptr, 0.0, 20.0);
@@ -265,9 +272,10 @@ TEST(FreeSpaceViolationShare, AWrongAlignmentPutsWallsInTheOtherScansFreeSpace) 
   const double wrong = slam::freeSpaceViolationShare(a, b, math::SE2(), 25.0, tolerance_m);
   const double right =
       slam::freeSpaceViolationShare(a, b, math::between(a_pose, b_pose), 25.0, tolerance_m);
-  std::printf("free-space violations: %.3f at a 1 m wrong alignment (geometry: %d of 181), %.3f at "
-              "the right one\n",
-              wrong, expected, right);
+  std::printf(
+      "free-space violations: %.3f at a 1 m wrong alignment (geometry: %d of 181), %.3f at "
+      "the right one\n",
+      wrong, expected, right);
   EXPECT_GT(expected, 60);
   EXPECT_NEAR(wrong, expected / 181.0, 2.0 / 181.0);  // a beam either side of a 1-degree bin edge
   EXPECT_EQ(right, 0.0);
