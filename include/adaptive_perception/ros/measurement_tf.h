@@ -41,7 +41,6 @@ class MeasurementTf {
 
   /// Measurements skipped for want of a transform.
   long skipped() const { return skipped_; }
-  double timeoutSeconds() const { return timeout_s_; }
   const tf2_ros::Buffer& buffer() const { return buffer_; }
 
  private:

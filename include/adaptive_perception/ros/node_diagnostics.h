@@ -18,23 +18,6 @@
 
 namespace adaptive_perception::ros_conv {
 
-/// Starts the heartbeat: `updater->force_update()` every `period_s` seconds of wall time (under
-/// `state_mutex` when given). Keep the returned timer as long as the updater and the mutex live.
-inline ros::SteadyTimer diagnosticsHeartbeat(ros::NodeHandle& nh,
-                                             diagnostic_updater::Updater* updater,
-                                             std::mutex* state_mutex = nullptr,
-                                             double period_s = 1.0) {
-  return nh.createSteadyTimer(
-      ros::WallDuration(period_s), [updater, state_mutex](const ros::SteadyTimerEvent&) {
-        if (state_mutex == nullptr) {
-          updater->force_update();
-          return;
-        }
-        std::lock_guard<std::mutex> lock(*state_mutex);
-        updater->force_update();
-      });
-}
-
 class NodeDiagnostics {
  public:
   /// `node`: the hardware id; the main input's rate is expected within [min_rate_hz, max_rate_hz];
@@ -47,7 +30,17 @@ class NodeDiagnostics {
         rate_(diagnostic_updater::FrequencyStatusParam(&min_rate_hz_, &max_rate_hz_, 0.1, 10)) {
     updater_.setHardwareID(node);
     updater_.add(rate_);
-    heartbeat_ = diagnosticsHeartbeat(nh, &updater_, state_mutex);
+    // The heartbeat: an update every second of wall time (under the node's lock when given), so
+    // that the diagnostics speak even when no input arrives.
+    heartbeat_ = nh.createSteadyTimer(ros::WallDuration(1.0),
+                                      [this, state_mutex](const ros::SteadyTimerEvent&) {
+                                        if (state_mutex == nullptr) {
+                                          updater_.force_update();
+                                          return;
+                                        }
+                                        std::lock_guard<std::mutex> lock(*state_mutex);
+                                        updater_.force_update();
+                                      });
   }
   NodeDiagnostics(const NodeDiagnostics&) = delete;
   NodeDiagnostics& operator=(const NodeDiagnostics&) = delete;

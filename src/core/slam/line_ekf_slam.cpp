@@ -1,13 +1,13 @@
 #include "adaptive_perception/slam/line_ekf_slam.h"
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "adaptive_perception/math/angles.h"
+#include "adaptive_perception/math/symmetric2.h"
 
 namespace adaptive_perception::slam {
 
@@ -419,10 +419,8 @@ int LineEkfSlam::mergeCompatible(std::vector<int> seen) {
 
 void LineEkfSlam::addFixedLandmarks(const std::vector<FixedLandmark>& landmarks) {
   for (const FixedLandmark& f : landmarks) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(f.cov);
-    if (!std::isfinite(f.line.rho_m) || !std::isfinite(f.line.alpha_rad) || !f.cov.allFinite() ||
-        std::fabs(f.cov(0, 1) - f.cov(1, 0)) > 1e-9 * (1.0 + f.cov.cwiseAbs().maxCoeff()) ||
-        es.eigenvalues().minCoeff() < -1e-12)
+    if (!std::isfinite(f.line.rho_m) || !std::isfinite(f.line.alpha_rad) ||
+        !math::isCovariance(f.cov))
       throw std::invalid_argument("addFixedLandmarks: landmark " + std::to_string(f.info.id) +
                                   " has a non-finite line or a covariance that is not symmetric "
                                   "positive semi-definite");

@@ -2,16 +2,16 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <Eigen/Eigenvalues>
 #include <array>
-#include <cmath>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
 #include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/io/yaml_file.h"
+#include "adaptive_perception/math/symmetric2.h"
 
 namespace adaptive_perception::slam {
 
@@ -89,11 +89,13 @@ std::vector<FixedLandmark> readLineMapYaml(const std::string& path) {
     bad(path, root, "missing 'state_covariance' with 'dim' and 'data'");
   const int dim = static_cast<int>(number(path, cov, "dim"));
   if (dim != 3 + 2 * static_cast<int>(landmarks.size()))
-    bad(path, cov, "state_covariance dim " + std::to_string(dim) + " does not match " +
-                       std::to_string(landmarks.size()) + " landmarks (3 + 2 per landmark)");
+    bad(path, cov,
+        "state_covariance dim " + std::to_string(dim) + " does not match " +
+            std::to_string(landmarks.size()) + " landmarks (3 + 2 per landmark)");
   if (static_cast<int>(cov["data"].size()) != dim * dim)
-    bad(path, cov["data"], "state_covariance data holds " + std::to_string(cov["data"].size()) +
-                               " values, not dim^2 = " + std::to_string(dim * dim));
+    bad(path, cov["data"],
+        "state_covariance data holds " + std::to_string(cov["data"].size()) +
+            " values, not dim^2 = " + std::to_string(dim * dim));
   auto at = [&](int r, int c) {
     const YAML::Node v = cov["data"][r * dim + c];
     try {
@@ -103,9 +105,7 @@ std::vector<FixedLandmark> readLineMapYaml(const std::string& path) {
     }
   };
   auto check = [&](const Eigen::Matrix2d& c, const YAML::Node& where) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(c);
-    if (!c.allFinite() || std::fabs(c(0, 1) - c(1, 0)) > 1e-9 * (1.0 + c.cwiseAbs().maxCoeff()) ||
-        es.eigenvalues().minCoeff() < -1e-12)
+    if (!math::isCovariance(c))
       bad(path, where, "a landmark covariance that is not symmetric positive semi-definite");
   };
   std::vector<FixedLandmark> out;

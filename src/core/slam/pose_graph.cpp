@@ -3,7 +3,6 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,6 +10,7 @@
 #include <string>
 
 #include "adaptive_perception/math/angles.h"
+#include "adaptive_perception/math/symmetric2.h"
 #include "adaptive_perception/slam/branch_and_bound_matcher.h"
 
 namespace adaptive_perception::slam {
@@ -24,9 +24,9 @@ struct EdgeCost {
   EdgeCost(const math::SE2& z, const Eigen::Matrix3d& sqrt_info) : z_(z), sqrt_info_(sqrt_info) {}
   template <typename T>
   bool operator()(const T* xi, const T* xj, T* r) const {
+    using std::atan2;
     using std::cos;
     using std::sin;
-    using std::atan2;
     const T c = cos(xi[2]), s = sin(xi[2]);
     const T dx = xj[0] - xi[0], dy = xj[1] - xi[1];
     const T e0 = c * dx + s * dy - T(z_.x_m);
@@ -47,8 +47,8 @@ int PoseGraph2D::addNode(const math::SE2& x) {
   return numNodes() - 1;
 }
 
-void PoseGraph2D::addEdge(int i, int j, const math::SE2& z, const Eigen::Matrix3d& info,
-                          bool loop, bool robust) {
+void PoseGraph2D::addEdge(int i, int j, const math::SE2& z, const Eigen::Matrix3d& info, bool loop,
+                          bool robust) {
   if (i < 0 || j < 0 || i >= numNodes() || j >= numNodes() || i == j)
     throw std::invalid_argument("PoseGraph2D::addEdge: unknown node");
   const Eigen::LLT<Eigen::Matrix3d> llt(info);
@@ -101,8 +101,8 @@ void LoopClosingConfig::validate() const {
        "node_translation_m must be > 0");
   need(std::isfinite(node_rotation_rad) && node_rotation_rad > 0.0,
        "node_rotation_rad must be > 0");
-  for (double v : {odometry_std_m, odometry_std_rad, loop_std_m, chain_gate_std_m,
-                   chain_gate_std_rad})
+  for (double v :
+       {odometry_std_m, odometry_std_rad, loop_std_m, chain_gate_std_m, chain_gate_std_rad})
     need(std::isfinite(v) && v > 0.0, "the *_std_* fields must be > 0");
   need(std::isfinite(chain_gate_chi2) && chain_gate_chi2 > 0.0, "chain_gate_chi2 must be > 0");
   need(std::isfinite(free_space_tolerance_m) && free_space_tolerance_m >= 0.0,
@@ -141,8 +141,8 @@ struct BearingRanges {
   static constexpr int kBins = 360;
   std::vector<float> range = std::vector<float>(kBins, -1.0f);
   static int bin(const Eigen::Vector2d& p) {
-    const int b = static_cast<int>(std::floor((std::atan2(p.y(), p.x()) + M_PI) * kBins /
-                                              (2.0 * M_PI)));
+    const int b =
+        static_cast<int>(std::floor((std::atan2(p.y(), p.x()) + M_PI) * kBins / (2.0 * M_PI)));
     return std::clamp(b, 0, kBins - 1);
   }
   explicit BearingRanges(const std::vector<Eigen::Vector2d>& scan) {
@@ -206,9 +206,9 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
         const math::SE2 zr = math::between(nodes_.back().reference, *reference_pose);
         const double dx = z.x_m - zr.x_m, dy = z.y_m - zr.y_m;
         const double dyaw = math::angleDiff(z.yaw_rad, zr.yaw_rad);
-        const double chi2 = (dx * dx + dy * dy) / (config_.chain_gate_std_m *
-                                                   config_.chain_gate_std_m) +
-                            dyaw * dyaw / (config_.chain_gate_std_rad * config_.chain_gate_std_rad);
+        const double chi2 =
+            (dx * dx + dy * dy) / (config_.chain_gate_std_m * config_.chain_gate_std_m) +
+            dyaw * dyaw / (config_.chain_gate_std_rad * config_.chain_gate_std_rad);
         if (chi2 > config_.chain_gate_chi2) {
           z = zr;
           ++chain_replaced_;
@@ -220,10 +220,10 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
       info(2, 2) = 1.0 / (config_.odometry_std_rad * config_.odometry_std_rad);
       graph_.addEdge(prev, prev + 1, z, info);
     }
-    const double path_m =
-        nodes_.empty() ? 0.0
-                       : nodes_.back().path_m + std::hypot(local_pose.x_m - nodes_.back().local.x_m,
-                                                           local_pose.y_m - nodes_.back().local.y_m);
+    const double path_m = nodes_.empty() ? 0.0
+                                         : nodes_.back().path_m +
+                                               std::hypot(local_pose.x_m - nodes_.back().local.x_m,
+                                                          local_pose.y_m - nodes_.back().local.y_m);
     nodes_.push_back({local_pose, static_cast<int>(scans_.size()),
                       reference_pose ? *reference_pose : math::SE2(), reference_pose != nullptr,
                       std::move(pts), path_m});
@@ -237,8 +237,8 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
   }
-  scans_.push_back({static_cast<int>(nodes_.size()) - 1,
-                    math::between(nodes_.back().local, local_pose)});
+  scans_.push_back(
+      {static_cast<int>(nodes_.size()) - 1, math::between(nodes_.back().local, local_pose)});
 }
 
 double LoopClosingMapper::freeSpaceShare(int n, const math::SE2& xk_inv, const math::SE2& n_in_k,
@@ -255,9 +255,9 @@ double LoopClosingMapper::freeSpaceShare(int n, const math::SE2& xk_inv, const m
     const math::SE2 m_in_n = n_in_m.inverse();
     const BearingRanges m_view(nodes_[m].points);
     for (size_t i = 0; i < scan.size(); ++i)
-      n_state[i] = std::max(n_state[i], m_view.classify(n_in_m.transformPoint(scan[i]),
-                                                        config_.max_range_m,
-                                                        config_.free_space_tolerance_m));
+      n_state[i] =
+          std::max(n_state[i], m_view.classify(n_in_m.transformPoint(scan[i]), config_.max_range_m,
+                                               config_.free_space_tolerance_m));
     for (const auto& p : nodes_[m].points) {
       const int c = n_view.classify(m_in_n.transformPoint(p), config_.max_range_m,
                                     config_.free_space_tolerance_m);
@@ -308,9 +308,7 @@ std::optional<LoopClosingMapper::Verified> LoopClosingMapper::verify(
     // The match's own information, scaled as a whole so that its best-seen translation has
     // loop_std_m: along a corridor the scan cannot see, the loop edge says next to nothing.
     Eigen::Matrix3d info = matchInformation(fine_field, nodes_[n].points, f.pose);
-    const double best_xy = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(info.topLeftCorner<2, 2>())
-                               .eigenvalues()
-                               .maxCoeff();
+    const double best_xy = math::symmetricEigenvalues(info.topLeftCorner<2, 2>())[1];
     if (!(best_xy > 0.0)) return std::nullopt;
     info *= 1.0 / (config_.loop_std_m * config_.loop_std_m * best_xy);
     info += 1e-6 * Eigen::Matrix3d::Identity();  // positive definite for the solver
@@ -360,8 +358,8 @@ bool LoopClosingMapper::tryWide(int n) {
   for (int k = 0; k + config_.min_node_gap <= n; ++k) {
     const double along = nodes_[n].path_m - nodes_[k].path_m;
     if (along < config_.wide_min_loop_m) continue;
-    const double r = std::min(config_.wide_max_xy_m,
-                              config_.search_radius_m + config_.wide_drift_per_m * along);
+    const double r =
+        std::min(config_.wide_max_xy_m, config_.search_radius_m + config_.wide_drift_per_m * along);
     const math::SE2 xk = graph_.node(k);
     if (std::hypot(xk.x_m - xn.x_m, xk.y_m - xn.y_m) > r + config_.max_range_m) continue;
     members.push_back(k);
@@ -377,9 +375,9 @@ bool LoopClosingMapper::tryWide(int n) {
   }
   BranchAndBoundWindow window;
   window.search_xy_m = window_m;
-  window.search_yaw_rad = std::min(config_.wide_max_yaw_rad,
-                                   config_.coarse_search_yaw_rad +
-                                       config_.wide_drift_rad_per_m * length_m);
+  window.search_yaw_rad =
+      std::min(config_.wide_max_yaw_rad,
+               config_.coarse_search_yaw_rad + config_.wide_drift_rad_per_m * length_m);
   window.yaw_step_rad = config_.coarse_yaw_step_rad;
   std::optional<ScanMatch> wide;
   try {
@@ -441,8 +439,8 @@ bool LoopClosingMapper::tryWide(int n) {
       const WideHypothesis first = *wide_pending_;
       for (const WideHypothesis* e : {&first, &h}) {
         graph_.addEdge(e->k, e->n, e->match.n_in_k, e->match.information, true, false);
-        loop_edges_.push_back({nodes_[e->k].scan, nodes_[e->n].scan, e->match.n_in_k,
-                               e->match.score, true});
+        loop_edges_.push_back(
+            {nodes_[e->k].scan, nodes_[e->n].scan, e->match.n_in_k, e->match.score, true});
       }
       ++wide_confirmed_;
       wide_pending_.reset();
