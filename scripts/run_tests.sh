@@ -19,15 +19,18 @@ stage() { echo "run_tests: $1 after $(( SECONDS / 60 )) min $(( SECONDS % 60 )) 
 mkdir -p "$AP_WS"
 rm -f "$AP_WS/check_core_built_at" "$AP_WS/check_core_tested_at"
 # The sanitizer tree, built and then tested beside everything below at nice 19: it takes only the
-# CPU that the catkin build and the ROS tests leave idle. Each half's end time goes to a file.
-(
-  nice -n 19 "$AP_ROOT/scripts/check_core.sh" build > "$AP_WS/check_core_build.log" 2>&1 || exit 1
-  echo "$SECONDS" > "$AP_WS/check_core_built_at"
-  nice -n 19 "$AP_ROOT/scripts/check_core.sh" test > "$AP_WS/check_core.log" 2>&1
-  echo "$SECONDS" > "$AP_WS/check_core_tested_at"
-) &
+# CPU that the catkin build and the ROS tests leave idle. Each half's end time goes to a file. Its
+# own process group (setsid), so that a failure below stops all of it (stop_sanitizer).
+setsid bash -c '
+  root="$1" ws="$2" SECONDS="$3"  # SECONDS goes on from the main script'"'"'s count
+  nice -n 19 "$root/scripts/check_core.sh" build > "$ws/check_core_build.log" 2>&1 || exit 1
+  echo "$SECONDS" > "$ws/check_core_built_at"
+  nice -n 19 "$root/scripts/check_core.sh" test > "$ws/check_core.log" 2>&1
+  echo "$SECONDS" > "$ws/check_core_tested_at"
+' sanitizer "$AP_ROOT" "$AP_WS" "$SECONDS" &
 san_job=$!
-"$AP_ROOT/scripts/setup.sh" || { kill "$san_job" 2> /dev/null; echo "tests: 0 passed, 1 failed"; exit 1; }
+stop_sanitizer() { kill -- "-$san_job" 2> /dev/null; }
+"$AP_ROOT/scripts/setup.sh" || { stop_sanitizer; echo "tests: 0 passed, 1 failed"; exit 1; }
 stage "setup (apt, catkin build) done"
 cd "$AP_WS"
 set +u; source devel/setup.bash; set -u
@@ -38,7 +41,7 @@ JOBS="${AP_JOBS:-$(nproc)}"
 TEST_JOBS="${AP_TEST_JOBS:-3}"
 if ! catkin_make -j"$JOBS" ros_tests > "$AP_WS/tests_build.log" 2>&1; then
   tail -n 60 "$AP_WS/tests_build.log"; echo "test build FAILED (log: $AP_WS/tests_build.log)"
-  kill "$san_job" 2> /dev/null
+  stop_sanitizer
   echo "tests: 0 passed, 1 failed"; exit 1
 fi
 stage "test build done"

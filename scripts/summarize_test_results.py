@@ -10,6 +10,7 @@ program's case counts where no result file of its name is under the root (a prog
 none, such as a fuzz replay), or where it failed and its own file shows no failed case: the program
 died outside a case (a leak found at exit) or before writing its file (a crash, a sanitizer report).
 """
+import argparse
 import pathlib
 import sys
 import xml.etree.ElementTree as ET
@@ -80,10 +81,8 @@ def main(root, programs=None):
 
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    programs = None
-    if "--programs" in args:
-        i = args.index("--programs")
-        programs = args[i + 1]
-        del args[i:i + 2]
-    sys.exit(main(args[0] if args else ".", programs))
+    parser = argparse.ArgumentParser(description="Counts the test cases of JUnit XML result files.")
+    parser.add_argument("root", nargs="?", default=".", help="folder searched for *.xml")
+    parser.add_argument("--programs", help="ctest --output-junit file, one case a test program")
+    args = parser.parse_args()
+    sys.exit(main(args.root, args.programs))
