@@ -19,17 +19,19 @@ stage() { echo "run_tests: $1 after $(( SECONDS / 60 )) min $(( SECONDS % 60 )) 
 mkdir -p "$AP_WS"
 rm -f "$AP_WS/check_core_built_at" "$AP_WS/check_core_tested_at"
 # The sanitizer tree, built and then tested beside everything below at nice 19: it takes only the
-# CPU that the catkin build and the ROS tests leave idle. Each half's end time goes to a file. Its
-# own process group (setsid), so that a failure below stops all of it (stop_sanitizer).
-setsid bash -c '
-  root="$1" ws="$2" SECONDS="$3"  # SECONDS goes on from the main script'"'"'s count
-  nice -n 19 "$root/scripts/check_core.sh" build > "$ws/check_core_build.log" 2>&1 || exit 1
-  echo "$SECONDS" > "$ws/check_core_built_at"
-  nice -n 19 "$root/scripts/check_core.sh" test > "$ws/check_core.log" 2>&1
-  echo "$SECONDS" > "$ws/check_core_tested_at"
-' sanitizer "$AP_ROOT" "$AP_WS" "$SECONDS" &
+# CPU that the catkin build and the ROS tests leave idle. Each half's end time goes to a file. It
+# stays in this session: a new one (setsid) is a scheduler group of its own, where nice has no effect
+# on the build beside it.
+(
+  nice -n 19 "$AP_ROOT/scripts/check_core.sh" build > "$AP_WS/check_core_build.log" 2>&1 || exit 1
+  echo "$SECONDS" > "$AP_WS/check_core_built_at"
+  nice -n 19 "$AP_ROOT/scripts/check_core.sh" test > "$AP_WS/check_core.log" 2>&1
+  echo "$SECONDS" > "$AP_WS/check_core_tested_at"
+) &
 san_job=$!
-stop_sanitizer() { kill -- "-$san_job" 2> /dev/null; }
+# Stops the job and everything it started (the compilers too), children first.
+kill_tree() { local c; for c in $(pgrep -P "$1"); do kill_tree "$c"; done; kill "$1" 2> /dev/null; }
+stop_sanitizer() { kill_tree "$san_job"; }
 "$AP_ROOT/scripts/setup.sh" || { stop_sanitizer; echo "tests: 0 passed, 1 failed"; exit 1; }
 stage "setup (apt, catkin build) done"
 cd "$AP_WS"

@@ -8,6 +8,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 PACKAGES=(
   # toolchain: a minimal Debian 12 has none of it
   build-essential cmake git pkg-config
+  # pgrep (scripts/run_tests.sh stops its background job with its children on a failure)
+  procps
   # ROS 1 as Debian ships it (no /opt/ros)
   catkin ros-message-generation ros-base-dev python3-rostest python3-roslaunch python3-rosbag
   python3-rosunit librostest-dev
