@@ -13,6 +13,7 @@
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/ros/bag_frames.h"
 #include "adaptive_perception/ros/params.h"
+#include "bench_timing.h"
 #include "command_line.h"
 
 using namespace adaptive_perception;
@@ -26,8 +27,7 @@ int main(int argc, char** argv) {
   cli.option("bag", &bag, "field bag whose images are classified (relative: from the package)");
   std::string prior_path = "config/color_priors/bright.yaml";
   cli.option("prior", &prior_path, "colour prior (YAML; relative: from the package)");
-  double seconds = 2.0;
-  cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
+  const double& seconds = cli.measurementSeconds(2.0);
   cli.parse(argc, argv);
   bag = ros_params::resolvePackagePath(bag);
   prior_path = ros_params::resolvePackagePath(prior_path);
@@ -57,31 +57,24 @@ int main(int argc, char** argv) {
     cv::Mat labels;
     unsigned checksum = 0;
     long frames = 0;
-    auto t0 = Clock::now();
-    double elapsed = 0.0;
-    while (elapsed < seconds) {
+    const double lut_fps = tools::unitsPerSecond(seconds, [&] {
       for (int i = 0; i < 200; ++i, ++frames) {
         lut.classifyUyvy(uyvy[frames % uyvy.size()], &labels);
         checksum += labels.data[frames % labels.total()];
       }
-      elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
-    }
-    const double lut_fps = frames / elapsed;
+      return 200;
+    });
 
     long direct_frames = 0;
-    t0 = Clock::now();
-    elapsed = 0.0;
-    while (elapsed < seconds) {
-      const cv::Mat& img = yuv[direct_frames % yuv.size()];
+    const double direct_fps = tools::unitsPerSecond(seconds, [&] {
+      const cv::Mat& img = yuv[direct_frames++ % yuv.size()];
       for (int r = 0; r < img.rows; ++r)
         for (int c = 0; c < img.cols; ++c) {
           const cv::Vec3b p = img.at<cv::Vec3b>(r, c);
           checksum += cls.classify(Eigen::Vector3d(p[0], p[1], p[2]));
         }
-      ++direct_frames;
-      elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
-    }
-    const double direct_fps = direct_frames / elapsed;
+      return 1;
+    });
     std::printf("image %dx%d, %zu distinct frames, checksum %u\n", uyvy[0].cols, uyvy[0].rows,
                 uyvy.size(), checksum);
     std::printf("lookup table from UYVY: %.0f frames/s (%.3g pixels/s)\n", lut_fps,

@@ -7,7 +7,6 @@
 // Last line: `bench_label_renderer: labeled_pixels_per_s=... full_frame_pixels_per_s=...
 // subsample_pixels_per_s=... frames_per_s=...` (full frames of 208x160, and the particle filter's
 // case: a 1-in-16 pixel subsample per pose).
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -15,6 +14,7 @@
 
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/world/label_renderer.h"
+#include "bench_timing.h"
 #include "command_line.h"
 
 using namespace adaptive_perception;
@@ -27,8 +27,7 @@ int main(int argc, char** argv) {
   cli.option("field", &field, "field description (YAML; empty: the built-in 4-legged league field)");
   int n_poses = 2000;
   cli.option("poses", &n_poses, config::closed(1, 1000000), "camera poses");
-  double seconds = 2.0;
-  cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
+  const double& seconds = cli.measurementSeconds(2.0);
   const std::uint64_t& seed = cli.seed();
   cli.parse(argc, argv);
 
@@ -50,15 +49,12 @@ int main(int argc, char** argv) {
     for (int u = (v / 4) % 4; u < cam.width_px; u += 4)
       subsample.push_back({static_cast<std::uint16_t>(u), static_cast<std::uint16_t>(v)});
 
-  using Clock = std::chrono::steady_clock;
   std::vector<std::uint8_t> labels(cam.width_px * cam.height_px);
   unsigned checksum = 0;
   auto run = [&](bool full) {
     long pixels = 0;
     long frames = 0;
-    const auto t0 = Clock::now();
-    double elapsed = 0.0;
-    while (elapsed < seconds) {
+    const double frames_per_s = tools::unitsPerSecond(seconds, [&] {
       for (int i = 0; i < 100; ++i) {
         const auto& pose = poses[frames % poses.size()];
         if (full) {
@@ -71,9 +67,9 @@ int main(int argc, char** argv) {
         checksum += labels[frames % subsample.size()];
         ++frames;
       }
-      elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
-    }
-    return std::make_pair(pixels / elapsed, frames / elapsed);
+      return 100;
+    });
+    return std::make_pair(frames_per_s * pixels / frames, frames_per_s);
   };
   const auto [full_px, full_fps] = run(true);
   const auto [sub_px, sub_fps] = run(false);

@@ -14,6 +14,7 @@
 
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/math/rng.h"
+#include "bench_timing.h"
 #include "command_line.h"
 
 using namespace adaptive_perception;
@@ -56,8 +57,7 @@ int main(int argc, char** argv) {
   tools::CommandLine cli("bench_lines",
                          "Line extraction throughput on one core for 181, 361 and 1081-beam scans, "
                          "and the split step alone on a worst-case input.");
-  double seconds = 1.5;
-  cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
+  const double& seconds = cli.measurementSeconds(1.5);
   const std::uint64_t& seed = cli.seed();
   cli.parse(argc, argv);
   math::Rng rng(seed);
@@ -67,17 +67,15 @@ int main(int argc, char** argv) {
     for (int k = 0; k < 50; ++k) scans.push_back(officeScan(beams, rng));
     laser::LineExtractor ex;
     long n = 0, segs = 0;
-    const auto t0 = Clock::now();
-    double el = 0;
-    while (el < seconds) {
+    const double scans_per_s = tools::unitsPerSecond(seconds, [&] {
       for (int k = 0; k < 100; ++k, ++n)
         segs += static_cast<long>(ex.extract(scans[n % scans.size()]).size());
-      el = std::chrono::duration<double>(Clock::now() - t0).count();
-    }
-    std::printf("%5d beams: %.0f scans/s (%.1f segments per scan)\n", beams, n / el,
+      return 100;
+    });
+    std::printf("%5d beams: %.0f scans/s (%.1f segments per scan)\n", beams, scans_per_s,
                 double(segs) / n);
-    summary +=
-        " scans_per_s_" + std::to_string(beams) + "=" + std::to_string(static_cast<long>(n / el));
+    summary += " scans_per_s_" + std::to_string(beams) + "=" +
+               std::to_string(static_cast<long>(scans_per_s));
   }
   // Worst case for the linear scan: p_k = (k, (-1)^k 1.02^k). The farthest point from the chord of
   // [0, j] is j - 1 (the largest swing to the other side), so every split peels off one point: n

@@ -15,7 +15,6 @@
 //    word assignment and the cosines, the SIFT extraction is describe_ms_sift).
 // Last line: `bench_places: extract_ms_<space>=... extract_ms_all=... query_ms_<method>=...
 // describe_ms_<descriptor>=... traversal_ms_<method>=... images=N space=S`.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -26,23 +25,18 @@
 #include "adaptive_perception/places/traversal_matcher.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/sim/indoor_renderer.h"
+#include "bench_timing.h"
 #include "command_line.h"
 
 using namespace adaptive_perception;
-using Clock = std::chrono::steady_clock;
 
 namespace {
 template <typename F>
 double msPerCall(double seconds, F&& f) {
-  const auto t0 = Clock::now();
-  long n = 0;
-  double elapsed = 0.0;
-  do {
+  return 1e3 / tools::unitsPerSecond(seconds, [&] {
     f();
-    ++n;
-    elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
-  } while (elapsed < seconds);
-  return 1e3 * elapsed / n;
+    return 1;
+  });
 }
 }  // namespace
 
@@ -58,8 +52,7 @@ int main(int argc, char** argv) {
   cli.option("space", &space_name, "colour space of the queries")->check(CLI::IsMember(spaces));
   long bins = 256;
   cli.option("bins", &bins, config::closed(2, 256), "histogram bins");
-  double seconds = 1.0;
-  cli.option("seconds", &seconds, config::aboveZero(3600), "time per measurement, s");
+  const double& seconds = cli.measurementSeconds(1.0);
   const std::uint64_t& seed = cli.seed();
   cli.parse(argc, argv);
   try {

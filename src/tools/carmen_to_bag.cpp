@@ -30,8 +30,8 @@
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/world/camera_model.h"
-#include "progress.h"
 #include "command_line.h"
+#include "progress.h"
 
 using namespace adaptive_perception;
 namespace T = adaptive_perception::ros_topics;
@@ -40,11 +40,9 @@ int main(int argc, char** argv) {
   tools::CommandLine cli("carmen_to_bag", "Converts a CARMEN log (.clf or .clf.bz2) into a bag.");
   std::string input;
   cli.option("input", &input, "the CARMEN log")->required();
-  std::string output;
-  cli.option("output", &output, "the bag to write")->required();
+  const std::string& output = cli.outputFile("the bag to write", "the bag");
   std::string laser_frame = T::kLaserFrame;
   cli.option("laser_frame", &laser_frame, "frame of the front laser's scans");
-  const bool& overwrite = cli.overwrite("the bag");
   long max_issues = 20;
   cli.option("max_issues", &max_issues, config::closed(0, 1e9),
              "malformed lines reported one by one before a summary");
@@ -54,7 +52,6 @@ int main(int argc, char** argv) {
              "either forced")
       ->check(CLI::IsMember({"auto", "odom_lines", "laser_poses"}));
   cli.parse(argc, argv);
-  cli.refuseExisting(output);
   try {
     io::CarmenLog log = io::readCarmenLog(input);
     log.sortByTime();
@@ -66,7 +63,7 @@ int main(int argc, char** argv) {
                    log.issues.size() - max_issues);
     if (log.lasers.empty()) throw std::runtime_error(input + ": no laser messages");
 
-    ros_bag::BagWriter bag(output, overwrite);
+    ros_bag::BagWriter bag(output, cli.overwriteGiven());
     auto stamp = [](double t) { return ros::Time(std::max(t, 1e-6)); };
 
     // Laser mounting: constant across the log -> tf_static.
@@ -131,8 +128,9 @@ int main(int argc, char** argv) {
     // auto: the lasers' own robot poses, so that each scan carries the odometry of its own instant
     // (intel's ODOM stamps are out of order against its FLASER lines), unless those poses never
     // change (a logger that left them zero) and the log has ODOM lines.
-    const bool from_lines = odometry == "odom_lines" ||
-                            (odometry == "auto" && !log.odometry.empty() && !io::laserPosesMove(log));
+    const bool from_lines =
+        odometry == "odom_lines" ||
+        (odometry == "auto" && !log.odometry.empty() && !io::laserPosesMove(log));
     if (from_lines) {
       for (const auto& o : log.odometry) writeOdom(o.timestamp_s, o.pose, o.tv_mps, o.rv_radps);
     } else {
@@ -149,9 +147,8 @@ int main(int argc, char** argv) {
     std::printf(
         "carmen_to_bag: output=%s scans=%zu odom=%zu truepos=%zu issues=%zu out_of_order=%ld "
         "no_returns=%ld\n",
-        output.c_str(), log.lasers.size(),
-        from_lines ? log.odometry.size() : log.lasers.size(), log.true_poses.size(),
-        log.issues.size(), log.out_of_order, log.no_returns);
+        output.c_str(), log.lasers.size(), from_lines ? log.odometry.size() : log.lasers.size(),
+        log.true_poses.size(), log.issues.size(), log.out_of_order, log.no_returns);
   } catch (const std::exception& e) {
     std::cerr << "carmen_to_bag: error: " << e.what() << "\n";
     return 1;

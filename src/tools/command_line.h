@@ -10,7 +10,6 @@
 // Options are written `--name value` or `--name=value`; a flag takes no value, so a word after it
 // is refused, never swallowed.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -71,6 +70,27 @@ class CommandLine {
   CLI::Option* flag(const std::string& name, bool* value, const std::string& doc) {
     return app_.add_flag("--" + name, *value, doc);
   }
+  /// --bag, the bag the tool reads: required, and refused at parse() (exit 2, naming it) when no
+  /// such file exists. The reference holds the parsed value after parse().
+  const std::string& inputBag(const std::string& doc) {
+    option("bag", &input_bag_, doc)->required()->check(CLI::ExistingFile);
+    return input_bag_;
+  }
+  /// --output, the folder of the tool's results: results/<tool name> by default (relative to the
+  /// working directory); `what` names what goes in it. The reference holds the parsed value after
+  /// parse().
+  const std::string& resultsFolder(const std::string& what) {
+    results_folder_ = "results/" + app_.get_name();
+    option("output", &results_folder_, "folder for " + what);
+    return results_folder_;
+  }
+  /// --seconds, a benchmark's wall-clock time per measurement (bench_timing.h), with the tool's
+  /// default. The reference holds the parsed value after parse().
+  const double& measurementSeconds(double default_s) {
+    measurement_s_ = default_s;
+    option("seconds", &measurement_s_, config::aboveZero(3600), "time per measurement, s");
+    return measurement_s_;
+  }
   /// --seed, the random seed: the same seed repeats a run exactly. Default 1; the reference holds
   /// the parsed value after parse().
   const std::uint64_t& seed() {
@@ -88,6 +108,16 @@ class CommandLine {
     flag("overwrite", &overwrite_, "replace " + what + " if it exists");
     return overwrite_;
   }
+  /// --output, the one file the tool writes (`doc` says what it is), required, and --overwrite
+  /// (`what` as for overwrite()): parse() refuses the file where it exists and --overwrite was not
+  /// given, before any work. The reference holds the parsed value after parse().
+  const std::string& outputFile(const std::string& doc, const std::string& what) {
+    option("output", &output_file_, doc)->required();
+    overwrite(what);
+    return output_file_;
+  }
+  /// Whether --overwrite was given (after parse()).
+  bool overwriteGiven() const { return overwrite_; }
   /// Nothing the user has is replaced unasked: exits 2 naming `path` when it exists and
   /// --overwrite was not given.
   void refuseExisting(const std::string& path) const {
@@ -116,7 +146,7 @@ class CommandLine {
               },
               f.doc)
           ->default_str(config::formatValue(kind, f.get(*c)))
-          ->type_name(kind == config::Kind::kInt      ? "INT"
+          ->type_name(kind == config::Kind::kInt    ? "INT"
                       : kind == config::Kind::kBool ? "BOOL"
                                                     : "FLOAT")
           ->check(fieldCheck(kind, f.range));
@@ -137,6 +167,7 @@ class CommandLine {
       fail(e.what());
     }
     failOnExtras();
+    if (!output_file_.empty()) refuseExisting(output_file_);
   }
   /// A check the options cannot express (two options that exclude each other, a file that
   /// exists): prints `error: msg` and exits 2.
@@ -155,8 +186,9 @@ class CommandLine {
       throw CLI::ValidationError("expects 0, 1, true or false, got '" + s + "'");
     }
     char* end = nullptr;
-    const double v = kind == config::Kind::kInt ? static_cast<double>(std::strtoll(s.c_str(), &end, 10))
-                                                : std::strtod(s.c_str(), &end);
+    const double v = kind == config::Kind::kInt
+                         ? static_cast<double>(std::strtoll(s.c_str(), &end, 10))
+                         : std::strtod(s.c_str(), &end);
     if (s.empty() || *end != '\0')
       throw CLI::ValidationError(std::string("expects ") +
                                  (kind == config::Kind::kInt ? "an integer" : "a number") +
@@ -191,6 +223,8 @@ class CommandLine {
   }
 
   CLI::App app_;
+  std::string input_bag_, results_folder_, output_file_;
+  double measurement_s_ = 1.0;
   std::uint64_t seed_ = 1;
   bool overwrite_ = false;
   std::map<std::string, std::vector<std::function<void(double)>>> field_setters_;

@@ -33,8 +33,7 @@ int main(int argc, char** argv) {
                          "Runs the colour estimator with known camera poses over a bag and scores "
                          "every pixel's classification against the bag's true labels (Schulz & "
                          "Fox, Table 1, Fig. 6).");
-  std::string bag;
-  cli.option("bag", &bag, "field bag with true labels")->required();
+  const std::string& bag = cli.inputBag("field bag with true labels");
   std::string filter = "switching";
   cli.option("filter", &filter, "one mode per prior in --modes, or one Kalman filter (--single)")
       ->check(CLI::IsMember({"switching", "single"}));
@@ -52,8 +51,7 @@ int main(int argc, char** argv) {
   cli.option("single", &single, "the single filter's prior");
   std::string mixing = "best_mode";
   cli.option("mixing", &mixing, "mode mixing of the switching filter: best_mode or imm");
-  std::string output = "results/evaluate_color_estimation";
-  cli.option("output", &output, "folder for the results and plots");
+  const std::string& output = cli.resultsFolder("the results and plots");
   std::string name;
   cli.option("name", &name, "label of the run (empty: the bag's file name)");
   bool no_plot = false;

@@ -39,10 +39,8 @@ int main(int argc, char** argv) {
                          "Runs the line extractor over every scan of a bag: scores the segments "
                          "against ground_truth/walls where the bag has them (simulator bags), "
                          "else reports speed; draws one scan with its segments.");
-  std::string bag_path;
-  cli.option("bag", &bag_path, "laser bag")->required();
-  std::string output = "results/evaluate_lines";
-  cli.option("output", &output, "folder for results.yaml and scan.png");
+  const std::string& bag_path = cli.inputBag("laser bag");
+  const std::string& output = cli.resultsFolder("results.yaml and scan.png");
   std::string method = "recursive";
   cli.option("split_method", &method, "split step: recursive or hull_tree");
   long plot_scan = -1;
@@ -132,8 +130,8 @@ int main(int argc, char** argv) {
           "mean_angle_error_deg=%.2f line_nees_mean=%.2f line_nees_in_bounds=%.3f "
           "scans_per_s=%.0f scans=%zu\n",
           score.precision(), score.recall(), score.meanEndpointError(),
-          math::radToDeg(score.meanAngleErrorRad()), score.meanLineNees(),
-          score.lineNeesInBounds(), scans_per_s, scans.size());
+          math::radToDeg(score.meanAngleErrorRad()), score.meanLineNees(), score.lineNeesInBounds(),
+          scans_per_s, scans.size());
     } else {
       std::printf(
           "evaluate_lines: scans_per_s=%.0f segments_per_scan=%.1f scans=%zu (no ground truth)\n",

@@ -31,7 +31,6 @@
 #include "adaptive_perception/ros/params.h"
 #include "command_line.h"
 #include "progress.h"
-#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
@@ -54,8 +53,7 @@ int main(int argc, char** argv) {
                          "Runs the Rao-Blackwellised localizer offline over a field bag from a "
                          "uniform (global) start, against ground_truth/pose and the bag's true "
                          "labels.");
-  std::string bag;
-  cli.option("bag", &bag, "field bag with ground truth")->required();
+  const std::string& bag = cli.inputBag("field bag with ground truth");
   std::string filter = "switching";
   cli.option("filter", &filter, "lighting filter: switching (one mode per prior) or single")
       ->check(CLI::IsMember({"switching", "single"}));
@@ -66,8 +64,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"global", "truth"}));
   std::string priors_dir = "config/color_priors";
   cli.option("priors_dir", &priors_dir, "folder of the lighting priors");
-  std::string output = "results/evaluate_localization";
-  cli.option("output", &output, "folder for results.yaml, frames.csv and the trajectories");
+  const std::string& output = cli.resultsFolder("results.yaml, frames.csv and the trajectories");
   std::string name;
   cli.option("name", &name, "label of the run (empty: the bag's file name)");
   // Every parameter of rbpf_localizer's table that comes from the core config: the same name,

@@ -39,10 +39,10 @@
 
 #include "adaptive_perception/places/place_database.h"
 #include "adaptive_perception/places/place_recognizer.h"
+#include "command_line.h"
 #include "labelled_images.h"
 #include "place_traversal.h"
 #include "progress.h"
-#include "command_line.h"
 
 using namespace adaptive_perception;
 using places::Distance;
@@ -64,8 +64,7 @@ int main(int argc, char** argv) {
   std::string db_path;
   cli.option("database", &db_path,
              "place database (labelled images; in traversal mode: the stored references)");
-  std::string output = "results/evaluate_places";
-  cli.option("output", &output, "folder for the results");
+  const std::string& output = cli.resultsFolder("the results");
   const std::string group = "Labelled test images (--database with --bag or --list)";
   std::string bag;
   cli.option("bag", &bag, "bag of labelled test images")->group(group);
@@ -244,12 +243,12 @@ int main(int argc, char** argv) {
                   answer == place ? "right" : "WRONG", index.placeNames()[paper.place].c_str(),
                   places::spaceName(paper.space).c_str(),
                   places::distanceName(paper.method).c_str());
-      y << YAML::Key << "answer" << YAML::Value << answer << YAML::Key << "answer_by"
-        << YAML::Value << how << YAML::Key << "answer_confidence" << YAML::Value
-        << best.confidence << YAML::Key << "paper_answer" << YAML::Value
-        << index.placeNames()[paper.place] << YAML::Key << "paper_answer_space" << YAML::Value
-        << places::spaceName(paper.space) << YAML::Key << "paper_answer_method" << YAML::Value
-        << places::distanceName(paper.method) << YAML::EndMap;
+      y << YAML::Key << "answer" << YAML::Value << answer << YAML::Key << "answer_by" << YAML::Value
+        << how << YAML::Key << "answer_confidence" << YAML::Value << best.confidence << YAML::Key
+        << "paper_answer" << YAML::Value << index.placeNames()[paper.place] << YAML::Key
+        << "paper_answer_space" << YAML::Value << places::spaceName(paper.space) << YAML::Key
+        << "paper_answer_method" << YAML::Value << places::distanceName(paper.method)
+        << YAML::EndMap;
     }
     y << YAML::EndSeq;
 
@@ -313,8 +312,7 @@ int main(int argc, char** argv) {
     y << YAML::Key << "paper_accuracy" << YAML::Value << paper_accuracy;
     y << YAML::Key << "best_space" << YAML::Value << places::spaceName(best->space);
     y << YAML::Key << "best_method" << YAML::Value << places::distanceName(best->method);
-    y << YAML::Key << "histogram_single_image_accuracy" << YAML::Value
-      << best->single_correct / n;
+    y << YAML::Key << "histogram_single_image_accuracy" << YAML::Value << best->single_correct / n;
     y << YAML::Key << "single_image_accuracy" << YAML::Value << answering->single_correct / n;
     y << YAML::Key << "window" << YAML::Value << rc.window;
     y << YAML::Key << "window_accuracy" << YAML::Value << window_right / n;
@@ -328,10 +326,10 @@ int main(int argc, char** argv) {
         "best_space=%s best_method=%s histogram_single_image_accuracy=%.3f "
         "single_image_accuracy=%.3f window_accuracy=%.3f filter_accuracy=%.3f queries_per_s=%.0f "
         "places=%zu test_images=%zu\n",
-        accuracy, mean_conf, rc.cue.c_str(), paper_accuracy,
-        places::spaceName(best->space).c_str(), places::distanceName(best->method).c_str(),
-        best->single_correct / n, answering->single_correct / n, window_right / n,
-        filter_right / n, qps, by_place.size(), tests.size());
+        accuracy, mean_conf, rc.cue.c_str(), paper_accuracy, places::spaceName(best->space).c_str(),
+        places::distanceName(best->method).c_str(), best->single_correct / n,
+        answering->single_correct / n, window_right / n, filter_right / n, qps, by_place.size(),
+        tests.size());
   } catch (const std::exception& e) {
     std::cerr << "evaluate_places: error: " << e.what() << "\n";
     return 1;

@@ -26,8 +26,8 @@
 
 #include "adaptive_perception/localization/appearance_mcl.h"
 #include "adaptive_perception/places/room_classifier.h"
-#include "labelled_images.h"
 #include "command_line.h"
+#include "labelled_images.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
@@ -39,8 +39,7 @@ int main(int argc, char** argv) {
                          "labelled test images against the training frames of a place database, "
                          "scored as ImageCLEF 2009 RobotVision does.");
   std::string db_path;
-  cli.option("database", &db_path, "place database with training frames and features")
-      ->required();
+  cli.option("database", &db_path, "place database with training frames and features")->required();
   std::string bag;
   cli.option("bag", &bag, "bag of labelled test images");
   std::string list;
@@ -57,8 +56,7 @@ int main(int argc, char** argv) {
   long max_images = 0;
   cli.option("max_images", &max_images, config::closed(0, 1e9), "test images (0: all)");
   const std::uint64_t& seed = cli.seed();
-  std::string output = "results/evaluate_room_classification";
-  cli.option("output", &output, "folder for the results");
+  const std::string& output = cli.resultsFolder("the results");
   cli.parse(argc, argv);
   if (bag.empty() == list.empty()) cli.fail("give exactly one of --bag FILE and --list CSV");
   try {

@@ -80,7 +80,6 @@
 #include "adaptive_perception/world/camera_model.h"
 #include "command_line.h"
 #include "progress.h"
-#include "command_line.h"
 
 using namespace adaptive_perception;
 namespace fs = std::filesystem;
@@ -174,8 +173,7 @@ int main(int argc, char** argv) {
                          "Line extraction and line-landmark EKF SLAM offline over a laser bag "
                          "(simulator or a converted CARMEN log), against ground_truth/pose when "
                          "the bag has it, or the benchmark's relations.");
-  std::string bag_path;
-  cli.option("bag", &bag_path, "laser bag (carmen_to_bag, simulate_laser)")->required();
+  const std::string& bag_path = cli.inputBag("laser bag (carmen_to_bag, simulate_laser)");
   slam::LaserSlamConfig slam_cfg;
   slam::LineEkfSlamConfig& cfg = slam_cfg.ekf;
   std::string association = slam::associationName(cfg.association.method);
@@ -193,8 +191,7 @@ int main(int argc, char** argv) {
   const std::uint64_t& seed = cli.seed();
   long long max_scans = 0;
   cli.option("max_scans", &max_scans, config::closed(0, 1e12), "scans processed (0: all)");
-  std::string output = "results/evaluate_slam";
-  cli.option("output", &output, "folder for the results and plots");
+  const std::string& output = cli.resultsFolder("the results and plots");
   std::string name;
   cli.option("name", &name, "title of the run (empty: the bag's file name)");
   double odom_scale = 1.0;

@@ -54,7 +54,6 @@
 #include "adaptive_perception/tracking/ellipse_tracker.h"
 #include "command_line.h"
 #include "progress.h"
-#include "command_line.h"
 #include "tracking_sequence.h"
 
 using namespace adaptive_perception;
@@ -259,8 +258,7 @@ int main(int argc, char** argv) {
   cli.option("start_frame", &start_frame, config::closed(0, 1e9), "first frame tracked");
   long max_frames = 0;
   cli.option("max_frames", &max_frames, config::closed(0, 1e9), "frames tracked (0: all)");
-  std::string output = "results/evaluate_tracking";
-  cli.option("output", &output, "folder for the results");
+  const std::string& output = cli.resultsFolder("the results");
   bool video_out = false;
   cli.flag("video_out", &video_out, "also writes a video of the boxes");
   // condensation_tracker's parameters (the same names and ranges).

@@ -29,8 +29,7 @@ int main(int argc, char** argv) {
                          "section 3.3 from a sequence with ground truth.");
   tools::TrackingSource source;
   source.addOptions(cli);
-  std::string output;
-  cli.option("output", &output, "the dynamics to write (YAML)")->required();
+  const std::string& output = cli.outputFile("the dynamics to write (YAML)", "the file");
   std::string space_name = "opponent";
   cli.option("color_space", &space_name, "colour space of the histograms: rgb or opponent");
   bool full = false;
@@ -38,11 +37,9 @@ int main(int argc, char** argv) {
   double inner = 0.6;
   cli.option("inner", &inner, config::aboveZero(1),
              "colours are taken inside the true box shrunk to this fraction");
-  cli.overwrite("the file");
   cli.parse(argc, argv);
   if (source.bag.empty() == source.video.empty())
     cli.fail("give exactly one of --bag FILE and --video FILE");
-  cli.refuseExisting(output);
   source.findGroundTruth();
   try {
     const tracking::ColorSpace space = tracking::parseColorSpace(space_name);

@@ -25,8 +25,8 @@
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/sim/laser_simulator.h"
 #include "adaptive_perception/world/camera_model.h"
-#include "tick_schedule.h"
 #include "command_line.h"
+#include "tick_schedule.h"
 
 using namespace adaptive_perception;
 namespace T = adaptive_perception::ros_topics;
@@ -37,21 +37,18 @@ int main(int argc, char** argv) {
                          "written to a bag (deterministic for a seed).");
   std::string world_path = "config/worlds/office.yaml";
   cli.option("world", &world_path, "the world (YAML; relative paths from the package)");
-  std::string output;
-  cli.option("output", &output, "the bag to write")->required();
+  const std::string& output = cli.outputFile("the bag to write", "the bag");
   double duration = 60.0;
   cli.option("duration_s", &duration, config::Range{0, 36000, true, false}, "simulated time, s");
   const std::uint64_t& seed = cli.seed();
   double odom_rate = 20.0;
   cli.option("odom_rate_hz", &odom_rate, config::closed(1, 1000), "odometry rate, Hz");
-  const bool& overwrite = cli.overwrite("the bag");
   cli.parse(argc, argv);
-  cli.refuseExisting(output);
   try {
     const sim::LaserWorld world =
         sim::LaserWorld::loadYaml(ros_params::resolvePackagePath(world_path));
     sim::LaserSimulator simulator(world, seed);
-    ros_bag::BagWriter bag(output, overwrite);
+    ros_bag::BagWriter bag(output, cli.overwriteGiven());
     const ros::Time t0(1.6e9);
     {
       tf2_msgs::TFMessage st;

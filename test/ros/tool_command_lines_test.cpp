@@ -15,9 +15,11 @@
 #include <vector>
 
 #include "../../src/tools/command_line.h"
+#include "../core/scratch_dir.h"
 
 namespace {
 
+using adaptive_perception::test_support::ScratchDir;
 using adaptive_perception::tools::CommandLine;
 namespace config = adaptive_perception::config;
 namespace fs = std::filesystem;
@@ -44,6 +46,15 @@ struct Other {  // shares "gain" with Settings
   }
 };
 
+// Parses `words` (after the program name) with `cli`.
+void parseWords(CommandLine& cli, const std::vector<std::string>& words) {
+  std::vector<std::string> all = {cli.app().get_name()};
+  all.insert(all.end(), words.begin(), words.end());
+  std::vector<char*> argv;
+  for (std::string& w : all) argv.push_back(w.data());
+  cli.parse(static_cast<int>(argv.size()), argv.data());
+}
+
 // Parses `words` (after the program name) with a command line of one string option, one real
 // option in (0, 10], one flag and Settings' and Other's tables.
 struct Parsed {
@@ -60,11 +71,7 @@ void parse(const std::vector<std::string>& words, Parsed* p) {
   cli.flag("force", &p->force, "a flag");
   cli.fields(Settings::fields(), &p->settings);
   cli.fields(Other::fields(), &p->other);
-  std::vector<std::string> all = {"demo"};
-  all.insert(all.end(), words.begin(), words.end());
-  std::vector<char*> argv;
-  for (std::string& w : all) argv.push_back(w.data());
-  cli.parse(static_cast<int>(argv.size()), argv.data());
+  parseWords(cli, words);
 }
 
 TEST(CommandLine, KeepsDefaultsAndSetsWhatIsGiven) {
@@ -134,11 +141,7 @@ std::uint64_t parseWriter(const std::vector<std::string>& words, const std::stri
   CommandLine cli("writer", "A test of --seed and --overwrite.");
   const std::uint64_t& seed = cli.seed();
   const bool& overwrite = cli.overwrite("the file");
-  std::vector<std::string> all = {"writer"};
-  all.insert(all.end(), words.begin(), words.end());
-  std::vector<char*> argv;
-  for (std::string& w : all) argv.push_back(w.data());
-  cli.parse(static_cast<int>(argv.size()), argv.data());
+  parseWords(cli, words);
   cli.refuseExisting(path);
   EXPECT_EQ(overwrite, std::find(words.begin(), words.end(), "--overwrite") != words.end());
   return seed;
@@ -171,6 +174,44 @@ TEST(CommandLine, SeedDefaultsToOneAndAnExistingFileIsReplacedOnlyWithOverwrite)
       << help;
   EXPECT_NE(help.find("replace the file if it exists"), std::string::npos) << help;
   fs::remove_all(dir);
+}
+
+// The tools' standard files: --bag (inputBag) must name a file that exists; --output as a
+// results folder defaults to results/<tool name>; --output as the one file written (outputFile)
+// is refused at parse() where it exists, unless --overwrite is given.
+TEST(CommandLine, TheStandardInputAndOutputOptions) {
+  testing::FLAGS_gtest_death_test_style = "threadsafe";
+  const ScratchDir dir("tool_command_lines");
+  const std::string present = dir.file("present.bag"), absent = dir.file("absent.bag");
+  std::FILE* f = std::fopen(present.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fclose(f);
+
+  auto reader = [](const std::vector<std::string>& words) {
+    CommandLine cli("evaluate_demo", "A test of --bag and --output.");
+    const std::string& bag = cli.inputBag("the bag read");
+    const std::string& output = cli.resultsFolder("the results");
+    parseWords(cli, words);
+    return std::make_pair(bag, output);
+  };
+  EXPECT_EQ(reader({"--bag", present}),
+            std::make_pair(present, std::string("results/evaluate_demo")));
+  EXPECT_EQ(reader({"--bag", present, "--output", "elsewhere"}).second, "elsewhere");
+  EXPECT_EXIT(reader({"--bag", absent}), testing::ExitedWithCode(2), "absent.bag");
+  EXPECT_EXIT(reader({}), testing::ExitedWithCode(2), "--bag is required");
+
+  auto writer = [](const std::vector<std::string>& words) {
+    CommandLine cli("simulate_demo", "A test of --output as a file.");
+    const std::string& output = cli.outputFile("the bag to write", "the bag");
+    parseWords(cli, words);
+    return std::make_pair(output, cli.overwriteGiven());
+  };
+  EXPECT_EQ(writer({"--output", absent}), std::make_pair(absent, false));
+  EXPECT_EXIT(writer({"--output", present}), testing::ExitedWithCode(2),
+              "present.bag' exists; pass --overwrite to replace it");
+  EXPECT_EQ(writer({"--output", present, "--overwrite"}), std::make_pair(present, true));
+  EXPECT_TRUE(fs::exists(present)) << "parse() only checks; it never removes a file";
+  EXPECT_EXIT(writer({}), testing::ExitedWithCode(2), "--output is required");
 }
 
 // Runs `command`, returning its exit status and what it printed (stdout and stderr).
