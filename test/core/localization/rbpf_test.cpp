@@ -353,8 +353,13 @@ double runFrom(const Scene& s, const sim::FieldSimConfig& sc, const RbpfConfig& 
 // beacon colours tell, and this sequence shows them too briefly: see the localization README
 // section). Three tests, one run each, so that the sanitizer run spreads them over the cores.
 namespace {
+// The simulated robot's first true pose for the route of `sc`.
+math::SE2 trueStart(const Scene& s, const sim::FieldSimConfig& sc) {
+  return sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+}
+
 math::SE2 wrongStart(const Scene& s, const sim::FieldSimConfig& sc) {
-  const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+  const math::SE2 truth = trueStart(s, sc);
   return math::SE2(truth.x_m + (truth.x_m > 0 ? -1.0 : 1.0),
                    truth.y_m + (truth.y_m > 0 ? -1.0 : 1.0), truth.yaw_rad + 1.0);
 }
@@ -404,7 +409,7 @@ TEST(Rbpf, RelocalizationCheckLeavesACorrectTrackAlone) {
   Scene s;
   sim::FieldSimConfig sc;
   sc.seed = 1;
-  const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+  const math::SE2 truth = trueStart(s, sc);
   RbpfConfig cfg;
   cfg.particles = 200;
   cfg.threads = 2;
@@ -427,7 +432,7 @@ TEST(Rbpf, MirrorTestMovesAMirroredTrackToTheTruth) {
   Scene s;
   sim::FieldSimConfig sc;
   sc.seed = 2;
-  const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+  const math::SE2 truth = trueStart(s, sc);
   RbpfConfig cfg;
   cfg.particles = 300;
   cfg.threads = 2;
@@ -455,7 +460,7 @@ TEST(Rbpf, MirrorTestLeavesATrueTrackAlone) {
   for (std::uint64_t seed : {1, 2}) {
     sim::FieldSimConfig sc;
     sc.seed = seed;
-    const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+    const math::SE2 truth = trueStart(s, sc);
     RbpfConfig cfg;
     cfg.particles = 300;
     cfg.threads = 2;
@@ -485,7 +490,7 @@ TEST_P(RbpfAtResolution, TracksTheSameScene) {
   s.cam = world::PinholeCamera::fromFieldOfView(w, h, kHfov, kVfov);
   sim::FieldSimConfig sc;
   sc.seed = 2;
-  const math::SE2 truth = sim::FieldSimulator(s.map, s.cam, s.head, sc).state().true_pose;
+  const math::SE2 truth = trueStart(s, sc);
   RbpfConfig cfg;
   cfg.threads = 2;
   int relocalizations = 0;

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "../refusal.h"
+
 namespace adaptive_perception::sim {
 namespace {
 
@@ -41,26 +43,19 @@ TEST(SensorResponse, VignettingLosesItsFractionAtTheCorners) {
 
 TEST(SensorResponse, ValidateNamesTheFieldOutOfRange) {
   EXPECT_NO_THROW(SensorResponse().validate());
-  auto message = [](SensorResponse s) {
-    try {
-      s.validate();
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
   SensorResponse s;
   s.vignetting = 1.0;
-  EXPECT_EQ(message(s), "vignetting = 1 (allowed: [0, 1))");
+  EXPECT_EQ(test_support::refusal([&] { s.validate(); }), "vignetting = 1 (allowed: [0, 1))");
   s = SensorResponse();
   s.gamma = 0.1;
-  EXPECT_EQ(message(s), "gamma = 0.1 (allowed: [0.5, 4])");
+  EXPECT_EQ(test_support::refusal([&] { s.validate(); }), "gamma = 0.1 (allowed: [0.5, 4])");
   s = SensorResponse();
   s.shot_noise = -1.0;
-  EXPECT_EQ(message(s), "shot_noise = -1 (allowed: >= 0)");
+  EXPECT_EQ(test_support::refusal([&] { s.validate(); }), "shot_noise = -1 (allowed: >= 0)");
   s = SensorResponse();
   s.white_point_k = 500.0;
-  EXPECT_EQ(message(s), "white_point_k = 500 (allowed: [1000, 20000])");
+  EXPECT_EQ(test_support::refusal([&] { s.validate(); }),
+            "white_point_k = 500 (allowed: [1000, 20000])");
 }
 
 }  // namespace
