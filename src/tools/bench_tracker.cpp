@@ -33,11 +33,7 @@ int main(int argc, char** argv) {
   cli.option("samples", &samples, config::closed(1, 100000), "CONDENSATION samples");
   sim::TrackingSceneConfig sc;
   sc.frames = 200;
-  cli.option("frames", &sc.frames, "frames");
-  sc.width = 320;
-  cli.option("width", &sc.width, "image width, px");
-  sc.height = 240;
-  cli.option("height", &sc.height, "image height, px");
+  cli.fields(sim::TrackingSceneConfig::fields(), &sc, {"frames", "width", "height"});
   std::string scenario = "circles";
   cli.option("scenario", &scenario, "simulated scenario (sim/tracking_scene.h)");
   const std::uint64_t& seed = cli.seed();

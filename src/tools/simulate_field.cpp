@@ -26,8 +26,8 @@
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/sim/field_simulator.h"
-#include "tick_schedule.h"
 #include "command_line.h"
+#include "tick_schedule.h"
 
 using namespace adaptive_perception;
 namespace T = adaptive_perception::ros_topics;
@@ -40,27 +40,20 @@ int main(int argc, char** argv) {
   tools::CommandLine cli("simulate_field",
                          "A legged robot on the four-legged-league field, written to a bag "
                          "(deterministic for the seeds).");
-  std::string output;
-  cli.option("output", &output, "the bag to write")->required();
+  const std::string& output = cli.outputFile("the bag to write", "the bag");
   sim::FieldSimConfig cfg;
   std::string script = "bright";
   cli.option("script", &script, "lighting script: bright, dark, switching, drift or kidnap");
   cli.option("seed", &cfg.seed, "robot route, odometry and image noise");
   cli.option("environment_seed", &cfg.environment_seed, "the venue (0: the nominal lab)");
-  cli.option("duration_s", &cfg.duration_s, "simulated time, s");
-  cli.option("rate_hz", &cfg.camera_rate_hz, "camera rate, Hz");
-  cli.option("odom_rate_hz", &cfg.odom_rate_hz, "odometry rate, Hz");
-  cli.option("switch_period_s", &cfg.switch_period_s,
-             "script switching: the light changes this often, s");
+  cli.fields(sim::FieldSimConfig::fields(), &cfg);
   std::string field = "config/field_4legged.yaml";
   cli.option("field", &field, "field description (YAML; relative: from the package)");
   double start_time_s = 1.6e9;
   cli.option("start_time_s", &start_time_s, config::closed(1, 4e9), "the bag's first stamp, s");
-  const bool& overwrite = cli.overwrite("the bag");
   bool no_compression = false;
   cli.flag("no_compression", &no_compression, "writes the bag uncompressed");
   cli.parse(argc, argv);
-  cli.refuseExisting(output);
   const bool compress = !no_compression;
 
   try {
@@ -71,7 +64,7 @@ int main(int argc, char** argv) {
     const world::HeadChain head;
     sim::FieldSimulator simulator(map, camera, head, cfg);
 
-    ros_bag::BagWriter bag(output, overwrite, compress);
+    ros_bag::BagWriter bag(output, cli.overwriteGiven(), compress);
 
     const ros::Time t0(start_time_s);
     // Fixed links of the head chain, latched.

@@ -34,11 +34,7 @@ int main(int argc, char** argv) {
   std::string scenario = "circles";
   cli.option("scenario", &scenario, "circles, lambertian_rectangle, distractor or handheld");
   const std::uint64_t& seed = cli.seed();
-  cli.option("frames", &cfg.frames, "frames");
-  cli.option("width", &cfg.width, "image width, px");
-  cli.option("height", &cfg.height, "image height, px");
-  cli.option("rate_hz", &cfg.rate_hz, "frame rate, Hz");
-  cli.option("noise_sd", &cfg.noise_sd, "image noise, grey levels (standard deviation)");
+  cli.fields(sim::TrackingSceneConfig::fields(), &cfg);
   bool no_clutter = false;
   cli.flag("no_clutter", &no_clutter, "a plain background");
   std::string output;

@@ -32,6 +32,7 @@ struct GlobalLocalizationConfig {
   int confirm_frames = 8;
   double confirm_fraction = 0.5;
   int refine_candidates = 100;  // poses refined at the commit and at the second draw (a side)
+  /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
   static const config::Fields<GlobalLocalizationConfig>& fields();
   void validate() const { fields().validate(*this); }
 };

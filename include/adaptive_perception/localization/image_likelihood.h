@@ -52,6 +52,7 @@ struct ImageLikelihoodConfig {
   // scaled with its width, and the exponent by the reference grid's pixel count over its own, so
   // that an image weighs the same at any resolution (RbpfConfig::forCamera).
   int reference_width_px = 208;
+  /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
   static const config::Fields<ImageLikelihoodConfig>& fields();
   void validate() const { fields().validate(*this); }
 };

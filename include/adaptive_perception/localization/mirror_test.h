@@ -27,6 +27,7 @@ namespace adaptive_perception::localization {
 struct MirrorTestConfig {
   double margin_nats = 3.0;  // 0 turns the test off
   double memory_s = 4.0;     // time constant of the evidence's fading
+  /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
   static const config::Fields<MirrorTestConfig>& fields();
   void validate() const { fields().validate(*this); }
 };

@@ -19,7 +19,8 @@ struct MotionModelConfig {
   double alpha4 = 0.05;                  // translation noise (m) per radian of rotation
   double min_translation_std_m = 0.005;  // per step, so that particles never collapse when standing
   double min_rotation_std_rad = 0.005;
-  static const config::Fields<MotionModelConfig>& fields();  // as ~odom_alpha1.., ~odom_min_*
+  /// As ~odom_alpha1.., ~odom_min_*; defined in rbpf_configs.cpp.
+  static const config::Fields<MotionModelConfig>& fields();
   void validate() const { fields().validate(*this); }
 };
 

@@ -36,6 +36,7 @@ struct PoseSearchConfig {
   int refine_tries = 6;
   double refine_sigma_m = 0.08;
   double refine_sigma_rad = 0.08;
+  /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
   static const config::Fields<PoseSearchConfig>& fields();
   void validate() const { fields().validate(*this); }
 };

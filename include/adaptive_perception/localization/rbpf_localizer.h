@@ -74,7 +74,7 @@ struct RbpfConfig {
   /// with 25, 1 in 5 with 100).
   static color::ColorModelConfig rbpfModelConfig();
   /// Every field above but threads and seed (which tools and nodes read in their own ways), the
-  /// nested configs' included.
+  /// nested configs' included; defined in rbpf_configs.cpp.
   static const config::Fields<RbpfConfig>& fields();
   void validate() const;
   /// This configuration as a camera of that size runs it: strides scaled with the width over

@@ -37,6 +37,7 @@ struct RelocalizationConfig {
   double fraction = 0.5;  // of the particles redrawn from the check's poses (restart false)
   bool restart = true;
   int refine_candidates = 20;  // a side
+  /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
   static const config::Fields<RelocalizationConfig>& fields();
   void validate() const { fields().validate(*this); }
 };

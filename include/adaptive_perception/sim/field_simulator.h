@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/sim/camera_sensor.h"
@@ -58,6 +59,9 @@ struct FieldSimConfig {
 
   CameraSensorConfig sensor;
 
+  /// The numeric fields' names, ranges and docs (config/fields.h), as simulate_field's options
+  /// name them (the seeds, the script and the sensor aside); defined in sim_configs.cpp.
+  static const config::Fields<FieldSimConfig>& fields();
   void validate() const;  // throws std::invalid_argument naming the bad field and value
 };
 

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/math/rng.h"
 
 namespace adaptive_perception::sim {
@@ -33,12 +34,15 @@ std::vector<std::string> trackingScenarioNames();
 
 struct TrackingSceneConfig {
   TrackingScenario scenario = TrackingScenario::kCircles;
-  int width = 320, height = 240;  // pixels, 64..4096
-  int frames = 300;               // 1..100000
-  double rate_hz = 30.0;          // frame rate, > 0
-  double noise_sd = 4.0;          // camera noise, grey levels, >= 0
-  bool clutter = true;            // background boxes and blobs
-  void validate() const;          // throws std::invalid_argument naming the bad field
+  int width = 320, height = 240;  // pixels
+  int frames = 300;
+  double rate_hz = 30.0;  // frame rate
+  double noise_sd = 4.0;  // camera noise, grey levels
+  bool clutter = true;    // background boxes and blobs
+  /// The numeric fields' names, ranges and docs (config/fields.h), as simulate_tracking's and
+  /// bench_tracker's options name them; defined in sim_configs.cpp.
+  static const config::Fields<TrackingSceneConfig>& fields();
+  void validate() const { fields().validate(*this); }  // names the first field out of range
 };
 
 struct SceneFrame {

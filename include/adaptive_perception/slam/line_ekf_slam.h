@@ -92,7 +92,7 @@ struct LineEkfSlamConfig {
   bool first_estimate_jacobians = false;
   /// The tunable fields (config/fields.h; the data association's and the motion model's, as
   /// ~odom_*), the association method and the variant aside (enums: parseAssociation,
-  /// parseVariant). Defined in line_ekf_slam_config.cpp.
+  /// parseVariant). Defined in slam_configs.cpp.
   static const config::Fields<LineEkfSlamConfig>& fields();
   void validate() const;  // throws std::invalid_argument naming the first field out of range
 };

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/io/yaml_file.h"
 #include "adaptive_perception/world/color_class.h"
@@ -22,10 +23,10 @@ constexpr double kLog2Pi = 1.8378770664093454836;
 }
 
 ObservationNoise parseObservationNoise(const std::string& name) {
-  if (name == "pixel") return ObservationNoise::kPixelNoise;
-  if (name == "pixel_over_count") return ObservationNoise::kPixelNoiseOverCount;
-  throw std::invalid_argument("unknown observation noise model '" + name +
-                              "' (allowed: pixel, pixel_over_count)");
+  static const config::EnumNames<ObservationNoise> names(
+      "observation_noise", {{ObservationNoise::kPixelNoise, "pixel"},
+                            {ObservationNoise::kPixelNoiseOverCount, "pixel_over_count"}});
+  return names.parse(name);
 }
 
 std::vector<std::uint8_t> ColorModelConfig::defaultClasses() {

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "adaptive_perception/config/enum_names.h"
+
 namespace adaptive_perception::color {
 
 ModeMixing parseModeMixing(const std::string& name) {
-  if (name == "best_mode") return ModeMixing::kBestMode;
-  if (name == "imm") return ModeMixing::kImm;
-  throw std::invalid_argument("unknown mode mixing '" + name + "' (allowed: best_mode, imm)");
+  static const config::EnumNames<ModeMixing> names(
+      "mixing", {{ModeMixing::kBestMode, "best_mode"}, {ModeMixing::kImm, "imm"}});
+  return names.parse(name);
 }
 
 void SwitchingFilterConfig::validate() const {

@@ -7,13 +7,15 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "adaptive_perception/config/enum_names.h"
+
 namespace adaptive_perception::laser {
 
 SplitMethod parseSplitMethod(const std::string& name) {
-  if (name == "recursive") return SplitMethod::kRecursive;
-  if (name == "hull_tree") return SplitMethod::kHullTree;
-  throw std::invalid_argument("unknown split method '" + name +
-                              "' (allowed: recursive, hull_tree)");
+  static const config::EnumNames<SplitMethod> names(
+      "split_method",
+      {{SplitMethod::kRecursive, "recursive"}, {SplitMethod::kHullTree, "hull_tree"}});
+  return names.parse(name);
 }
 
 namespace {

@@ -4,24 +4,6 @@
 
 namespace adaptive_perception::localization {
 
-const config::Fields<GlobalLocalizationConfig>& GlobalLocalizationConfig::fields() {
-  using C = GlobalLocalizationConfig;
-  static const config::Fields<C> f =
-      config::Fields<C>()
-          .add("global_pool_size", &C::pool_size, config::closed(0, 10000000),
-               "uniform poses the global search scores (0: no search, the particles as drawn)")
-          .add("global_search_frames", &C::search_frames, config::closed(1, 100),
-               "images scored before the particles commit (also the relocalization check's)")
-          .add(
-              "global_confirm_frames", &C::confirm_frames, config::closed(0, 100),
-              "the pool goes on to this image, then the second draw (<= global_search_frames: off)")
-          .add("global_confirm_fraction", &C::confirm_fraction, config::closed(0, 1),
-               "share of the particles drawn again from the pool at the second draw")
-          .add("refine_candidates", &C::refine_candidates, config::closed(0, 1000000),
-               "best poses refined at the commit and at the second draw");
-  return f;
-}
-
 GlobalLocalization::GlobalLocalization(const GlobalLocalizationConfig& config) : config_(config) {
   config_.validate();
 }

@@ -12,28 +12,6 @@ namespace {
 constexpr double kLogUniformYuv = -16.635532333438686;  // log(1 / 256^3)
 }  // namespace
 
-const config::Fields<ImageLikelihoodConfig>& ImageLikelihoodConfig::fields() {
-  using C = ImageLikelihoodConfig;
-  static const config::Fields<C> f =
-      config::Fields<C>()
-          .add("pixel_stride", &C::pixel_stride, config::closed(1, 256),
-               "every stride-th pixel in x and y is scored (px of a reference_width_px-wide image)")
-          .add("outlier_probability", &C::outlier_probability, config::belowOne(),
-               "weight of the uniform density in each pixel's likelihood")
-          .add("exponent", &C::exponent, config::aboveZero(1),
-               "the image log-likelihood is multiplied by this (scaled by the grid's pixel count)")
-          .add("position_tolerance_m", &C::position_tolerance_m, config::closed(0, 1),
-               "a pixel's predicted colour is blurred over where a pose error this size moves it "
-               "(m)")
-          .add("heading_tolerance_rad", &C::heading_tolerance_rad, config::closed(0, 0.5),
-               "the same for a heading error (rad)")
-          .add("max_neighbourhood_cells", &C::max_neighbourhood_cells, config::closed(0, 16),
-               "at most this many grid steps of blur")
-          .add("reference_width_px", &C::reference_width_px, config::closed(16, 10000),
-               "the strides are in pixels of an image this wide; other cameras are scaled");
-  return f;
-}
-
 double gridPixelCount(int w, int h, int s) {
   auto along = [s](int n) { return n > s / 2 ? (n - 1 - s / 2) / s + 1 : 0; };
   return static_cast<double>(along(w)) * along(h);

@@ -7,17 +7,6 @@
 
 namespace adaptive_perception::localization {
 
-const config::Fields<MirrorTestConfig>& MirrorTestConfig::fields() {
-  using C = MirrorTestConfig;
-  static const config::Fields<C> f =
-      config::Fields<C>()
-          .add("mirror_test_margin_nats", &C::margin_nats, config::closed(0, 1e6),
-               "the particles move to their mirrors when the evidence exceeds this (0: off)")
-          .add("mirror_test_memory_s", &C::memory_s, config::aboveZero(1e6),
-               "time constant of the evidence's fading (s)");
-  return f;
-}
-
 MirrorTest::MirrorTest(const std::vector<color::LightingPrior>& priors,
                        const color::ColorModelConfig& model,
                        const color::SwitchingFilterConfig& switching,

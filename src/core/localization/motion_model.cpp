@@ -4,25 +4,6 @@
 
 namespace adaptive_perception::localization {
 
-const config::Fields<MotionModelConfig>& MotionModelConfig::fields() {
-  using C = MotionModelConfig;
-  static const config::Fields<C> f =
-      config::Fields<C>()
-          .add("odom_alpha1", &C::alpha1, config::closed(0, 10),
-               "rotation noise per radian of rotation")
-          .add("odom_alpha2", &C::alpha2, config::closed(0, 10),
-               "rotation noise (rad) per metre of translation")
-          .add("odom_alpha3", &C::alpha3, config::closed(0, 10),
-               "translation noise per metre of translation")
-          .add("odom_alpha4", &C::alpha4, config::closed(0, 10),
-               "translation noise (m) per radian of rotation")
-          .add("odom_min_translation_std_m", &C::min_translation_std_m, config::closed(0, 1),
-               "translation noise floor per step (m), so that particles never collapse")
-          .add("odom_min_rotation_std_rad", &C::min_rotation_std_rad, config::closed(0, 1),
-               "rotation noise floor per step (rad)");
-  return f;
-}
-
 Eigen::Vector2d motionNoiseStd(const math::SE2& d, const MotionModelConfig& c) {
   const double t = std::hypot(d.x_m, d.y_m), r = std::fabs(d.yaw_rad);
   return {c.alpha3 * t + c.alpha4 * r + c.min_translation_std_m,

@@ -7,25 +7,6 @@
 
 namespace adaptive_perception::localization {
 
-const config::Fields<PoseSearchConfig>& PoseSearchConfig::fields() {
-  using C = PoseSearchConfig;
-  static const config::Fields<C> f =
-      config::Fields<C>()
-          .add("free_space_margin_m", &C::free_space_margin_m, config::closed(0, 2),
-               "uniform poses are drawn this far from walls and goals (m)")
-          .add("global_pixel_stride", &C::pixel_stride, config::closed(1, 256),
-               "the searches score every stride-th pixel (px of a reference_width_px-wide image)")
-          .add("refine_rounds", &C::refine_rounds, config::closed(0, 20),
-               "hill-climbing rounds on a search's best poses (0: off)")
-          .add("refine_tries", &C::refine_tries, config::closed(0, 1000),
-               "perturbations a pose and round")
-          .add("refine_sigma_m", &C::refine_sigma_m, config::closed(0, 5),
-               "first round's perturbation (m), halved every round")
-          .add("refine_sigma_rad", &C::refine_sigma_rad, config::closed(0, 3.2),
-               "first round's perturbation (rad), halved every round");
-  return f;
-}
-
 PoseSearch::PoseSearch(std::shared_ptr<const ImageLikelihood> likelihood,
                        const PoseSearchConfig& config, int threads)
     : likelihood_(std::move(likelihood)), config_(config), threads_(threads) {

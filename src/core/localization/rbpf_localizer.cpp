@@ -19,31 +19,6 @@ color::ColorModelConfig RbpfConfig::rbpfModelConfig() {
   return c;
 }
 
-const config::Fields<RbpfConfig>& RbpfConfig::fields() {
-  using C = RbpfConfig;
-  static const config::Fields<C> f =
-      config::Fields<C>()
-          .add("particles", &C::particles, config::closed(1, 1000000), "number of particles")
-          .add("resample_ess_fraction", &C::resample_ess_fraction, config::aboveZero(1),
-               "resample when the effective sample size falls below this share of the particles")
-          .add("mirror_fraction", &C::mirror_fraction, config::closed(0, 0.5),
-               "share of the particles replaced by point mirrors of others at each resampling")
-          .add("mirror_relative_weight", &C::mirror_relative_weight, config::aboveZero(1),
-               "a mirrored particle's weight relative to the others")
-          .add("drift_std_per_sqrt_s", &C::model, &color::ColorModelConfig::drift_std_per_sqrt_s,
-               config::closed(0, 100), "lighting drift of each particle's filter (levels/sqrt(s))")
-          .add("mode_stay_probability", &C::switching,
-               &color::SwitchingFilterConfig::mode_stay_probability, config::closed(1e-3, 1),
-               "probability that the lighting stays in its mode from one image to the next")
-          .nest(&C::likelihood, ImageLikelihoodConfig::fields())
-          .nest(&C::motion, MotionModelConfig::fields())
-          .nest(&C::search, PoseSearchConfig::fields())
-          .nest(&C::global, GlobalLocalizationConfig::fields())
-          .nest(&C::relocalization, RelocalizationConfig::fields())
-          .nest(&C::mirror_test, MirrorTestConfig::fields());
-  return f;
-}
-
 void RbpfConfig::validate() const {
   fields().validate(*this);
   if (threads < 1 || threads > 256)

@@ -5,25 +5,6 @@
 
 namespace adaptive_perception::localization {
 
-const config::Fields<RelocalizationConfig>& RelocalizationConfig::fields() {
-  using C = RelocalizationConfig;
-  static const config::Fields<C> f =
-      config::Fields<C>()
-          .add("relocalization_interval_s", &C::interval_s, config::closed(0, 1e6),
-               "a check that the particles are not lost every this many seconds (0: off)")
-          .add("relocalization_pool_size", &C::pool_size, config::closed(0, 10000000),
-               "uniform poses a check scores beside the particles")
-          .add("relocalization_margin", &C::margin, config::closed(-1e6, 1e6),
-               "the best uniform pose must beat the particles' by this (tempered nats)")
-          .add("relocalization_fraction", &C::fraction, config::aboveZero(1),
-               "share of the particles drawn from the check's poses (relocalization_restart false)")
-          .add("relocalization_restart", &C::restart,
-               "a check that wins restarts the global search (else: the draw above)")
-          .add("relocalization_refine_candidates", &C::refine_candidates,
-               config::closed(0, 1000000), "best poses refined on each side of a check");
-  return f;
-}
-
 RelocalizationMonitor::RelocalizationMonitor(const RelocalizationConfig& config) : config_(config) {
   config_.validate();
 }

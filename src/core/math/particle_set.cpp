@@ -5,14 +5,18 @@
 #include <limits>
 #include <stdexcept>
 
+#include "adaptive_perception/config/enum_names.h"
+
 namespace adaptive_perception::math {
 
 ResamplingScheme parseResamplingScheme(const std::string& name) {
-  if (name == "multinomial") return ResamplingScheme::kMultinomial;
-  if (name == "stratified") return ResamplingScheme::kStratified;
-  if (name == "systematic" || name == "low_variance") return ResamplingScheme::kSystematic;
-  throw std::invalid_argument("unknown resampling scheme '" + name +
-                              "' (allowed: multinomial, stratified, systematic, low_variance)");
+  static const config::EnumNames<ResamplingScheme> names(
+      "resampling scheme",
+      {{ResamplingScheme::kMultinomial, "multinomial"},
+       {ResamplingScheme::kStratified, "stratified"},
+       {ResamplingScheme::kSystematic, "systematic"}},
+      {{ResamplingScheme::kSystematic, "low_variance"}});
+  return names.parse(name);
 }
 
 double normalizeLogWeights(const std::vector<double>& log_weights, std::vector<double>* weights) {

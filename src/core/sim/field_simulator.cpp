@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/math/angles.h"
 
 namespace adaptive_perception::sim {
@@ -11,38 +12,17 @@ namespace adaptive_perception::sim {
 using math::kPi;
 
 LightingScript parseLightingScript(const std::string& name) {
-  if (name == "bright") return LightingScript::kBright;
-  if (name == "dark") return LightingScript::kDark;
-  if (name == "switching") return LightingScript::kSwitching;
-  if (name == "drift") return LightingScript::kDrift;
-  if (name == "kidnap") return LightingScript::kKidnap;
-  throw std::invalid_argument("unknown lighting script '" + name +
-                              "' (allowed: bright, dark, switching, drift, kidnap)");
+  static const config::EnumNames<LightingScript> names("script",
+                                                       {{LightingScript::kBright, "bright"},
+                                                        {LightingScript::kDark, "dark"},
+                                                        {LightingScript::kSwitching, "switching"},
+                                                        {LightingScript::kDrift, "drift"},
+                                                        {LightingScript::kKidnap, "kidnap"}});
+  return names.parse(name);
 }
 
 void FieldSimConfig::validate() const {
-  auto check = [](bool ok, const char* name, double v, const char* range) {
-    if (!ok)
-      throw std::invalid_argument(std::string(name) + " = " + std::to_string(v) +
-                                  " (allowed: " + range + ")");
-  };
-  check(duration_s > 0.0 && duration_s <= 36000.0, "duration_s", duration_s, "0 < x <= 36000");
-  check(camera_rate_hz > 0.0 && camera_rate_hz <= 120.0, "rate_hz", camera_rate_hz, "0 < x <= 120");
-  check(odom_rate_hz >= 1.0 && odom_rate_hz <= 1000.0, "odom_rate_hz", odom_rate_hz, "1..1000");
-  check(walk_speed_mps >= 0.0 && walk_speed_mps <= 2.0, "walk_speed_mps", walk_speed_mps, "0..2");
-  check(max_turn_rate_radps > 0.0, "max_turn_rate_radps", max_turn_rate_radps, "> 0");
-  check(waypoint_x_limit_m > 0.0 && waypoint_y_limit_m > 0.0, "waypoint limits", waypoint_x_limit_m,
-        "> 0");
-  check(odom_translation_scale > 0.0, "odom_translation_scale", odom_translation_scale, "> 0");
-  check(odom_rotation_scale > 0.0, "odom_rotation_scale", odom_rotation_scale, "> 0");
-  check(odom_translation_noise_m_per_sqrt_m >= 0.0, "odom_translation_noise_m_per_sqrt_m",
-        odom_translation_noise_m_per_sqrt_m, ">= 0");
-  check(odom_rotation_noise_rad_per_sqrt_rad >= 0.0, "odom_rotation_noise_rad_per_sqrt_rad",
-        odom_rotation_noise_rad_per_sqrt_rad, ">= 0");
-  check(pan_period_s > 0.0 && tilt_period_s > 0.0, "head scan periods",
-        std::min(pan_period_s, tilt_period_s), "> 0");
-  check(switch_period_s > 0.0, "switch_period_s", switch_period_s, "> 0");
-  check(gait_frequency_hz >= 0.0, "gait_frequency_hz", gait_frequency_hz, ">= 0");
+  fields().validate(*this);
   sensor.validate();
 }
 

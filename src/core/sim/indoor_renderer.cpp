@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/world/lighting.h"
 #include "procedural_texture.h"
 
@@ -66,24 +67,20 @@ bool rayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const IndoorBox&
 
 }  // namespace
 
-IndoorLightingKind parseIndoorLighting(const std::string& name) {
-  if (name == "night") return IndoorLightingKind::kNight;
-  if (name == "cloudy") return IndoorLightingKind::kCloudy;
-  if (name == "sunny") return IndoorLightingKind::kSunny;
-  throw std::invalid_argument("lighting '" + name + "' is not one of night, cloudy, sunny");
+namespace {
+const config::EnumNames<IndoorLightingKind>& indoorLightings() {
+  static const config::EnumNames<IndoorLightingKind> names("lighting",
+                                                           {{IndoorLightingKind::kNight, "night"},
+                                                            {IndoorLightingKind::kCloudy, "cloudy"},
+                                                            {IndoorLightingKind::kSunny, "sunny"}});
+  return names;
 }
+}  // namespace
 
-std::string indoorLightingName(IndoorLightingKind kind) {
-  switch (kind) {
-    case IndoorLightingKind::kNight:
-      return "night";
-    case IndoorLightingKind::kCloudy:
-      return "cloudy";
-    case IndoorLightingKind::kSunny:
-      return "sunny";
-  }
-  return "?";
+IndoorLightingKind parseIndoorLighting(const std::string& name) {
+  return indoorLightings().parse(name);
 }
+std::string indoorLightingName(IndoorLightingKind kind) { return indoorLightings().name(kind); }
 
 IndoorLighting IndoorLighting::sample(IndoorLightingKind kind, math::Rng& rng) {
   IndoorLighting l;

@@ -5,42 +5,24 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "adaptive_perception/config/enum_names.h"
+
 namespace adaptive_perception::sim {
 
-TrackingScenario parseTrackingScenario(const std::string& name) {
-  if (name == "circles") return TrackingScenario::kCircles;
-  if (name == "lambertian_rectangle") return TrackingScenario::kLambertianRectangle;
-  if (name == "distractor") return TrackingScenario::kDistractor;
-  if (name == "handheld") return TrackingScenario::kHandheld;
-  throw std::invalid_argument("unknown scenario '" + name +
-                              "' (circles | lambertian_rectangle | distractor | handheld)");
+namespace {
+const config::EnumNames<TrackingScenario>& scenarios() {
+  static const config::EnumNames<TrackingScenario> names(
+      "scenario", {{TrackingScenario::kCircles, "circles"},
+                   {TrackingScenario::kLambertianRectangle, "lambertian_rectangle"},
+                   {TrackingScenario::kDistractor, "distractor"},
+                   {TrackingScenario::kHandheld, "handheld"}});
+  return names;
 }
+}  // namespace
 
-std::string trackingScenarioName(TrackingScenario s) {
-  switch (s) {
-    case TrackingScenario::kCircles:
-      return "circles";
-    case TrackingScenario::kLambertianRectangle:
-      return "lambertian_rectangle";
-    case TrackingScenario::kDistractor:
-      return "distractor";
-    case TrackingScenario::kHandheld:
-      return "handheld";
-  }
-  return "?";
-}
-
-std::vector<std::string> trackingScenarioNames() {
-  return {"circles", "lambertian_rectangle", "distractor", "handheld"};
-}
-
-void TrackingSceneConfig::validate() const {
-  if (width < 64 || width > 4096 || height < 64 || height > 4096)
-    throw std::invalid_argument("width and height must be in 64..4096");
-  if (frames < 1 || frames > 100000) throw std::invalid_argument("frames must be in 1..100000");
-  if (!(rate_hz > 0.0)) throw std::invalid_argument("rate_hz must be > 0");
-  if (!(noise_sd >= 0.0)) throw std::invalid_argument("noise_sd must be >= 0");
-}
+TrackingScenario parseTrackingScenario(const std::string& name) { return scenarios().parse(name); }
+std::string trackingScenarioName(TrackingScenario s) { return scenarios().name(s); }
+std::vector<std::string> trackingScenarioNames() { return scenarios().names(); }
 
 TrackingScene::TrackingScene(TrackingSceneConfig config, std::uint64_t seed)
     : config_(config), rng_(seed) {

@@ -6,30 +6,21 @@
 #include <stdexcept>
 #include <utility>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/math/chi_square.h"
 
 namespace adaptive_perception::slam {
 
-Association parseAssociation(const std::string& name) {
-  if (name == "nn") return Association::kNearestNeighbour;
-  if (name == "jcbb") return Association::kJcbb;
-  throw std::invalid_argument("association = '" + name + "' (allowed: nn, jcbb)");
+namespace {
+const config::EnumNames<Association>& associations() {
+  static const config::EnumNames<Association> names(
+      "association", {{Association::kNearestNeighbour, "nn"}, {Association::kJcbb, "jcbb"}});
+  return names;
 }
+}  // namespace
 
-std::string associationName(Association a) {
-  return a == Association::kNearestNeighbour ? "nn" : "jcbb";
-}
-
-const config::Fields<DataAssociationConfig>& DataAssociationConfig::fields() {
-  using C = DataAssociationConfig;
-  static const config::Fields<C> f =
-      config::Fields<C>()
-          .add("gate_probability", &C::gate_probability, config::closed(0.5, 0.999999),
-               "chi-square gate of individual and joint compatibility (probability)")
-          .add("share_landmarks", &C::share_landmarks,
-               "segments of one wall update one landmark together");
-  return f;
-}
+Association parseAssociation(const std::string& name) { return associations().parse(name); }
+std::string associationName(Association a) { return associations().name(a); }
 
 void DataAssociationConfig::validate() const {
   fields().validate(*this);

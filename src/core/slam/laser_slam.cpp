@@ -5,20 +5,6 @@
 
 namespace adaptive_perception::slam {
 
-const config::Fields<LaserSlamConfig>& LaserSlamConfig::fields() {
-  using C = LaserSlamConfig;
-  static const config::Fields<C> f =
-      config::Fields<C>()
-          .add("front_end", &C::front_end,
-               "predict the EKF from laser odometry (scan matching); false: from wheel odometry")
-          .add("loop_closing", &C::loop_closing,
-               "a pose graph with loop edges over the EKF's keyframes")
-          .add("wide_search", &C::loop, &LoopClosingConfig::wide_search,
-               "loops beyond the local window found by branch and bound (LoopClosingConfig)")
-          .nest(&C::ekf, LineEkfSlamConfig::fields());
-  return f;
-}
-
 void LaserSlamConfig::validate() const {
   try {
     laser_odometry.validate();

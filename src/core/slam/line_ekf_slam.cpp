@@ -6,28 +6,23 @@
 #include <stdexcept>
 #include <string>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/math/symmetric2.h"
 
 namespace adaptive_perception::slam {
 
-Variant parseVariant(const std::string& name) {
-  if (name == "standard") return Variant::kStandard;
-  if (name == "anchor") return Variant::kAnchor;
-  if (name == "external") return Variant::kExternal;
-  throw std::invalid_argument("variant = '" + name + "' (allowed: standard, anchor, external)");
+namespace {
+const config::EnumNames<Variant>& variants() {
+  static const config::EnumNames<Variant> names("variant", {{Variant::kStandard, "standard"},
+                                                            {Variant::kAnchor, "anchor"},
+                                                            {Variant::kExternal, "external"}});
+  return names;
 }
+}  // namespace
 
-std::string variantName(Variant v) {
-  switch (v) {
-    case Variant::kAnchor:
-      return "anchor";
-    case Variant::kExternal:
-      return "external";
-    default:
-      return "standard";
-  }
-}
+Variant parseVariant(const std::string& name) { return variants().parse(name); }
+std::string variantName(Variant v) { return variants().name(v); }
 
 LineEkfSlam::LineEkfSlam(const LineEkfSlamConfig& config, const math::SE2& start,
                          const Eigen::Matrix3d& start_cov)

@@ -4,17 +4,21 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "adaptive_perception/config/enum_names.h"
+
 namespace adaptive_perception::tracking {
 
-ColorSpace parseColorSpace(const std::string& name) {
-  if (name == "rgb") return ColorSpace::kRgb;
-  if (name == "opponent" || name == "bgr_opponent") return ColorSpace::kOpponent;
-  throw std::invalid_argument("unknown colour space '" + name + "' (rgb | opponent)");
+namespace {
+const config::EnumNames<ColorSpace>& colorSpaces() {
+  static const config::EnumNames<ColorSpace> names(
+      "color_space", {{ColorSpace::kRgb, "rgb"}, {ColorSpace::kOpponent, "opponent"}},
+      {{ColorSpace::kOpponent, "bgr_opponent"}});
+  return names;
 }
+}  // namespace
 
-std::string colorSpaceName(ColorSpace space) {
-  return space == ColorSpace::kRgb ? "rgb" : "opponent";
-}
+ColorSpace parseColorSpace(const std::string& name) { return colorSpaces().parse(name); }
+std::string colorSpaceName(ColorSpace space) { return colorSpaces().name(space); }
 
 Eigen::Vector3f toColorSpace(const cv::Vec3b& bgr, ColorSpace space) {
   const float b = bgr[0], g = bgr[1], r = bgr[2];

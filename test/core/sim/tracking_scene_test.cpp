@@ -6,7 +6,10 @@
 
 #include <opencv2/core.hpp>
 
+#include "../refusal.h"
+
 using namespace adaptive_perception::sim;
+using adaptive_perception::test_support::refusedNaming;
 
 TEST(TrackingScene, SameSeedSameFramesAndTruthOnTheTarget) {
   for (const std::string& name : trackingScenarioNames()) {
@@ -29,6 +32,19 @@ TEST(TrackingScene, SameSeedSameFramesAndTruthOnTheTarget) {
     EXPECT_THROW(a.next(), std::out_of_range);
   }
   EXPECT_THROW(parseTrackingScenario("faces"), std::invalid_argument);
+}
+
+TEST(TrackingSceneConfig, ValidateNamesEachFieldPastItsRange) {
+  EXPECT_NO_THROW(TrackingSceneConfig().validate());
+  for (const auto& field : TrackingSceneConfig::fields().all()) {
+    TrackingSceneConfig c;
+    field.set(c, field.range.hi + 1.0);
+    EXPECT_TRUE(refusedNaming([&] { c.validate(); }, field.name + " = "));
+  }
+  TrackingSceneConfig c;
+  c.width = 63;
+  EXPECT_EQ(adaptive_perception::test_support::refusal([&] { c.validate(); }),
+            "width = 63 (allowed: [64, 4096])");
 }
 
 TEST(TrackingScene, TheTargetIsReddishAtTheStartAndTheRectangleDimsAwayFromTheLight) {

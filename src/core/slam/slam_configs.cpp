@@ -1,10 +1,41 @@
+// The field tables (config/fields.h) of ekf_slam_mapper's configs, as its parameters and
+// evaluate_slam's options name them: the laser SLAM's, the data association's and the EKF's (which
+// nests the motion model's, as ~odom_*). Written once, for validate(), the node, the tool and the
+// doc page.
 #include <stdexcept>
 #include <string>
 
 #include "adaptive_perception/math/angles.h"
+#include "adaptive_perception/slam/data_association.h"
+#include "adaptive_perception/slam/laser_slam.h"
 #include "adaptive_perception/slam/line_ekf_slam.h"
 
 namespace adaptive_perception::slam {
+
+const config::Fields<LaserSlamConfig>& LaserSlamConfig::fields() {
+  using C = LaserSlamConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("front_end", &C::front_end,
+               "predict the EKF from laser odometry (scan matching); false: from wheel odometry")
+          .add("loop_closing", &C::loop_closing,
+               "a pose graph with loop edges over the EKF's keyframes")
+          .add("wide_search", &C::loop, &LoopClosingConfig::wide_search,
+               "loops beyond the local window found by branch and bound (LoopClosingConfig)")
+          .nest(&C::ekf, LineEkfSlamConfig::fields());
+  return f;
+}
+
+const config::Fields<DataAssociationConfig>& DataAssociationConfig::fields() {
+  using C = DataAssociationConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("gate_probability", &C::gate_probability, config::closed(0.5, 0.999999),
+               "chi-square gate of individual and joint compatibility (probability)")
+          .add("share_landmarks", &C::share_landmarks,
+               "segments of one wall update one landmark together");
+  return f;
+}
 
 const config::Fields<LineEkfSlamConfig>& LineEkfSlamConfig::fields() {
   using C = LineEkfSlamConfig;
