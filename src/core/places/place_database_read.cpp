@@ -15,6 +15,26 @@ namespace adaptive_perception::places {
 
 using sqlite_detail::Statement;
 
+namespace {
+// Steps through the rows of `q`, which are ordered by the image id in column 1 (the id is never
+// negative): `start(id)` at an image's first row, `row(id)` at each of its rows, `finish(id)`
+// after its last.
+template <class Start, class Row, class Finish>
+void forEachImage(Statement& q, Start&& start, Row&& row, Finish&& finish) {
+  long long current = -1;
+  while (q.step()) {
+    const long long id = q.integer(1);
+    if (id != current) {
+      if (current >= 0) finish(current);
+      current = id;
+      start(id);
+    }
+    row(id);
+  }
+  if (current >= 0) finish(current);
+}
+}  // namespace
+
 std::vector<PlaceInfo> PlaceDatabase::places() const {
   Statement q(db_,
               "SELECT p.name, COUNT(i.id) FROM places p LEFT JOIN images i ON i.place_id = p.id "
@@ -62,31 +82,26 @@ PlaceIndex PlaceDatabase::loadIndex(const std::vector<int>& spaces_in) const {
               "i.id = h.image_id JOIN places p ON p.id = i.place_id ORDER BY h.image_id, h.space",
               path_);
   const int bytes = 3 * settings_.bins * static_cast<int>(sizeof(float));
-  long long current = -1;
-  std::string current_place;
+  std::string place;
   ImageHistograms h;
-  auto flush = [&] {
-    if (current >= 0) index.addImage(index.placeIndex(current_place), h);
-  };
-  while (q.step()) {
-    const long long iid = q.integer(1);
-    if (iid != current) {
-      flush();
-      current = iid;
-      current_place = q.text(0);
-      h = ImageHistograms();
-      h.bins = settings_.bins;
-    }
-    const int s = static_cast<int>(q.integer(2));
-    if (s < 0 || s >= kNumSpaces || !wanted[s]) continue;
-    if (q.bytes(3) != bytes)
-      throw std::runtime_error(path_ + ": image " + std::to_string(iid) + " has a " +
-                               std::to_string(q.bytes(3)) + "-byte histogram, expected " +
-                               std::to_string(bytes));
-    h.spaces[s].resize(3 * settings_.bins);
-    std::memcpy(h.spaces[s].data(), q.blob(3), bytes);
-  }
-  flush();
+  forEachImage(
+      q,
+      [&](long long) {
+        place = q.text(0);
+        h = ImageHistograms();
+        h.bins = settings_.bins;
+      },
+      [&](long long id) {
+        const int s = static_cast<int>(q.integer(2));
+        if (s < 0 || s >= kNumSpaces || !wanted[s]) return;
+        if (q.bytes(3) != bytes)
+          throw std::runtime_error(path_ + ": image " + std::to_string(id) + " has a " +
+                                   std::to_string(q.bytes(3)) + "-byte histogram, expected " +
+                                   std::to_string(bytes));
+        h.spaces[s].resize(3 * settings_.bins);
+        std::memcpy(h.spaces[s].data(), q.blob(3), bytes);
+      },
+      [&](long long) { index.addImage(index.placeIndex(place), h); });
   return index;
 }
 
@@ -104,39 +119,35 @@ void PlaceDatabase::readDescriptors(
               "i ON i.id = d.image_id JOIN places p ON p.id = i.place_id ORDER BY d.image_id, "
               "d.kind",
               path_);
-  long long current = -1;
   std::string place, source;
   ImageDescriptors d;
-  auto flush = [&] {
-    if (current < 0) return;
-    if (d.rows.size() != static_cast<size_t>(kNumDescriptorKinds))
-      throw std::runtime_error(path_ + ": image " + std::to_string(current) +
-                               " lacks some of its whole-image descriptors");
-    visit(current, place, source, d);
-  };
-  while (q.step()) {
-    const long long iid = q.integer(1);
-    if (iid != current) {
-      flush();
-      current = iid;
-      place = q.text(0);
-      source = q.text(4);
-      d.rows.clear();
-    }
-    const int kind = static_cast<int>(q.integer(2));
-    const int expected = kind >= 0 && kind < kNumDescriptorKinds
-                             ? config.length(static_cast<DescriptorKind>(kind))
-                             : -1;
-    if (kind != static_cast<int>(d.rows.size()) || q.bytes(3) != expected)
-      throw std::runtime_error(path_ + ": image " + std::to_string(iid) +
-                               " has a damaged whole-image descriptor (kind " +
-                               std::to_string(kind) + ", " + std::to_string(q.bytes(3)) +
-                               " bytes)");
-    cv::Mat row(1, expected, CV_8UC1);
-    std::memcpy(row.data, q.blob(3), expected);
-    d.rows.push_back(row);
-  }
-  flush();
+  forEachImage(
+      q,
+      [&](long long) {
+        place = q.text(0);
+        source = q.text(4);
+        d.rows.clear();
+      },
+      [&](long long id) {
+        const int kind = static_cast<int>(q.integer(2));
+        const int expected = kind >= 0 && kind < kNumDescriptorKinds
+                                 ? config.length(static_cast<DescriptorKind>(kind))
+                                 : -1;
+        if (kind != static_cast<int>(d.rows.size()) || q.bytes(3) != expected)
+          throw std::runtime_error(path_ + ": image " + std::to_string(id) +
+                                   " has a damaged whole-image descriptor (kind " +
+                                   std::to_string(kind) + ", " + std::to_string(q.bytes(3)) +
+                                   " bytes)");
+        cv::Mat row(1, expected, CV_8UC1);
+        std::memcpy(row.data, q.blob(3), expected);
+        d.rows.push_back(row);
+      },
+      [&](long long id) {
+        if (d.rows.size() != static_cast<size_t>(kNumDescriptorKinds))
+          throw std::runtime_error(path_ + ": image " + std::to_string(id) +
+                                   " lacks some of its whole-image descriptors");
+        visit(id, place, source, d);
+      });
 }
 
 PlaceDescriptorIndex PlaceDatabase::loadDescriptorIndex(
