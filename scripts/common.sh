@@ -15,6 +15,12 @@ INDOOR_LIGHTS="night cloudy sunny"
 indoor_seed_base() { case "$1" in night) echo 0 ;; cloudy) echo 10 ;; sunny) echo 20 ;; esac; }
 # The value of KEY in a tool's `tool: key=value ...` summary line: summary_value "$line" KEY
 summary_value() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
+# A Markdown table's first two rows: the column names given, then a separator of as many columns.
+md_header() {
+  local names="|" rule="|" name
+  for name in "$@"; do names+=" $name |"; rule+="---|"; done
+  printf '%s\n%s\n' "$names" "$rule"
+}
 # A temporary folder in TMP, removed when the script exits.
 make_tmp() { TMP="$(mktemp -d)"; trap 'rm -rf "$TMP"' EXIT; }
 # The workspace's ROS environment, with ROS_HOME (logs, roslaunch's files) inside the workspace.

@@ -35,8 +35,7 @@ summary="$OUT/summary.md"
 {
   echo "# rbpf_localizer ($PARTICLES particles, $THREADS threads)"
   echo
-  echo "| bag | filter | global starts converged (of $SEEDS seeds) | of them within 5 s | seed 1: converged after (s) | re-converged after kidnap (s) | median position error (m) | median heading error (deg) | classification rate | frames/s | from the true start: converged after (s) / median position error (m) / heading (deg) |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  md_header "bag" "filter" "global starts converged (of $SEEDS seeds)" "of them within 5 s" "seed 1: converged after (s)" "re-converged after kidnap (s)" "median position error (m)" "median heading error (deg)" "classification rate" "frames/s" "from the true start: converged after (s) / median position error (m) / heading (deg)"
 } > "$summary"
 for bag in rosbag/field_bright.bag rosbag/field_dark.bag rosbag/field_switching.bag "$KIDNAP"; do
   name="$(basename "$bag" .bag)"

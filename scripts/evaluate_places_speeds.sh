@@ -22,7 +22,7 @@ mkdir -p "$OUT"
 mapfile -t frames < <(find "$QUERY" -maxdepth 1 -type f \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.bmp' -o -iname '*.ppm' \) | LC_ALL=C sort)
 n="${#frames[@]}"
 [ "$n" -gt 0 ] || { echo "evaluate_places_speeds: no images in $QUERY"; exit 1; }
-table="| query speed (x reference) | queries | recall@1 | recall@5 | PR AUC | recall at 100% precision |"$'\n'"|---|---|---|---|---|---|"
+table="$(md_header "query speed (x reference)" queries recall@1 recall@5 "PR AUC" "recall at 100% precision")"
 for s in $SPEEDS; do
   list="$TMP/query_$s.csv"; gt="$TMP/gt_$s.csv"
   echo "image_path" > "$list"; : > "$gt"

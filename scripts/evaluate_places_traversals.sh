@@ -64,8 +64,7 @@ for d in "${datasets[@]}"; do
 done
 md="$OUT/table.md"
 {
-  echo "| dataset | query against reference | queries | method | recall@1 | recall@5 | PR AUC | recall at 100% precision | ms per query |"
-  echo "|---|---|---|---|---|---|---|---|---|"
+  md_header "dataset" "query against reference" "queries" "method" "recall@1" "recall@5" "PR AUC" "recall at 100% precision" "ms per query"
   tail -n +2 "$csv" | awk -F, '{printf "| %s | %s / %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $3, $2, $4, $6, $7, $8, $9, $10, $11}'
 } > "$md"
 cat "$md"

@@ -54,8 +54,7 @@ for log in "${logs[@]}"; do
 done
 md="$OUT/table.md"
 {
-  echo "| log | scans | relations | translational error (m) | std | rotational error (deg) | std | EKF before loop closing (m) | front end alone (m) | loop closures | x real time | published: scan matching | GMapping | graph mapping | Cartographer |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  md_header "log" "scans" "relations" "translational error (m)" "std" "rotational error (deg)" "std" "EKF before loop closing (m)" "front end alone (m)" "loop closures" "x real time" "published: scan matching" "GMapping" "graph mapping" "Cartographer"
   tail -n +2 "$csv" | awk -F, '{printf "| %s |", $1; for (i = 2; i <= NF; ++i) { v = $i; if (v ~ /^-1(\.0+)?$/) v = "-"; printf " %s |", v } printf "\n"}'
 } > "$md"
 cat "$md"

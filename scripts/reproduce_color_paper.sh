@@ -21,8 +21,7 @@ key() { grep -oE " $1=[-0-9.]+" | head -1 | cut -d= -f2; }
   echo "Two protocols: the paper's (maximum likelihood over the map colours) and the node's (the same"
   echo "behind the 'unknown' gate, unknown_mahalanobis = 5, which also rejects the room around the field)."
   echo
-  echo "| bag | protocol | pink | cyan | yellow | white | green | overall | background rejected |"
-  echo "|---|---|---|---|---|---|---|---|---|"
+  md_header "bag" "protocol" "pink" "cyan" "yellow" "white" "green" "overall" "background rejected"
 } > "$summary"
 for b in dark bright; do
   for protocol in paper node; do
@@ -44,8 +43,7 @@ echo "| paper D2 bright | paper | 0.72 | 0.94 | 0.97 | 0.98 | - | 0.99 | - |" >>
   echo "filter's estimate of its mean and its actual mean in the image. Single filter from the broad prior"
   echo "learnt over all venues (the setting where the prior carries the information)."
   echo
-  echo "| bag | colour | joint rate | independent rate | joint error | independent error |"
-  echo "|---|---|---|---|---|---|"
+  md_header "bag" "colour" "joint rate" "independent rate" "joint error" "independent error"
 } >> "$summary"
 for b in dark bright; do
   for c in pink cyan yellow white; do
@@ -68,8 +66,7 @@ minrate() { python3 -c "import csv,sys; r=[float(x['overall']) for x in csv.Dict
   echo
   echo "## Fig. 6: switching filter vs single Kalman filter (60 s, lights switched every 5 s)"
   echo
-  echo "| filter | overall | mean / min rate, lights off | mean / min rate, lights on |"
-  echo "|---|---|---|---|"
+  md_header "filter" "overall" "mean / min rate, lights off" "mean / min rate, lights on"
   echo "| switching | $(echo "$sw" | key overall) | $(minrate "$OUT/fig6_switching/frames.csv" dark) | $(minrate "$OUT/fig6_switching/frames.csv" bright) |"
   echo "| single | $(echo "$si" | key overall) | $(minrate "$OUT/fig6_single/frames.csv" dark) | $(minrate "$OUT/fig6_single/frames.csv" bright) |"
   echo
