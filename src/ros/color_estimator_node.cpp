@@ -13,22 +13,24 @@
 namespace adaptive_perception {
 
 namespace fs = std::filesystem;
-using ros_params::ParamError;
 
 namespace {
-// The node's own parameters' defaults (the algorithm's are in color::ColorEstimatorConfig).
-constexpr char kDefaultObservationNoise[] = "pixel_over_count", kDefaultMixing[] = "best_mode";
+// The node's own parameters' defaults (the algorithm's are in color::ColorEstimatorConfig, the
+// observation noise's and the mixing's too).
 constexpr double kTfTimeout_s = 0.1;
 }  // namespace
 
 std::vector<config::ParameterDoc> ColorEstimatorNode::parameters() {
-  return ros_params::joinRows(
-      {config::describe(color::ColorEstimatorConfig::fields(), color::ColorEstimatorConfig()),
-       {{"observation_noise", "string", kDefaultObservationNoise, "pixel, pixel_over_count",
-         "noise of an image's colour mean: pixel (nu, as eq. 5) or pixel_over_count (nu / n + "
-         "~observation_noise_floor_var)"},
-        {"mixing", "string", kDefaultMixing, "best_mode, imm",
-         "best_mode: only the mode that best explains the image is updated (the paper); imm"}},
+  namespace P = ros_params;
+  const color::ColorEstimatorConfig c;
+  return P::joinRows(
+      {config::describe(color::ColorEstimatorConfig::fields(), c),
+       {P::wordParameter("observation_noise", color::observationNoises(), c.model.observation_noise,
+                         "noise of an image's colour mean: pixel (nu, as eq. 5) or "
+                         "pixel_over_count (nu / n + ~observation_noise_floor_var)"),
+        P::wordParameter("mixing", color::modeMixings(), c.switching.mixing,
+                         "best_mode: only the mode that best explains the image is updated (the "
+                         "paper); imm")},
        ros_conv::FieldCameraInput::parameters(kTfTimeout_s, "map -> camera")});
 }
 
@@ -37,15 +39,10 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       diagnostics_(nh, "color_estimator", 0.5, 100.0, &mutex_) {
   namespace P = ros_params;
   P::loadFields(pnh, color::ColorEstimatorConfig::fields(), &config_);
-  const std::string noise = P::get<std::string>(pnh, "observation_noise", kDefaultObservationNoise);
-  try {
-    config_.model.observation_noise = color::parseObservationNoise(noise);
-    config_.switching.mixing =
-        color::parseModeMixing(P::get<std::string>(pnh, "mixing", kDefaultMixing));
-  } catch (const std::invalid_argument& e) {
-    throw ParamError(std::string("parameter ") + pnh.resolveName("observation_noise/mixing") +
-                     ": " + e.what());
-  }
+  config_.model.observation_noise = P::getWord(pnh, "observation_noise", color::observationNoises(),
+                                               config_.model.observation_noise);
+  config_.switching.mixing =
+      P::getWord(pnh, "mixing", color::modeMixings(), config_.switching.mixing);
   config_.validate();
 
   model_pub_ = nh.advertise<adaptive_perception::ColorModel>("color_estimator/color_model", 5);

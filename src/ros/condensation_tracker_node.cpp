@@ -14,7 +14,7 @@ namespace adaptive_perception {
 
 namespace {
 // The node's own parameters' defaults (the trackers' are in their configs).
-constexpr char kDefaultMode[] = "box", kDefaultColorSpace[] = "opponent";
+constexpr char kDefaultMode[] = "box";
 constexpr double kMaxRate_hz = 30.0;
 }  // namespace
 
@@ -27,9 +27,10 @@ std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
        config::describe(tracking::BoxTrackerConfig::fields(), tracking::BoxTrackerConfig()),
        config::describe(tracking::CondensationConfig::fields(), tracking::CondensationConfig()),
        config::describe(tracking::EllipseTrackerConfig::fields(), tracking::EllipseTrackerConfig()),
-       {{"color_space", "string", kDefaultColorSpace, "opponent, rgb",
-         "modes condensation and ellipse: opponent = (B-G, G-R, R+G+B), as in the paper's later "
-         "experiments, or rgb"},
+       {ros_params::wordParameter(
+            "color_space", tracking::colorSpaces(), tracking::CondensationConfig().quantizer.space,
+            "modes condensation and ellipse: opponent = (B-G, G-R, R+G+B), as in the paper's "
+            "later experiments, or rgb"),
         {"dynamics", "string", "", "",
          "YAML of A1, A0, d, B from learn_tracking_dynamics; empty: the default model"},
         {"initial_roi", "list", "[]", "",
@@ -56,12 +57,7 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   box_config_.validate();
   tracking::CondensationConfig& c = config_;
   P::loadFields(pnh, tracking::CondensationConfig::fields(), &c);
-  try {
-    c.quantizer.space =
-        tracking::parseColorSpace(P::get<std::string>(pnh, "color_space", kDefaultColorSpace));
-  } catch (const std::invalid_argument& e) {
-    throw P::ParamError("parameter " + pnh.resolveName("color_space") + ": " + e.what());
-  }
+  c.quantizer.space = P::getWord(pnh, "color_space", tracking::colorSpaces(), c.quantizer.space);
   const std::string dynamics = P::get<std::string>(pnh, "dynamics", "");
   if (!dynamics.empty()) c.dynamics = tracking::Ar2Model::loadYaml(P::resolvePackagePath(dynamics));
   c.validate();

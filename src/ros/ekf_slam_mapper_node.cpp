@@ -19,11 +19,8 @@ namespace fs = std::filesystem;
 using ros_params::ParamError;
 
 namespace {
-// The node's own parameters' defaults (the algorithm's are in slam::LaserSlamConfig; the two
-// enums' defaults are named from it).
-const std::string kDefaultVariant = slam::variantName(slam::LineEkfSlamConfig{}.variant),
-                  kDefaultAssociation =
-                      slam::associationName(slam::LineEkfSlamConfig{}.association.method);
+// The node's own parameters' defaults (the algorithm's are in slam::LaserSlamConfig, the variant's
+// and the association's too).
 constexpr char kDefaultMapFile[] = "line_map.yaml";
 const std::vector<double> kInitialPoseStd = {1e-3, 1e-3, 1e-3};
 constexpr double kExternalGate = 0.999, kTransformTolerance_s = 0.1, kTfTimeout_s = 0.2;
@@ -33,14 +30,16 @@ constexpr int kPathMaxPoses = 20000;
 }  // namespace
 
 std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
+  namespace P = ros_params;
   const slam::OccupancyGridConfig grid;
-  return ros_params::joinRows(
+  const slam::LineEkfSlamConfig ekf;
+  return P::joinRows(
       {config::describe(slam::LaserSlamConfig::fields(), slam::LaserSlamConfig()),
-       {{"variant", "string", kDefaultVariant, "standard, anchor, external",
-         "standard; anchor: two non-parallel lines fixed; external: absolute poses on "
-         "external_pose"},
-        {"association", "string", kDefaultAssociation, "jcbb, nn",
-         "jcbb: joint compatibility branch and bound; nn: nearest neighbour"},
+       {P::wordParameter("variant", slam::variants(), ekf.variant,
+                         "standard; anchor: two non-parallel lines fixed; external: absolute "
+                         "poses on external_pose"),
+        P::wordParameter("association", slam::associations(), ekf.association.method,
+                         "jcbb: joint compatibility branch and bound; nn: nearest neighbour"),
         {"initial_map", "string", "", "",
          "a line map written by ~save_map: localize against it, never extend it (loop closing "
          "off); empty: map"},
@@ -81,13 +80,8 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   namespace P = ros_params;
   P::loadFields(pnh, slam::LaserSlamConfig::fields(), &config_);
   slam::LineEkfSlamConfig& c = config_.ekf;
-  try {
-    c.variant = slam::parseVariant(P::get<std::string>(pnh, "variant", kDefaultVariant));
-    c.association.method =
-        slam::parseAssociation(P::get<std::string>(pnh, "association", kDefaultAssociation));
-  } catch (const std::invalid_argument& e) {
-    throw ParamError(std::string("ekf_slam_mapper parameters: ") + e.what());
-  }
+  c.variant = P::getWord(pnh, "variant", slam::variants(), c.variant);
+  c.association.method = P::getWord(pnh, "association", slam::associations(), c.association.method);
   P::loadInitialPose(pnh, kInitialPoseStd, &initial_pose_, &initial_cov_);
   initial_map_ = P::get<std::string>(pnh, "initial_map", "");
   if (!initial_map_.empty()) {

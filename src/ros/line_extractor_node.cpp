@@ -34,10 +34,8 @@ visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const
 
 namespace {
 
-constexpr char kDefaultSplitMethod[] = "recursive";
-
 /// `cfg` showing the settings of `c` (what dynamic_reconfigure reports as in force).
-void showConfig(const laser::LineExtractionConfig& c, const std::string& split_method,
+void showConfig(const laser::LineExtractionConfig& c,
                 adaptive_perception::LineExtractorConfig* cfg) {
   cfg->split_threshold_m = c.split_threshold_m;
   cfg->min_points = c.min_points;
@@ -45,7 +43,7 @@ void showConfig(const laser::LineExtractionConfig& c, const std::string& split_m
   cfg->max_gap_m = c.max_gap_m;
   cfg->breakpoint_lambda_rad = c.breakpoint_lambda_rad;
   cfg->merge_collinear = c.merge_collinear;
-  cfg->split_method = split_method;
+  cfg->split_method = laser::splitMethods().name(c.split_method);
 }
 
 }  // namespace
@@ -53,9 +51,10 @@ void showConfig(const laser::LineExtractionConfig& c, const std::string& split_m
 std::vector<config::ParameterDoc> LineExtractorNode::parameters() {
   return ros_params::joinRows(
       {config::describe(laser::LineExtractionConfig::fields(), laser::LineExtractionConfig()),
-       {{"split_method", "string", kDefaultSplitMethod, "recursive, hull_tree",
-         "recursive: Table 2's linear farthest-point scan; hull_tree: O(log^2 n) queries over "
-         "convex hulls, the same output"},
+       {ros_params::wordParameter(
+            "split_method", laser::splitMethods(), laser::LineExtractionConfig().split_method,
+            "recursive: Table 2's linear farthest-point scan; hull_tree: O(log^2 n) queries over "
+            "convex hulls, the same output"),
         ros_params::stampOrderParameter()}});
 }
 
@@ -64,14 +63,8 @@ LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   namespace P = ros_params;
   laser::LineExtractionConfig c;
   P::loadFields(pnh, laser::LineExtractionConfig::fields(), &c);
-  const std::string method = P::get<std::string>(pnh, "split_method", kDefaultSplitMethod);
-  try {
-    c.split_method = laser::parseSplitMethod(method);
-  } catch (const std::invalid_argument& e) {
-    throw P::ParamError("parameter " + pnh.resolveName("split_method") + ": " + e.what());
-  }
+  c.split_method = P::getWord(pnh, "split_method", laser::splitMethods(), c.split_method);
   extractor_.setConfig(c);
-  split_method_ = method;
   stamp_order_ = ros_conv::StampOrder("line_extractor", "scan", P::loadStampOrder(pnh));
   lines_pub_ = nh.advertise<LineSegmentArray>("lines", 10);
   markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("lines/markers", 2);
@@ -82,7 +75,7 @@ LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       std::make_unique<dynamic_reconfigure::Server<adaptive_perception::LineExtractorConfig>>(
           reconfigure_mutex_, pnh);
   adaptive_perception::LineExtractorConfig initial;
-  showConfig(c, method, &initial);
+  showConfig(c, &initial);
   reconfigure_->updateConfig(initial);
   reconfigure_->setCallback([this](adaptive_perception::LineExtractorConfig& cfg, uint32_t level) {
     onReconfigure(cfg, level);
@@ -101,10 +94,9 @@ void LineExtractorNode::onReconfigure(adaptive_perception::LineExtractorConfig& 
   try {  // setConfig validates the whole set before taking any of it
     c.split_method = laser::parseSplitMethod(cfg.split_method);
     extractor_.setConfig(c);
-    split_method_ = cfg.split_method;
   } catch (const std::exception& e) {
     ROS_ERROR("line_extractor: reconfigure refused, every setting stays as it was: %s", e.what());
-    showConfig(extractor_.config(), split_method_, &cfg);  // the reply shows what holds
+    showConfig(extractor_.config(), &cfg);  // the reply shows what holds
   }
 }
 

@@ -34,13 +34,11 @@ int main(int argc, char** argv) {
   sim::TrackingSceneConfig sc;
   sc.frames = 200;
   cli.fields(sim::TrackingSceneConfig::fields(), &sc, {"frames", "width", "height"});
-  std::string scenario = "circles";
-  cli.option("scenario", &scenario, "simulated scenario (sim/tracking_scene.h)");
+  cli.word("scenario", &sc.scenario, sim::trackingScenarios(), "the simulated scene");
   const std::uint64_t& seed = cli.seed();
   cli.parse(argc, argv);
   cv::setNumThreads(1);  // one core, as the target says
   try {
-    sc.scenario = sim::parseTrackingScenario(scenario);
     sc.validate();
     tracking::CondensationConfig cc;
     cc.samples = static_cast<int>(samples);

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/config/fields.h"
 
 namespace adaptive_perception::tools {
@@ -65,6 +66,26 @@ class CommandLine {
   CLI::Option* option(const std::string& name, T* value, config::Range range,
                       const std::string& doc) {
     return option(name, value, doc)->check(rangeCheck(range));
+  }
+  /// --name, one of the words of `words` (config/enum_names.h), into *value, whose value now is the
+  /// default; --help lists the words, and any other word is refused naming them.
+  template <class E>
+  CLI::Option* word(const std::string& name, E* value, const config::EnumNames<E>& words,
+                    const std::string& doc) {
+    return app_
+        .add_option_function<std::string>(
+            "--" + name, [value, &words](const std::string& s) { *value = words.parse(s); }, doc)
+        ->check(CLI::Validator(
+            [&words](std::string& s) -> std::string {
+              try {
+                words.parse(s);
+              } catch (const std::invalid_argument& e) {
+                return e.what();
+              }
+              return "";
+            },
+            "one of " + words.allowed()))
+        ->default_str(words.name(*value));
   }
   /// `--name` alone sets *value to true (default false).
   CLI::Option* flag(const std::string& name, bool* value, const std::string& doc) {

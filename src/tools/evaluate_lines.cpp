@@ -41,13 +41,12 @@ int main(int argc, char** argv) {
                          "else reports speed; draws one scan with its segments.");
   const std::string& bag_path = cli.inputBag("laser bag");
   const std::string& output = cli.resultsFolder("results.yaml and scan.png");
-  std::string method = "recursive";
-  cli.option("split_method", &method, "split step: recursive or hull_tree");
   long plot_scan = -1;
   cli.option("plot_scan", &plot_scan, "index of the scan drawn (-1: the middle one)");
   // line_extractor's parameters (the same names and ranges), e.g. --range_noise_std_m.
   laser::LineExtractionConfig cfg;
   cli.fields(laser::LineExtractionConfig::fields(), &cfg);
+  cli.word("split_method", &cfg.split_method, laser::splitMethods(), "the split step");
   std::string name;
   cli.option("name", &name, "label of the run (empty: the bag's file name)");
   bool no_plot = false;
@@ -56,7 +55,6 @@ int main(int argc, char** argv) {
   if (name.empty()) name = fs::path(bag_path).stem().string();
   const bool plot = !no_plot;
   try {
-    cfg.split_method = laser::parseSplitMethod(method);
     laser::LineExtractor extractor(cfg);
     rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
     std::vector<sensor_msgs::LaserScanConstPtr> scans;
@@ -104,7 +102,8 @@ int main(int argc, char** argv) {
     }
     const bool has_truth = !truth.empty();
     std::ofstream yaml(fs::path(output) / "results.yaml");
-    yaml << "bag: " << bag_path << "\nname: " << name << "\nsplit_method: " << method
+    yaml << "bag: " << bag_path << "\nname: " << name
+         << "\nsplit_method: " << laser::splitMethods().name(cfg.split_method)
          << "\nscans: " << scans.size()
          << "\nsegments_per_scan: " << double(segs_total) / scans.size()
          << "\nscans_per_s: " << scans_per_s << "\n";

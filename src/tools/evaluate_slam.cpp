@@ -176,10 +176,8 @@ int main(int argc, char** argv) {
   const std::string& bag_path = cli.inputBag("laser bag (carmen_to_bag, simulate_laser)");
   slam::LaserSlamConfig slam_cfg;
   slam::LineEkfSlamConfig& cfg = slam_cfg.ekf;
-  std::string association = slam::associationName(cfg.association.method);
-  cli.option("association", &association, "data association: jcbb or nn");
-  std::string variant = slam::variantName(cfg.variant);
-  cli.option("variant", &variant, "filter variant: standard, anchor or external");
+  cli.word("association", &cfg.association.method, slam::associations(), "data association");
+  cli.word("variant", &cfg.variant, slam::variants(), "filter variant");
   std::string relations_path;
   cli.option("relations", &relations_path, "relations file scored against (the benchmark's)");
   std::string make_relations;
@@ -205,14 +203,13 @@ int main(int argc, char** argv) {
   cli.parse(argc, argv);
   if (name.empty()) name = fs::path(bag_path).stem().string();
   math::Rng rng(seed);
+  const std::string variant = slam::variantName(cfg.variant);
   const bool loop_closing = slam_cfg.loop_closing;
   for (localization::MotionModelConfig* m : {&cfg.motion, &slam_cfg.front_end_motion})
     for (double* a : {&m->alpha1, &m->alpha2, &m->alpha3, &m->alpha4, &m->min_translation_std_m,
                       &m->min_rotation_std_rad})
       *a *= odom_scale;
   try {
-    cfg.association.method = slam::parseAssociation(association);
-    cfg.variant = slam::parseVariant(variant);
     slam_cfg.validate();
     if (external_std <= 0.0) throw std::invalid_argument("--external_std_m must be > 0");
     const std::vector<slam::Relation> relations = relations_path.empty()

@@ -249,8 +249,6 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"box", "condensation", "ellipse"}));
   std::string peers_arg = "csrt,kcf,camshift";
   cli.option("peers", &peers_arg, "peers run beside it: comma-separated, or none");
-  std::string space = "opponent";
-  cli.option("color_space", &space, "colour space of the histograms: rgb or opponent");
   std::string dynamics;
   cli.option("dynamics", &dynamics, "learned AR(2) dynamics (YAML, learn_tracking_dynamics)");
   const std::uint64_t& seed = cli.seed();
@@ -268,6 +266,8 @@ int main(int argc, char** argv) {
   cli.fields(tracking::BoxTrackerConfig::fields(), &bc);
   cli.fields(tracking::CondensationConfig::fields(), &cc);
   cli.fields(tracking::EllipseTrackerConfig::fields(), &ec);
+  cli.word("color_space", &cc.quantizer.space, tracking::colorSpaces(),
+           "colour space of the histograms");
   cli.parse(argc, argv);
   if (sequence.empty() + source.bag.empty() + source.video.empty() != 2)
     cli.fail("give exactly one of --sequence DIR, --bag FILE and --video FILE");
@@ -285,7 +285,6 @@ int main(int argc, char** argv) {
   if (!init_arg.empty() && !(init = parseBox(init_arg)))
     cli.fail("--init must be x,y,w,h with w, h >= 4 pixels, got '" + init_arg + "'");
   try {
-    cc.quantizer.space = tracking::parseColorSpace(space);
     if (!dynamics.empty()) cc.dynamics = tracking::Ar2Model::loadYaml(dynamics);
     cc.validate();
     ec.quantizer = cc.quantizer;

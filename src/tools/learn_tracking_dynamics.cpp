@@ -30,8 +30,8 @@ int main(int argc, char** argv) {
   tools::TrackingSource source;
   source.addOptions(cli);
   const std::string& output = cli.outputFile("the dynamics to write (YAML)", "the file");
-  std::string space_name = "opponent";
-  cli.option("color_space", &space_name, "colour space of the histograms: rgb or opponent");
+  tracking::ColorSpace space = tracking::ColorSpace::kOpponent;
+  cli.word("color_space", &space, tracking::colorSpaces(), "colour space of the histograms");
   bool full = false;
   cli.flag("full", &full, "fits full matrices (default: one AR(2) per dimension)");
   double inner = 0.6;
@@ -42,7 +42,6 @@ int main(int argc, char** argv) {
     cli.fail("give exactly one of --bag FILE and --video FILE");
   source.findGroundTruth();
   try {
-    const tracking::ColorSpace space = tracking::parseColorSpace(space_name);
     std::vector<tracking::DistributionState> states;
     std::optional<tracking::ColorStats> previous;
     tools::forEachTrackingFrame(source, 0, [&](const tools::TrackingFrameIn& f) {

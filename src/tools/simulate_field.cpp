@@ -42,8 +42,7 @@ int main(int argc, char** argv) {
                          "(deterministic for the seeds).");
   const std::string& output = cli.outputFile("the bag to write", "the bag");
   sim::FieldSimConfig cfg;
-  std::string script = "bright";
-  cli.option("script", &script, "lighting script: bright, dark, switching, drift or kidnap");
+  cli.word("script", &cfg.script, sim::lightingScripts(), "the lighting script");
   cli.option("seed", &cfg.seed, "robot route, odometry and image noise");
   cli.option("environment_seed", &cfg.environment_seed, "the venue (0: the nominal lab)");
   cli.fields(sim::FieldSimConfig::fields(), &cfg);
@@ -57,7 +56,6 @@ int main(int argc, char** argv) {
   const bool compress = !no_compression;
 
   try {
-    cfg.script = sim::parseLightingScript(script);
     cfg.validate();
     const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));
     const world::PinholeCamera camera = world::PinholeCamera::aiboErs7();
@@ -166,7 +164,8 @@ int main(int argc, char** argv) {
     std::printf(
         "simulate_field: output=%s script=%s seed=%llu environment_seed=%llu frames=%u "
         "duration_s=%.1f bytes=%llu\n",
-        output.c_str(), script.c_str(), static_cast<unsigned long long>(cfg.seed),
+        output.c_str(), sim::lightingScripts().name(cfg.script).c_str(),
+        static_cast<unsigned long long>(cfg.seed),
         static_cast<unsigned long long>(cfg.environment_seed), frames, cfg.duration_s,
         static_cast<unsigned long long>(bytes));
   } catch (const std::exception& e) {

@@ -49,8 +49,8 @@ int main(int argc, char** argv) {
                          "lighting condition, written to a bag and/or PNGs.");
   std::string world_path = "config/worlds/indoor_building.yaml";
   cli.option("world", &world_path, "the building (YAML; relative: from the package)");
-  std::string lighting_name = "cloudy";
-  cli.option("lighting", &lighting_name, "night, cloudy or sunny");
+  sim::IndoorLightingKind kind = sim::IndoorLightingKind::kCloudy;
+  cli.word("lighting", &kind, sim::indoorLightings(), "the lighting condition");
   const std::uint64_t& seed = cli.seed();
   std::string output;
   cli.option("output", &output, "the bag to write");
@@ -76,7 +76,6 @@ int main(int argc, char** argv) {
   if (!output.empty()) cli.refuseExisting(output);
   if (!images_out.empty()) cli.refuseExisting((fs::path(images_out) / "images.csv").string());
   try {
-    const sim::IndoorLightingKind kind = sim::parseIndoorLighting(lighting_name);
     const sim::IndoorWorld world =
         sim::IndoorWorld::loadYaml(ros_params::resolvePackagePath(world_path));
     sim::IndoorCameraConfig cam;
@@ -211,7 +210,7 @@ int main(int argc, char** argv) {
         "simulate_indoor: output=%s images=%ld places=%zu duration_s=%.1f lighting=%s "
         "camera=%s\n",
         output.empty() ? images_out.c_str() : output.c_str(), images, world.places.size(), duration,
-        lighting_name.c_str(), camera_name.c_str());
+        sim::indoorLightingName(kind).c_str(), camera_name.c_str());
   } catch (const std::exception& e) {
     std::cerr << "simulate_indoor: error: " << e.what() << "\n";
     return 1;

@@ -3,10 +3,10 @@
 //
 //   simulate_tracking --help   (every option with its default, unit and range)
 //
-// A bag holds camera/image_raw (bgr8 unless --encoding) and ground_truth/box (PolygonStamped, the 4 corners of the
-// target's box, same stamp). A video is Motion-JPEG AVI (OpenCV's own writer, no codec needed)
-// with a CSV `frame,x,y,w,h` (default: the video's path with .csv). Existing outputs are kept
-// unless --overwrite. Last line: `simulate_tracking: scenario=S frames=N output=PATH`.
+// A bag holds camera/image_raw (bgr8 unless --encoding) and ground_truth/box (PolygonStamped, the 4
+// corners of the target's box, same stamp). A video is Motion-JPEG AVI (OpenCV's own writer, no
+// codec needed) with a CSV `frame,x,y,w,h` (default: the video's path with .csv). Existing outputs
+// are kept unless --overwrite. Last line: `simulate_tracking: scenario=S frames=N output=PATH`.
 #include <geometry_msgs/PolygonStamped.h>
 
 #include <cstdio>
@@ -31,8 +31,7 @@ int main(int argc, char** argv) {
                          "The synthetic tracking sequences of papers/001 section 3.4 with ground "
                          "truth, written to a bag or a video with a CSV.");
   sim::TrackingSceneConfig cfg;
-  std::string scenario = "circles";
-  cli.option("scenario", &scenario, "circles, lambertian_rectangle, distractor or handheld");
+  cli.word("scenario", &cfg.scenario, sim::trackingScenarios(), "the scene (papers/001 3.4)");
   const std::uint64_t& seed = cli.seed();
   cli.fields(sim::TrackingSceneConfig::fields(), &cfg);
   bool no_clutter = false;
@@ -56,7 +55,6 @@ int main(int argc, char** argv) {
   for (const std::string& p : {output, video, truth_csv})
     if (!p.empty()) cli.refuseExisting(p);
   try {
-    cfg.scenario = sim::parseTrackingScenario(scenario);
     cfg.validate();
   } catch (const std::invalid_argument& e) {
     cli.fail(e.what());
@@ -128,8 +126,9 @@ int main(int argc, char** argv) {
       fs::rename(video_tmp, video);
       fs::rename(truth_csv + ".tmp", truth_csv);
     }
-    std::printf("simulate_tracking: scenario=%s frames=%d output=%s\n", scenario.c_str(),
-                cfg.frames, (output.empty() ? video : output).c_str());
+    std::printf("simulate_tracking: scenario=%s frames=%d output=%s\n",
+                sim::trackingScenarioName(cfg.scenario).c_str(), cfg.frames,
+                (output.empty() ? video : output).c_str());
   } catch (const std::exception& e) {
     std::cerr << "simulate_tracking: error: " << e.what() << "\n";
     return 1;

@@ -16,6 +16,7 @@
 
 #include "../../src/tools/command_line.h"
 #include "../core/scratch_dir.h"
+#include "adaptive_perception/config/enum_names.h"
 
 namespace {
 
@@ -174,6 +175,37 @@ TEST(CommandLine, SeedDefaultsToOneAndAnExistingFileIsReplacedOnlyWithOverwrite)
       << help;
   EXPECT_NE(help.find("replace the file if it exists"), std::string::npos) << help;
   fs::remove_all(dir);
+}
+
+// An option that takes one of a few words (CommandLine::word): the word parsed into the enum, the
+// default shown by --help with the allowed words, any other word refused naming them.
+enum class Shape { kCircle, kSquare };
+const config::EnumNames<Shape>& shapes() {
+  static const config::EnumNames<Shape> names(
+      "shape", {{Shape::kCircle, "circle"}, {Shape::kSquare, "square"}}, {{Shape::kSquare, "box"}});
+  return names;
+}
+Shape parseShape(const std::vector<std::string>& words) {
+  CommandLine cli("demo", "A test of word options.");
+  Shape shape = Shape::kCircle;
+  cli.word("shape", &shape, shapes(), "the shape drawn");
+  parseWords(cli, words);
+  return shape;
+}
+
+TEST(CommandLine, AWordOptionTakesOneOfItsWords) {
+  testing::FLAGS_gtest_death_test_style = "threadsafe";
+  EXPECT_EQ(parseShape({}), Shape::kCircle);
+  EXPECT_EQ(parseShape({"--shape", "square"}), Shape::kSquare);
+  EXPECT_EQ(parseShape({"--shape=box"}), Shape::kSquare);  // an alias
+  EXPECT_EXIT(parseShape({"--shape", "cube"}), testing::ExitedWithCode(2),
+              "shape = 'cube' \\(allowed: circle, square\\)");
+  CommandLine cli("demo", "A test of word options.");
+  Shape shape = Shape::kSquare;
+  cli.word("shape", &shape, shapes(), "the shape drawn");
+  const std::string help = cli.app().help();
+  EXPECT_NE(help.find("one of circle, square"), std::string::npos) << help;
+  EXPECT_NE(help.find("the shape drawn (default: square)"), std::string::npos) << help;
 }
 
 // The tools' standard files: --bag (inputBag) must name a file that exists; --output as a

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/math/kalman_filter.h"
 
 namespace adaptive_perception::color {
@@ -27,7 +28,9 @@ enum class ObservationNoise {
   kPixelNoiseOverCount  // nu / n + floor: a mean of n pixels is n times more certain, up to model
                         // error
 };
-ObservationNoise parseObservationNoise(const std::string& name);  // "pixel" | "pixel_over_count"
+/// The observation noise models' words: "pixel", "pixel_over_count".
+const config::EnumNames<ObservationNoise>& observationNoises();
+ObservationNoise parseObservationNoise(const std::string& name);
 
 struct ColorModelConfig {
   /// green, white, pink, yellow, cyan (defined out of line: GCC 12 warns on the inline initializer

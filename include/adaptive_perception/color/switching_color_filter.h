@@ -18,11 +18,14 @@
 #include <vector>
 
 #include "adaptive_perception/color/color_model.h"
+#include "adaptive_perception/config/enum_names.h"
 
 namespace adaptive_perception::color {
 
 enum class ModeMixing { kBestMode, kImm };
-ModeMixing parseModeMixing(const std::string& name);  // "best_mode" | "imm"
+/// The mode mixings' words: "best_mode", "imm".
+const config::EnumNames<ModeMixing>& modeMixings();
+ModeMixing parseModeMixing(const std::string& name);
 
 struct SwitchingFilterConfig {
   /// Probability of staying in a mode from one image to the next; the rest is spread evenly over

@@ -50,11 +50,10 @@ class EnumNames {
     for (const auto& entry : names_) out.push_back(entry.second);
     return out;
   }
-  /// The names and then the aliases, comma-separated: "a, b, c".
+  /// The names, comma-separated: "a, b, c" (aliases are taken, not offered).
   std::string allowed() const {
     std::string out;
-    for (const auto* list : {&names_, &aliases_})
-      for (const auto& entry : *list) out += (out.empty() ? "" : ", ") + entry.second;
+    for (const auto& entry : names_) out += (out.empty() ? "" : ", ") + entry.second;
     return out;
   }
 

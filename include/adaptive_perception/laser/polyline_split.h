@@ -18,10 +18,14 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/enum_names.h"
+
 namespace adaptive_perception::laser {
 
 enum class SplitMethod { kRecursive, kHullTree };
-SplitMethod parseSplitMethod(const std::string& name);  // "recursive" | "hull_tree"
+/// The split methods' words: "recursive", "hull_tree".
+const config::EnumNames<SplitMethod>& splitMethods();
+SplitMethod parseSplitMethod(const std::string& name);
 
 /// The farthest point strictly between i and j from the line through points[i], points[j] (Table
 /// 2): its index and distance; {-1, 0} when j <= i + 1.

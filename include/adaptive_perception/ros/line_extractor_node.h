@@ -37,7 +37,6 @@ class LineExtractorNode {
   void onReconfigure(adaptive_perception::LineExtractorConfig& c, uint32_t level);
   std::mutex mutex_;
   laser::LineExtractor extractor_;
-  std::string split_method_;  // the split_method in force, as named
   ros::Subscriber scan_sub_;
   ros::Publisher lines_pub_, markers_pub_;
   boost::recursive_mutex reconfigure_mutex_;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "adaptive_perception/color/color_model.h"
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/math/se2.h"
@@ -79,6 +80,25 @@ void loadFields(const ros::NodeHandle& nh, const config::Fields<C>& fields, C* c
                        config::formatValue(f.kind, v) + " is out of range " + f.range.text());
     f.set(*config, v);
   }
+}
+
+/// A parameter that takes one of a few words (config/enum_names.h); `def` when it is not set.
+/// Throws ParamError naming the parameter, the word and the allowed ones.
+template <class E>
+E getWord(const ros::NodeHandle& nh, const std::string& name, const config::EnumNames<E>& words,
+          E def) {
+  const std::string word = get<std::string>(nh, name, words.name(def));
+  try {
+    return words.parse(word);
+  } catch (const std::invalid_argument& e) {
+    throw ParamError("parameter " + nh.resolveName(name) + ": " + e.what());
+  }
+}
+/// Its row of a node's parameter table: the default's word and the allowed words.
+template <class E>
+config::ParameterDoc wordParameter(const std::string& name, const config::EnumNames<E>& words,
+                                   E def, const std::string& doc) {
+  return {name, "string", words.name(def), words.allowed(), doc};
 }
 
 /// A list of numbers; integers and reals may be mixed (YAML `[10, 20.5]`). Throws ParamError naming

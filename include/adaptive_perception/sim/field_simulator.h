@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/math/se2.h"
@@ -18,7 +19,8 @@
 namespace adaptive_perception::sim {
 
 enum class LightingScript { kBright, kDark, kSwitching, kDrift, kKidnap };
-/// "bright" | "dark" | "switching" | "drift" | "kidnap"; throws std::invalid_argument otherwise.
+/// The scripts' words: "bright", "dark", "switching", "drift", "kidnap".
+const config::EnumNames<LightingScript>& lightingScripts();
 LightingScript parseLightingScript(const std::string& name);
 
 struct FieldSimConfig {

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/math/rng.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/sim/indoor_world.h"
@@ -28,7 +29,8 @@
 namespace adaptive_perception::sim {
 
 enum class IndoorLightingKind { kNight, kCloudy, kSunny };
-/// "night", "cloudy", "sunny"; throws std::invalid_argument otherwise.
+/// The lightings' words: "night", "cloudy", "sunny".
+const config::EnumNames<IndoorLightingKind>& indoorLightings();
 IndoorLightingKind parseIndoorLighting(const std::string& name);
 std::string indoorLightingName(IndoorLightingKind kind);
 

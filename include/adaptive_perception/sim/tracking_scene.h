@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/math/rng.h"
 
@@ -28,6 +29,8 @@ namespace adaptive_perception::sim {
 enum class TrackingScenario { kCircles, kLambertianRectangle, kDistractor, kHandheld };
 /// "circles" | "lambertian_rectangle" | "distractor" | "handheld"; throws std::invalid_argument
 /// naming them.
+/// The scenarios' words: "circles", "lambertian_rectangle", "distractor", "handheld".
+const config::EnumNames<TrackingScenario>& trackingScenarios();
 TrackingScenario parseTrackingScenario(const std::string& name);
 std::string trackingScenarioName(TrackingScenario s);
 std::vector<std::string> trackingScenarioNames();

@@ -14,12 +14,15 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/config/fields.h"
 
 namespace adaptive_perception::slam {
 
 enum class Association { kNearestNeighbour, kJcbb };
 /// "nn" | "jcbb"; throws std::invalid_argument naming the allowed values.
+/// The association methods' words: "nn", "jcbb".
+const config::EnumNames<Association>& associations();
 Association parseAssociation(const std::string& name);
 std::string associationName(Association a);  // "nn" | "jcbb"
 

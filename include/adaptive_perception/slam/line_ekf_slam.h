@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/enum_names.h"
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/localization/motion_model.h"
@@ -50,6 +51,8 @@ namespace adaptive_perception::slam {
 
 enum class Variant { kStandard, kAnchor, kExternal };
 /// "standard" | "anchor" | "external"; throws std::invalid_argument naming the allowed values.
+/// The variants' words: "standard", "anchor", "external".
+const config::EnumNames<Variant>& variants();
 Variant parseVariant(const std::string& name);
 std::string variantName(Variant v);
 

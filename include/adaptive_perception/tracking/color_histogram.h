@@ -14,10 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "adaptive_perception/config/enum_names.h"
+
 namespace adaptive_perception::tracking {
 
 enum class ColorSpace { kRgb, kOpponent };
 /// "rgb" | "opponent" (also "bgr_opponent"); throws std::invalid_argument naming the choices.
+/// The colour spaces' words: "rgb", "opponent" (and the old spelling "bgr_opponent").
+const config::EnumNames<ColorSpace>& colorSpaces();
 ColorSpace parseColorSpace(const std::string& name);
 std::string colorSpaceName(ColorSpace space);
 

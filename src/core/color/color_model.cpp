@@ -22,11 +22,15 @@ namespace {
 constexpr double kLog2Pi = 1.8378770664093454836;
 }
 
-ObservationNoise parseObservationNoise(const std::string& name) {
+const config::EnumNames<ObservationNoise>& observationNoises() {
   static const config::EnumNames<ObservationNoise> names(
       "observation_noise", {{ObservationNoise::kPixelNoise, "pixel"},
                             {ObservationNoise::kPixelNoiseOverCount, "pixel_over_count"}});
-  return names.parse(name);
+  return names;
+}
+
+ObservationNoise parseObservationNoise(const std::string& name) {
+  return observationNoises().parse(name);
 }
 
 std::vector<std::uint8_t> ColorModelConfig::defaultClasses() {

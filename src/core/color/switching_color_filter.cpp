@@ -8,11 +8,13 @@
 
 namespace adaptive_perception::color {
 
-ModeMixing parseModeMixing(const std::string& name) {
+const config::EnumNames<ModeMixing>& modeMixings() {
   static const config::EnumNames<ModeMixing> names(
       "mixing", {{ModeMixing::kBestMode, "best_mode"}, {ModeMixing::kImm, "imm"}});
-  return names.parse(name);
+  return names;
 }
+
+ModeMixing parseModeMixing(const std::string& name) { return modeMixings().parse(name); }
 
 void SwitchingFilterConfig::validate() const {
   if (!(mode_stay_probability > 0.0 && mode_stay_probability <= 1.0))

@@ -11,12 +11,14 @@
 
 namespace adaptive_perception::laser {
 
-SplitMethod parseSplitMethod(const std::string& name) {
+const config::EnumNames<SplitMethod>& splitMethods() {
   static const config::EnumNames<SplitMethod> names(
       "split_method",
       {{SplitMethod::kRecursive, "recursive"}, {SplitMethod::kHullTree, "hull_tree"}});
-  return names.parse(name);
+  return names;
 }
+
+SplitMethod parseSplitMethod(const std::string& name) { return splitMethods().parse(name); }
 
 namespace {
 inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {

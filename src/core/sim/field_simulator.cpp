@@ -11,14 +11,18 @@ namespace adaptive_perception::sim {
 
 using math::kPi;
 
-LightingScript parseLightingScript(const std::string& name) {
+const config::EnumNames<LightingScript>& lightingScripts() {
   static const config::EnumNames<LightingScript> names("script",
                                                        {{LightingScript::kBright, "bright"},
                                                         {LightingScript::kDark, "dark"},
                                                         {LightingScript::kSwitching, "switching"},
                                                         {LightingScript::kDrift, "drift"},
                                                         {LightingScript::kKidnap, "kidnap"}});
-  return names.parse(name);
+  return names;
+}
+
+LightingScript parseLightingScript(const std::string& name) {
+  return lightingScripts().parse(name);
 }
 
 void FieldSimConfig::validate() const {

@@ -67,7 +67,6 @@ bool rayBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const IndoorBox&
 
 }  // namespace
 
-namespace {
 const config::EnumNames<IndoorLightingKind>& indoorLightings() {
   static const config::EnumNames<IndoorLightingKind> names("lighting",
                                                            {{IndoorLightingKind::kNight, "night"},
@@ -75,7 +74,6 @@ const config::EnumNames<IndoorLightingKind>& indoorLightings() {
                                                             {IndoorLightingKind::kSunny, "sunny"}});
   return names;
 }
-}  // namespace
 
 IndoorLightingKind parseIndoorLighting(const std::string& name) {
   return indoorLightings().parse(name);

@@ -9,8 +9,7 @@
 
 namespace adaptive_perception::sim {
 
-namespace {
-const config::EnumNames<TrackingScenario>& scenarios() {
+const config::EnumNames<TrackingScenario>& trackingScenarios() {
   static const config::EnumNames<TrackingScenario> names(
       "scenario", {{TrackingScenario::kCircles, "circles"},
                    {TrackingScenario::kLambertianRectangle, "lambertian_rectangle"},
@@ -18,11 +17,12 @@ const config::EnumNames<TrackingScenario>& scenarios() {
                    {TrackingScenario::kHandheld, "handheld"}});
   return names;
 }
-}  // namespace
 
-TrackingScenario parseTrackingScenario(const std::string& name) { return scenarios().parse(name); }
-std::string trackingScenarioName(TrackingScenario s) { return scenarios().name(s); }
-std::vector<std::string> trackingScenarioNames() { return scenarios().names(); }
+TrackingScenario parseTrackingScenario(const std::string& name) {
+  return trackingScenarios().parse(name);
+}
+std::string trackingScenarioName(TrackingScenario s) { return trackingScenarios().name(s); }
+std::vector<std::string> trackingScenarioNames() { return trackingScenarios().names(); }
 
 TrackingScene::TrackingScene(TrackingSceneConfig config, std::uint64_t seed)
     : config_(config), rng_(seed) {

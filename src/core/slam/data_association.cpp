@@ -11,13 +11,11 @@
 
 namespace adaptive_perception::slam {
 
-namespace {
 const config::EnumNames<Association>& associations() {
   static const config::EnumNames<Association> names(
       "association", {{Association::kNearestNeighbour, "nn"}, {Association::kJcbb, "jcbb"}});
   return names;
 }
-}  // namespace
 
 Association parseAssociation(const std::string& name) { return associations().parse(name); }
 std::string associationName(Association a) { return associations().name(a); }

@@ -12,14 +12,12 @@
 
 namespace adaptive_perception::slam {
 
-namespace {
 const config::EnumNames<Variant>& variants() {
   static const config::EnumNames<Variant> names("variant", {{Variant::kStandard, "standard"},
                                                             {Variant::kAnchor, "anchor"},
                                                             {Variant::kExternal, "external"}});
   return names;
 }
-}  // namespace
 
 Variant parseVariant(const std::string& name) { return variants().parse(name); }
 std::string variantName(Variant v) { return variants().name(v); }

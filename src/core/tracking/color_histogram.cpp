@@ -8,14 +8,12 @@
 
 namespace adaptive_perception::tracking {
 
-namespace {
 const config::EnumNames<ColorSpace>& colorSpaces() {
   static const config::EnumNames<ColorSpace> names(
       "color_space", {{ColorSpace::kRgb, "rgb"}, {ColorSpace::kOpponent, "opponent"}},
       {{ColorSpace::kOpponent, "bgr_opponent"}});
   return names;
 }
-}  // namespace
 
 ColorSpace parseColorSpace(const std::string& name) { return colorSpaces().parse(name); }
 std::string colorSpaceName(ColorSpace space) { return colorSpaces().name(space); }
