@@ -6,11 +6,19 @@
 // Safety: every change runs in one transaction (SQLite's rollback journal, synchronous=FULL), so a
 // writer killed at any point leaves the database as it was before the change or after it. A batch
 // (beginBatch .. commitBatch: a whole training run) is one transaction too, and holds the write
-// lock from its start: a second writer is refused at once with a message saying so. A reader that
-// finds the hot journal of a killed writer rolls it back first (recoveredJournal() tells). A file
-// that is not SQLite, or SQLite that is not a place database (application_id, format key), is
-// refused with an error naming the file and is never written. A database built with other
-// settings (bins, colour spaces, mask) is refused by requireSettings with both settings named.
+// lock from its start: a second writer is refused at once with a message saying so.
+//
+// Opening checks what the file is before SQLite reads it (a connection's first read rolls a hot
+// journal back, which writes the file): from its bytes alone, the SQLite header and its
+// application_id, and, when a rollback journal lies beside it, the journal's copy of page 1 (the
+// application_id before the unfinished write) and the size it had before. A file that is not
+// SQLite, SQLite with another application_id in either place, or one that was empty before the
+// write, is refused with an error naming the file and saying that it is left untouched: neither
+// it nor its journal is written, read-only or not. Only a place database's hot journal is rolled
+// back: by a reader first (recoveredJournal() tells), by a writer on its first read. A place
+// database of an unknown schema version or without the format key is refused after that. A
+// database built with other settings (bins, colour spaces, mask) is refused by requireSettings
+// with both settings named.
 //
 // Schema (version 1): meta(key, value); places(id, name UNIQUE); adjacency(a, b) with a < b;
 // images(id, place_id, source, stamp_s); histograms(image_id, space, data BLOB of 3 * bins
@@ -85,7 +93,8 @@ class PlaceDatabase {
   /// (it is never replaced) or cannot be created.
   static PlaceDatabase create(const std::string& path, const DatabaseSettings& settings);
   /// Opens an existing database; throws std::runtime_error naming the file when it is missing,
-  /// not SQLite, not a place database, or of an unknown schema version.
+  /// not SQLite, not a place database, or of an unknown schema version. A file that is no place
+  /// database is refused before SQLite reads it, so a hot journal beside it is not rolled back.
   static PlaceDatabase open(const std::string& path, bool read_only = false);
   /// open() when the file exists, else create().
   static PlaceDatabase openOrCreate(const std::string& path, const DatabaseSettings& settings);

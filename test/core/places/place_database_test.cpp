@@ -287,6 +287,93 @@ TEST_F(PlaceDatabaseTest, AReaderRecoversTheHotJournalOfAWriterKilledInABatch) {
   EXPECT_FALSE(PlaceDatabase::open(path, true).recoveredJournal());  // nothing left to recover
 }
 
+// Another program's SQLite file with the hot journal of a write it did not finish: open() tells
+// from the bytes (the file's header and the journal's copy of page 1) that it is no place
+// database, and refuses it before SQLite rolls the journal back: read-only or not, the file and
+// its journal stay as they were, byte for byte.
+TEST_F(PlaceDatabaseTest, AForeignDatabaseWithAHotJournalIsRefusedAndNotRolledBack) {
+  const std::string rows =
+      "WITH RECURSIVE n(i) AS (SELECT 1 UNION ALL SELECT i + 1 FROM n WHERE i < 2000) "
+      "INSERT INTO t SELECT randomblob(500) FROM n;";
+  // A child that writes with a page cache of 4 pages (the changed pages spill into the file,
+  // their originals into the journal) and dies before committing.
+  const auto dieWriting = [](const std::string& path, const std::string& sql) {
+    const pid_t child = ::fork();
+    if (child == 0) {
+      sqlite3* db = nullptr;
+      const bool ok = sqlite3_open(path.c_str(), &db) == SQLITE_OK &&
+                      sqlite3_exec(db, ("PRAGMA cache_size = 4; BEGIN; " + sql).c_str(), nullptr,
+                                   nullptr, nullptr) == SQLITE_OK;
+      ::_exit(ok ? 0 : 1);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return child > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  };
+  // Both ways of opening refuse it, naming it and saying `what`, and change nothing.
+  const auto refusedUntouched = [&](const std::string& path, const std::string& what) {
+    const std::string journal = path + "-journal";
+    ASSERT_TRUE(fs::exists(journal)) << "no hot journal: the case did not happen";
+    const std::string file_before = contents(path), journal_before = contents(journal);
+    for (const bool read_only : {true, false}) {
+      SCOPED_TRACE(read_only ? "read-only" : "read-write");
+      try {
+        PlaceDatabase::open(path, read_only);
+        ADD_FAILURE() << "a foreign database was opened";
+      } catch (const std::runtime_error& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find(path), std::string::npos) << msg;
+        EXPECT_NE(msg.find(what), std::string::npos) << msg;
+        EXPECT_NE(msg.find("untouched"), std::string::npos) << msg;
+      }
+      EXPECT_TRUE(contents(path) == file_before) << "the foreign file was written";
+      ASSERT_TRUE(fs::exists(journal)) << "the foreign journal was rolled back";
+      EXPECT_TRUE(contents(journal) == journal_before) << "the foreign journal was changed";
+    }
+  };
+  // The header of a place database: SQLite's, with our application_id at byte 68.
+  const std::string ours =
+      contents(PlaceDatabase::create(file("ours.sqlite"), settings_).path()).substr(0, 100);
+  const auto writeHeader = [](const std::string& path, const std::string& header) {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.write(header.data(), static_cast<std::streamsize>(header.size()));
+  };
+
+  struct Case {
+    std::string name;
+    unsigned app_id;    // the file's before the write
+    bool ours_on_disk;  // its header in the file says ours: only the journal's page 1 tells
+  };
+  for (const Case& c : {Case{"plain.sqlite", 0, false}, Case{"other.sqlite", 0x46524a47, false},
+                        Case{"disguised.sqlite", 0x46524a47, true}}) {
+    SCOPED_TRACE(c.name);
+    const std::string path = file(c.name);
+    {
+      sqlite3* db = nullptr;
+      ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+      const std::string sql =
+          "PRAGMA application_id = " + std::to_string(c.app_id) + "; CREATE TABLE t (x); " + rows;
+      ASSERT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+      sqlite3_close(db);
+    }
+    ASSERT_TRUE(dieWriting(path, "UPDATE t SET x = randomblob(600); " + rows));
+    if (c.ours_on_disk) {
+      std::string header = contents(path).substr(0, 100);
+      header.replace(68, 4, ours, 68, 4);
+      writeHeader(path, header);
+    }
+    refusedUntouched(path, "not an adaptive_perception place database");
+  }
+  // A new file whose first write was interrupted: its rollback would leave it empty. Its page 1
+  // never reached the file; and when it has (written here) with our application_id, the journal
+  // still tells that the file was empty before.
+  const std::string fresh = file("fresh.sqlite");
+  ASSERT_TRUE(dieWriting(fresh, "CREATE TABLE t (x); " + rows));
+  refusedUntouched(fresh, "not a place database");
+  writeHeader(fresh, ours);
+  refusedUntouched(fresh, "not a place database");
+}
+
 TEST_F(PlaceDatabaseTest, ABatchCommitsAsAWholeAndASecondWriterIsRefusedAtOnce) {
   const std::string path = file("p.sqlite");
   PlaceDatabase first = PlaceDatabase::create(path, settings_);
