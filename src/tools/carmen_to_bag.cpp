@@ -11,10 +11,16 @@
 // -> laser (tf_static when the mounting never changes, else tf at each scan), ground_truth/pose
 // (PoseStamped in map) from TRUEPOS. Every stamp is the line's ipc_timestamp, so published relation
 // files for these logs line up with the bag. Malformed / truncated / unknown / out-of-order lines
-// are reported with their line numbers; out-of-order messages are written in time order. A reading
-// at the laser's maximum range is its "no return" and is written as +inf (io/carmen_log.h). Last
-// line:
-//   carmen_to_bag: output=FILE scans=N odom=M truepos=K issues=I out_of_order=O no_returns=R
+// are reported with their line numbers; out-of-order messages are written in time order. A line
+// stamped outside what ros::Time holds (negative, or 2^32 s or more) is skipped and reported with
+// its line, and the rest converted. A reading at the laser's maximum range is its "no return" and
+// is written as +inf; that range is --max_range_m when given, else the log's PARAM, else the
+// no-return value found in the readings, else 81.9 m (io/carmen_log.h). A PARAM maximum range that
+// is no range (0, negative, nan) stops the conversion naming its line, unless --max_range_m is
+// given. Last line (max_range: each laser's range and where it came from, e.g.
+// FLASER:81.83m(inferred)):
+//   carmen_to_bag: output=FILE scans=N odom=M truepos=K issues=I out_of_order=O bad_timestamps=B
+//   no_returns=R max_range=L
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
@@ -51,9 +57,20 @@ int main(int argc, char** argv) {
              "odometry source: the lasers' robot poses unless they never change (auto), or "
              "either forced")
       ->check(CLI::IsMember({"auto", "odom_lines", "laser_poses"}));
+  // The reader's default timestamp range, [0, 2^32 - 1] s, is what ros::Time holds: a line stamped
+  // outside it is skipped and reported by the reader, where ros::Time would throw and stop the
+  // conversion.
+  io::CarmenReadOptions read_options;
+  cli.option("max_range_m", &read_options.max_range_m, config::closed(0, 1000),
+             "every laser's maximum range (its no-return value), m, over the log's PARAM, "
+             "ROBOTLASER1 field and the value found in the readings; 0: from the log");
+  long max_decompressed_mib = static_cast<long>(read_options.max_decompressed_bytes >> 20);
+  cli.option("max_decompressed_mib", &max_decompressed_mib, config::closed(1, 1 << 20),
+             "a .bz2 log that decompresses to more is refused, MiB");
   cli.parse(argc, argv);
+  read_options.max_decompressed_bytes = static_cast<std::uint64_t>(max_decompressed_mib) << 20;
   try {
-    io::CarmenLog log = io::readCarmenLog(input);
+    io::CarmenLog log = io::readCarmenLog(input, read_options);
     log.sortByTime();
     for (long i = 0; i < static_cast<long>(log.issues.size()) && i < max_issues; ++i)
       std::fprintf(stderr, "%s:%ld: %s\n", input.c_str(), log.issues[i].line,
@@ -61,6 +78,12 @@ int main(int argc, char** argv) {
     if (static_cast<long>(log.issues.size()) > max_issues)
       std::fprintf(stderr, "%s: ... %zu more issues\n", input.c_str(),
                    log.issues.size() - max_issues);
+    if (log.bad_timestamps > 0)
+      std::fprintf(stderr,
+                   "%s: warning: %ld lines skipped for a timestamp outside [%.0f, %.0f] s, the "
+                   "range of ros::Time (listed above, up to --max_issues)\n",
+                   input.c_str(), log.bad_timestamps, read_options.min_timestamp_s,
+                   read_options.max_timestamp_s);
     if (log.lasers.empty()) throw std::runtime_error(input + ": no laser messages");
 
     ros_bag::BagWriter bag(output, cli.overwriteGiven());
@@ -146,9 +169,10 @@ int main(int argc, char** argv) {
     bag.close();
     std::printf(
         "carmen_to_bag: output=%s scans=%zu odom=%zu truepos=%zu issues=%zu out_of_order=%ld "
-        "no_returns=%ld\n",
+        "bad_timestamps=%ld no_returns=%ld max_range=%s\n",
         output.c_str(), log.lasers.size(), from_lines ? log.odometry.size() : log.lasers.size(),
-        log.true_poses.size(), log.issues.size(), log.out_of_order, log.no_returns);
+        log.true_poses.size(), log.issues.size(), log.out_of_order, log.bad_timestamps,
+        log.no_returns, io::maxRangeSummary(log).c_str());
   } catch (const std::exception& e) {
     std::cerr << "carmen_to_bag: error: " << e.what() << "\n";
     return 1;

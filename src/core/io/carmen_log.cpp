@@ -4,61 +4,87 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
+#include <vector>
 
 namespace adaptive_perception::io {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-std::string readFile(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw std::runtime_error(path + ": cannot open log file");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  std::string raw = ss.str();
-  if (path.size() < 4 || path.compare(path.size() - 4, 4, ".bz2") != 0) return raw;
-  // Decompress every bzip2 stream in the file.
+// Every bzip2 stream of `in` (concatenated streams follow one another), read in chunks so that no
+// size passes through libbz2's 32-bit counters; more than `max_bytes` of output is refused.
+std::string decompressBzip2(std::istream& in, const std::string& path, std::uint64_t max_bytes) {
   std::string out;
+  std::vector<char> in_buf(1 << 16), out_buf(1 << 20);
   bz_stream s{};
   if (BZ2_bzDecompressInit(&s, 0, 0) != BZ_OK)
     throw std::runtime_error(path + ": bzip2 init failed");
-  s.next_in = raw.data();
-  s.avail_in = static_cast<unsigned>(raw.size());
-  std::vector<char> buf(1 << 20);
+  struct End {
+    bz_stream* s;
+    ~End() { BZ2_bzDecompressEnd(s); }
+  } end{&s};
+  bool eof = false;
+  auto refill = [&] {
+    in.read(in_buf.data(), static_cast<std::streamsize>(in_buf.size()));
+    if (in.bad()) throw std::runtime_error(path + ": read error");
+    s.next_in = in_buf.data();
+    s.avail_in = static_cast<unsigned>(in.gcount());  // <= 64 KiB
+    eof = s.avail_in == 0;
+  };
+  s.next_in = in_buf.data();
   while (true) {
-    s.next_out = buf.data();
-    s.avail_out = static_cast<unsigned>(buf.size());
+    if (s.avail_in == 0 && !eof) refill();
+    s.next_out = out_buf.data();
+    s.avail_out = static_cast<unsigned>(out_buf.size());
     const int rc = BZ2_bzDecompress(&s);
-    out.append(buf.data(), buf.size() - s.avail_out);
+    const std::uint64_t produced = out_buf.size() - s.avail_out;
+    if (produced > max_bytes - out.size())
+      throw std::runtime_error(path + ": decompresses to more than " + std::to_string(max_bytes) +
+                               " bytes, the limit (CarmenReadOptions::max_decompressed_bytes, "
+                               "carmen_to_bag --max_decompressed_mib): refused");
+    out.append(out_buf.data(), produced);
     if (rc == BZ_STREAM_END) {
+      if (s.avail_in == 0 && !eof) refill();
       if (s.avail_in == 0) break;
-      // Concatenated stream: restart.
+      // Concatenated stream: restart on the rest of the input.
       char* next = s.next_in;
-      unsigned avail = s.avail_in;
+      const unsigned avail = s.avail_in;
       BZ2_bzDecompressEnd(&s);
       s = bz_stream{};
-      BZ2_bzDecompressInit(&s, 0, 0);
+      if (BZ2_bzDecompressInit(&s, 0, 0) != BZ_OK)
+        throw std::runtime_error(path + ": bzip2 init failed");
       s.next_in = next;
       s.avail_in = avail;
       continue;
     }
     if (rc != BZ_OK) {
-      BZ2_bzDecompressEnd(&s);
       if (!out.empty())
         break;  // a truncated archive: keep what was decompressed (the reader reports the cut line)
       throw std::runtime_error(path + ": not a valid bzip2 file (error " + std::to_string(rc) +
                                ")");
     }
-    if (s.avail_in == 0 && s.avail_out != 0) break;  // input ended without a stream end: truncated
+    if (eof && s.avail_in == 0 && s.avail_out != 0) break;  // input ended without a stream end
   }
-  BZ2_bzDecompressEnd(&s);
   return out;
+}
+
+std::string readFile(const std::string& path, std::uint64_t max_decompressed_bytes) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error(path + ": cannot open log file");
+  if (path.size() >= 4 && path.compare(path.size() - 4, 4, ".bz2") == 0)
+    return decompressBzip2(f, path, max_decompressed_bytes);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
 }
 
 bool toDouble(const std::string& s, double* v) {
@@ -66,7 +92,84 @@ bool toDouble(const std::string& s, double* v) {
   *v = std::strtod(s.c_str(), &end);
   return end != s.c_str() && *end == '\0' && std::isfinite(*v);
 }
+
+// A number as a message shows it: up to `digits` significant digits (7: a float's), no trailing
+// zeros.
+std::string number(double v, int digits = 10) {
+  std::ostringstream ss;
+  ss << std::setprecision(digits) << v;
+  return ss.str();
+}
+
+void validate(const CarmenReadOptions& o) {
+  auto check = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("CarmenReadOptions: " + what);
+  };
+  check(std::isfinite(o.max_range_m) && o.max_range_m >= 0.0,
+        "max_range_m = " + number(o.max_range_m) + " (allowed: 0, from the log, or > 0)");
+  check(std::isfinite(o.default_max_range_m) && o.default_max_range_m > 0.0,
+        "default_max_range_m = " + number(o.default_max_range_m) + " (allowed: > 0)");
+  check(std::isfinite(o.no_return_margin_m) && o.no_return_margin_m >= 0.0,
+        "no_return_margin_m = " + number(o.no_return_margin_m) + " (allowed: >= 0)");
+  check(o.no_return_min_count >= 1,
+        "no_return_min_count = " + std::to_string(o.no_return_min_count) + " (allowed: >= 1)");
+  check(!(o.min_timestamp_s > o.max_timestamp_s) && !std::isnan(o.min_timestamp_s) &&
+            !std::isnan(o.max_timestamp_s),
+        "min_timestamp_s = " + number(o.min_timestamp_s) + " above max_timestamp_s = " +
+            number(o.max_timestamp_s));
+  check(o.max_decompressed_bytes >= 1, "max_decompressed_bytes = 0 (allowed: >= 1)");
+}
+
+// The no-return value of lasers[i] for i in `which` (the rule in the header), or 0 when there is
+// none; *count: the readings exactly at it.
+float inferNoReturn(const std::vector<CarmenLaser>& lasers, const std::vector<size_t>& which,
+                    long min_count, long* count) {
+  float m = -std::numeric_limits<float>::infinity();
+  long at = 0;
+  for (size_t i : which)
+    for (float r : lasers[i].ranges_m) {
+      if (!std::isfinite(r)) continue;  // beyond a float: a no return whatever the maximum
+      if (r > m) {
+        m = r;
+        at = 1;
+      } else if (r == m) {
+        ++at;
+      }
+    }
+  if (!(m > 0.0f) || at < min_count) return 0.0f;
+  long below = 0;
+  for (size_t i : which)
+    for (float r : lasers[i].ranges_m)
+      if (r < m && r >= m - kNoReturnGapM) ++below;
+  if (at <= below) return 0.0f;
+  *count = at;
+  return m;
+}
 }  // namespace
+
+const char* rangeSourceName(CarmenRangeSource source) {
+  switch (source) {
+    case CarmenRangeSource::kOption:
+      return "option";
+    case CarmenRangeSource::kParam:
+      return "PARAM";
+    case CarmenRangeSource::kMessage:
+      return "message";
+    case CarmenRangeSource::kInferred:
+      return "inferred";
+    case CarmenRangeSource::kDefault:
+      break;
+  }
+  return "default";
+}
+
+std::string maxRangeSummary(const CarmenLog& log) {
+  std::string out;
+  for (const CarmenMaxRange& r : log.max_ranges)
+    out += (out.empty() ? "" : ",") + r.type + ":" + number(r.max_range_m, 7) + "m(" +
+           rangeSourceName(r.source) + ")";
+  return out.empty() ? "-" : out;
+}
 
 void CarmenLog::sortByTime() {
   auto by_time = [](const auto& a, const auto& b) { return a.timestamp_s < b.timestamp_s; };
@@ -76,24 +179,22 @@ void CarmenLog::sortByTime() {
 }
 
 CarmenLog readCarmenLog(const std::string& path, const CarmenReadOptions& options) {
-  return parseCarmenLog(readFile(path), options);
+  validate(options);
+  return parseCarmenLog(readFile(path, options.max_decompressed_bytes), options, path);
 }
 
-CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& options) {
+CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& options,
+                         const std::string& source) {
+  validate(options);
   CarmenLog log;
-  double front_max = options.default_max_range_m, rear_max = options.default_max_range_m;
+  const bool given = options.max_range_m > 0.0;
+  // The PARAM maximum ranges seen so far (0: none yet).
+  double front_max = 0.0, rear_max = 0.0;
+  // Old-style laser lines with neither option nor PARAM: their range is found after the last line.
+  std::vector<size_t> uncovered_front, uncovered_rear;
   std::map<std::string, double> last_time;
   auto issue = [&](long line, const std::string& what) {
     if (log.issues.size() < options.max_issues_kept) log.issues.push_back({line, what});
-  };
-  // A reading at the laser's maximum (within no_return_margin_m) is its "no return" value: +inf.
-  auto markNoReturns = [&](CarmenLaser* l) {
-    const double at = l->max_range_m - options.no_return_margin_m;
-    for (float& r : l->ranges_m)
-      if (r >= at) {
-        r = std::numeric_limits<float>::infinity();
-        ++log.no_returns;
-      }
   };
   std::istringstream in(text);
   std::string raw;
@@ -127,7 +228,16 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
       }
       return true;
     };
-    auto inOrder = [&](double t) {
+    // Whether to keep a message stamped t: one outside the timestamp range is skipped and counted;
+    // one out of order is kept and reported.
+    auto keep = [&](double t) {
+      if (!(t >= options.min_timestamp_s && t <= options.max_timestamp_s)) {
+        ++log.bad_timestamps;
+        issue(line_no, name + ": timestamp " + number(t) + " s outside [" +
+                           number(options.min_timestamp_s) + ", " +
+                           number(options.max_timestamp_s) + "] s: line skipped");
+        return false;
+      }
       auto it = last_time.find(name);
       if (it != last_time.end() && t < it->second) {
         ++log.out_of_order;
@@ -140,10 +250,23 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
     };
     std::vector<double> v;
     if (name == "PARAM") {
-      if (tok.size() >= 3) {
+      if (tok.size() >= 2 &&
+          (tok[1] == "robot_front_laser_max" || tok[1] == "robot_rear_laser_max")) {
+        const std::string value = tok.size() >= 3 ? tok[2].substr(0, 40) : "";
         double x;
-        if (tok[1] == "robot_front_laser_max" && toDouble(tok[2], &x)) front_max = x;
-        if (tok[1] == "robot_rear_laser_max" && toDouble(tok[2], &x)) rear_max = x;
+        if (!toDouble(value, &x) || !(x > 0.0)) {
+          const std::string what = "PARAM " + tok[1] + " '" + value +
+                                   "': a laser's maximum range is a positive finite number of "
+                                   "metres";
+          if (!given)
+            throw std::runtime_error(source + ":" + std::to_string(line_no) + ": " + what +
+                                     " (or give the maximum range: "
+                                     "CarmenReadOptions::max_range_m, carmen_to_bag "
+                                     "--max_range_m)");
+          issue(line_no, what + ": ignored, the maximum range is given");
+        } else {
+          (tok[1] == "robot_front_laser_max" ? front_max : rear_max) = x;
+        }
       }
       ++log.skipped_known;
     } else if (name == "FLASER" || name == "RLASER") {
@@ -166,13 +289,22 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
       l.angle_increment_rad =
           (n % 2 == 1 && n > 1) ? kPi / static_cast<double>(n - 1) : kPi / static_cast<double>(n);
       l.angle_min_rad = name == "FLASER" ? -kPi / 2 : kPi / 2;
-      l.max_range_m = name == "FLASER" ? front_max : rear_max;
+      const double param_max = name == "FLASER" ? front_max : rear_max;
+      if (given) {
+        l.max_range_m = options.max_range_m;
+        l.range_source = CarmenRangeSource::kOption;
+      } else if (param_max > 0.0) {
+        l.max_range_m = param_max;
+        l.range_source = CarmenRangeSource::kParam;
+      }
       for (size_t i = 0; i < n; ++i) l.ranges_m.push_back(static_cast<float>(v[1 + i]));
-      markNoReturns(&l);
       l.laser_pose = math::SE2(v[1 + n], v[2 + n], v[3 + n]);
       l.robot_pose = math::SE2(v[4 + n], v[5 + n], v[6 + n]);
       l.timestamp_s = v[7 + n];
-      if (inOrder(l.timestamp_s)) log.lasers.push_back(std::move(l));
+      if (!keep(l.timestamp_s)) continue;
+      if (!given && !(param_max > 0.0))
+        (name == "FLASER" ? uncovered_front : uncovered_rear).push_back(log.lasers.size());
+      log.lasers.push_back(std::move(l));
     } else if (name == "ROBOTLASER1") {
       // type start_angle fov resolution max_range accuracy remission_mode num_readings ...
       double nd;
@@ -203,9 +335,9 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
       l.line = line_no;
       l.angle_min_rad = v[1];
       l.angle_increment_rad = v[3];
-      l.max_range_m = v[4];
+      l.max_range_m = given ? options.max_range_m : v[4];
+      l.range_source = given ? CarmenRangeSource::kOption : CarmenRangeSource::kMessage;
       for (size_t i = 0; i < n; ++i) l.ranges_m.push_back(static_cast<float>(v[8 + i]));
-      markNoReturns(&l);
       const size_t p = 8 + n + 1 + nr;
       l.laser_pose = math::SE2(v[p], v[p + 1], v[p + 2]);
       l.robot_pose = math::SE2(v[p + 3], v[p + 4], v[p + 5]);
@@ -214,21 +346,21 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
         issue(line_no, "ROBOTLASER1: non-positive resolution or maximum range");
         continue;
       }
-      if (inOrder(l.timestamp_s)) log.lasers.push_back(std::move(l));
+      if (keep(l.timestamp_s)) log.lasers.push_back(std::move(l));
     } else if (name == "ODOM") {
       if (!numbers(7, &v) || tok.size() < 10) {
         issue(line_no, "ODOM: truncated or malformed");
         continue;
       }
       CarmenOdom o{v[6], math::SE2(v[0], v[1], v[2]), v[3], v[4], line_no};
-      if (inOrder(o.timestamp_s)) log.odometry.push_back(o);
+      if (keep(o.timestamp_s)) log.odometry.push_back(o);
     } else if (name == "TRUEPOS") {
       if (!numbers(7, &v) || tok.size() < 10) {
         issue(line_no, "TRUEPOS: truncated or malformed");
         continue;
       }
       CarmenTruePos t{v[6], math::SE2(v[0], v[1], v[2]), math::SE2(v[3], v[4], v[5]), line_no};
-      if (inOrder(t.timestamp_s)) log.true_poses.push_back(t);
+      if (keep(t.timestamp_s)) log.true_poses.push_back(t);
     } else if (name == "SYNC" || name == "NMEAGGA" || name == "NMEARMC" || name == "SONAR" ||
                name == "BUMPER" || name == "SCANMARK" || name == "POSITIONLASER" ||
                name == "RAWLASER1" || name == "RAWLASER2" || name == "RAWLASER3" ||
@@ -238,6 +370,40 @@ CarmenLog parseCarmenLog(const std::string& text, const CarmenReadOptions& optio
       ++log.unknown;
       issue(line_no, "unknown message '" + name.substr(0, 40) + "'");
     }
+  }
+
+  // The uncovered old-style lasers: the no-return value found in their readings, else the default.
+  std::map<std::string, long> inferred_count;  // by laser type: readings exactly at the value
+  for (const std::vector<size_t>* which : {&uncovered_front, &uncovered_rear}) {
+    if (which->empty()) continue;
+    long count = 0;
+    const float m = inferNoReturn(log.lasers, *which, options.no_return_min_count, &count);
+    if (m > 0.0f) inferred_count[log.lasers[which->front()].type] = count;
+    for (size_t i : *which) {
+      log.lasers[i].max_range_m = m > 0.0f ? m : options.default_max_range_m;
+      log.lasers[i].range_source =
+          m > 0.0f ? CarmenRangeSource::kInferred : CarmenRangeSource::kDefault;
+    }
+  }
+  // A reading at the laser's maximum (within no_return_margin_m) is its "no return" value: +inf.
+  std::map<std::tuple<std::string, CarmenRangeSource, double>, size_t> range_index;
+  for (CarmenLaser& l : log.lasers) {
+    const double at = l.max_range_m - options.no_return_margin_m;
+    for (float& r : l.ranges_m)
+      if (r >= at) {
+        r = std::numeric_limits<float>::infinity();
+        ++log.no_returns;
+      }
+    const auto key = std::make_tuple(l.type, l.range_source, l.max_range_m);
+    auto found = range_index.find(key);
+    if (found == range_index.end()) {
+      found = range_index.emplace(key, log.max_ranges.size()).first;
+      log.max_ranges.push_back({l.type, l.range_source, l.max_range_m, 0,
+                                l.range_source == CarmenRangeSource::kInferred
+                                    ? inferred_count[l.type]
+                                    : 0});
+    }
+    ++log.max_ranges[found->second].lines;
   }
   return log;
 }
