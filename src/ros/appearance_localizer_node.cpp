@@ -49,7 +49,7 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
   use_odom_ = P::get<bool>(pnh, "use_odom", true);
   gate_ = ros_conv::ImageGate("appearance_localizer",
                               P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
-                              P::loadStampOrder(pnh));
+                              P::loadImageIntake(pnh));
   publish_tf_ = P::get<bool>(pnh, "publish_tf", false);
   transform_tolerance_s_ =
       P::getInRange(pnh, "transform_tolerance", kTransformTolerance_s, 0.0, 10.0);
@@ -111,14 +111,12 @@ void AppearanceLocalizerNode::onInitialPose(
              msg->header.frame_id.c_str(), map_frame_.c_str());
     return;
   }
-  const auto& k = msg->pose.covariance;  // row-major 6 x 6 over x, y, z, roll, pitch, yaw
-  Eigen::Matrix3d cov;
-  cov << k[0], k[1], k[5], k[6], k[7], k[11], k[30], k[31], k[35];
   try {
-    mcl_->initGaussian(ros_conv::toSE2(msg->pose.pose), cov);
+    const ros_conv::PlanarPoseInput in =
+        ros_conv::planarPoseInput(msg->pose, ros_conv::PoseYaw::kRequired);
+    mcl_->initGaussian(in.pose, in.cov);
   } catch (const std::invalid_argument& e) {
-    ROS_WARN("appearance_localizer: initial pose ignored: its (x, y, yaw) covariance: %s",
-             e.what());
+    ROS_WARN("appearance_localizer: initial pose ignored: %s", e.what());
     return;
   }
   ++initial_poses_;
@@ -134,6 +132,10 @@ bool AppearanceLocalizerNode::onGlobalLocalization(std_srvs::Empty::Request&,
 }
 
 void AppearanceLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+  ros_conv::processGuarded("appearance_localizer", *msg, [&] { processImage(msg); });
+}
+
+void AppearanceLocalizerNode::processImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat bgr;
   bool restart = false;
   const auto verdict = gate_.accept(*msg, &bgr, &restart);

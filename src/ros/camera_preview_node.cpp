@@ -26,7 +26,7 @@ void CameraPreviewNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   try {
     const cv::Mat bgr = color::yuvToBgr(ros_conv::imageToYuv(*msg));
     image_pub_.publish(ros_conv::bgr8ToImage(bgr, msg->header));
-  } catch (const ros_conv::ImageFormatError& e) {
+  } catch (const std::exception& e) {  // ImageFormatError, and cv::Exception or bad_alloc
     ROS_ERROR_THROTTLE(10.0, "camera_preview: frame dropped: %s", e.what());
   }
 }
@@ -36,7 +36,7 @@ void CameraPreviewNode::onLabels(const sensor_msgs::ImageConstPtr& msg) {
   try {
     labels_pub_.publish(
         ros_conv::bgr8ToImage(color::colorizeLabels(ros_conv::imageToMono8(*msg)), msg->header));
-  } catch (const ros_conv::ImageFormatError& e) {
+  } catch (const std::exception& e) {
     ROS_ERROR_THROTTLE(10.0, "camera_preview: labels dropped: %s", e.what());
   }
 }

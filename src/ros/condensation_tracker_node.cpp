@@ -67,7 +67,7 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   publish_overlay_ = P::get<bool>(pnh, "publish_overlay", true);
   gate_ = ros_conv::ImageGate("condensation_tracker",
                               P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
-                              P::loadStampOrder(pnh));
+                              P::loadImageIntake(pnh));
   seed_ = P::loadSeed(pnh);
   const std::vector<double> roi = P::getNumbers(pnh, "initial_roi", {});
   if (!roi.empty()) {
@@ -147,6 +147,10 @@ bool CondensationTrackerNode::onSetTarget(SetTarget::Request& req, SetTarget::Re
 }
 
 void CondensationTrackerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
+  ros_conv::processGuarded("condensation_tracker", *msg, [&] { processImage(msg); });
+}
+
+void CondensationTrackerNode::processImage(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat bgr;
   bool restart = false;
   if (gate_.accept(*msg, &bgr, &restart) != ros_conv::ImageGate::Result::kProcess) return;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/math/chi_square.h"
@@ -247,8 +248,14 @@ void EkfSlamMapperNode::processLines(const ros::MessageEvent<const LineSegmentAr
   }
   laser::LaserScan2D scan2d;
   std::vector<Eigen::Vector2d> points_robot;
+  if (scan) scan2d = ros_conv::fromLaserScan(*scan);
+  if (const std::string problem = scan ? laser::scanGeometryProblem(scan2d) : "";
+      !problem.empty()) {
+    ROS_ERROR_THROTTLE(10.0, "ekf_slam_mapper: scan's points not used: %s", problem.c_str());
+    scan.reset();
+    scan2d = laser::LaserScan2D();
+  }
   if (scan) {
-    scan2d = ros_conv::fromLaserScan(*scan);
     std::vector<laser::ScanPoint> pts;
     laser::validPoints(scan2d, 0.0, &pts);
     points_robot.reserve(pts.size());
@@ -367,26 +374,31 @@ void EkfSlamMapperNode::onExternalPose(
     ++external_rejected_;
     return;
   }
-  const math::SE2 z = ros_conv::toSE2(msg->pose.pose);
-  const Eigen::Matrix3d cov = ros_conv::planarCovariance(msg->pose);
-  const Eigen::Matrix2d cxy = cov.topLeftCorner<2, 2>();
-  if (!std::isfinite(z.x_m) || !std::isfinite(z.y_m) || !cxy.allFinite() ||
-      cxy.determinant() <= 0.0 || cxy(0, 0) <= 0.0) {
-    ROS_ERROR_THROTTLE(10.0,
-                       "ekf_slam_mapper: external_pose with a non-finite pose or a position "
-                       "covariance that is not positive definite ignored");
+  ros_conv::PlanarPoseInput in;
+  try {
+    in = ros_conv::planarPoseInput(msg->pose, ros_conv::PoseYaw::kIfKnown);
+  } catch (const std::invalid_argument& e) {
+    ROS_ERROR_THROTTLE(10.0, "ekf_slam_mapper: external_pose ignored: %s", e.what());
     std::lock_guard<std::mutex> lock(mutex_);
     ++external_rejected_;
     return;
   }
+  const math::SE2& z = in.pose;
+  const Eigen::Matrix3d& cov = in.cov;
+  const bool with_yaw = in.has_yaw;
   std::lock_guard<std::mutex> lock(mutex_);
-  const bool with_yaw =
-      std::isfinite(cov(2, 2)) && cov(2, 2) > 0.0 && cov(2, 2) < 1e3 && std::isfinite(z.yaw_rad);
   // Gate: a copy takes the update; the real filter follows only when the innovation is plausible.
+  // A NaN innovation (d2) fails the gate too: the filter never takes a state it cannot undo.
   slam::LineEkfSlam trial = slam_->ekf();
-  const double d2 = with_yaw ? trial.updateExternalPose(z, cov)
-                             : trial.updateExternalPosition(Eigen::Vector2d(z.x_m, z.y_m), cxy);
-  if (d2 > math::chiSquareQuantile(external_gate_, with_yaw ? 3 : 2)) {
+  double d2 = std::numeric_limits<double>::quiet_NaN();
+  try {
+    d2 = with_yaw ? trial.updateExternalPose(z, cov)
+                  : trial.updateExternalPosition(Eigen::Vector2d(z.x_m, z.y_m),
+                                                 cov.topLeftCorner<2, 2>());
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(10.0, "ekf_slam_mapper: external_pose update failed: %s", e.what());
+  }
+  if (!(d2 <= math::chiSquareQuantile(external_gate_, with_yaw ? 3 : 2))) {
     ROS_WARN_THROTTLE(5.0, "ekf_slam_mapper: external pose rejected (Mahalanobis^2 %.1f)", d2);
     ++external_rejected_;
     return;

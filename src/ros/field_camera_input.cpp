@@ -9,7 +9,7 @@ FieldCameraInput::FieldCameraInput(const std::string& node, const ros::NodeHandl
                                    double default_tf_timeout_s)
     : camera_(node, ros_params::get<std::string>(pnh, "camera_model", "")),
       tf_(node, pnh, default_tf_timeout_s),
-      gate_(node, 0.0, ros_params::loadStampOrder(pnh), ImageGate::Output::kYuv),
+      gate_(node, 0.0, ros_params::loadImageIntake(pnh), ImageGate::Output::kYuv),
       priors_(ros_params::loadLightingPriors(pnh, &filter_, &priors_dir_)),
       field_(ros_params::loadFieldMap(pnh)),
       map_frame_(ros_params::getFrameId(pnh, "map_frame", ros_topics::kMapFrame)),

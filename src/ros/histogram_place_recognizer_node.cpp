@@ -76,7 +76,7 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh, r
   P::loadFields(pnh, places::PlaceRecognizerConfig::fields(), &rc);
   gate_ = ros_conv::ImageGate("histogram_place_recognizer",
                               P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
-                              P::loadStampOrder(pnh));
+                              P::loadImageIntake(pnh));
   train_batch_ = P::getInRange(pnh, "train_batch", kTrainBatch, 1, 100000);
   train_every_n_ = P::getInRange(pnh, "train_every_n", kTrainEveryN, 1, 100000);
   try {

@@ -16,8 +16,8 @@ ImageGate::Result ImageGate::accept(const sensor_msgs::Image& msg, cv::Mat* imag
       (msg.header.stamp - last_processed_).toSec() < 1.0 / max_rate_hz_)
     return Result::kTooSoon;
   try {
-    *image = output_ == Output::kYuv ? imageToYuv(msg) : imageToBgr8(msg);
-  } catch (const ImageFormatError& e) {
+    *image = output_ == Output::kYuv ? imageToYuv(msg, max_pixels_) : imageToBgr8(msg, max_pixels_);
+  } catch (const std::exception& e) {  // ImageFormatError, and cv::Exception or bad_alloc
     ROS_ERROR_THROTTLE(10.0, "%s: image dropped: %s", node_.c_str(), e.what());
     ++bad_images_;
     return Result::kBadImage;

@@ -102,10 +102,9 @@ void LineExtractorNode::onReconfigure(adaptive_perception::LineExtractorConfig& 
 
 void LineExtractorNode::onScan(const ros::MessageEvent<const sensor_msgs::LaserScan>& event) {
   const boost::shared_ptr<const sensor_msgs::LaserScan> msg = event.getConstMessage();
-  if (!(msg->angle_increment != 0.0f) || !std::isfinite(msg->angle_increment) ||
-      !(msg->range_max > 0.0f)) {
-    ROS_ERROR_THROTTLE(10.0, "line_extractor: scan with angle_increment %g, range_max %g dropped",
-                       msg->angle_increment, msg->range_max);
+  const laser::LaserScan2D scan = ros_conv::fromLaserScan(*msg);
+  if (const std::string problem = laser::scanGeometryProblem(scan); !problem.empty()) {
+    ROS_ERROR_THROTTLE(10.0, "line_extractor: scan dropped: %s", problem.c_str());
     ++bad_scans_;
     return;
   }
@@ -116,7 +115,7 @@ void LineExtractorNode::onScan(const ros::MessageEvent<const sensor_msgs::LaserS
     if (stamp_order_.check(msg->header.stamp, event.getPublisherName()) ==
         ros_conv::StampOrder::Verdict::kDrop)
       return;
-    segs = extractor_.extract(ros_conv::fromLaserScan(*msg));
+    segs = extractor_.extract(scan);
   }
   const LineSegmentArray lines = ros_conv::toLineSegmentArray(segs, msg->header);
   lines_pub_.publish(lines);

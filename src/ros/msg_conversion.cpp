@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/math/gaussian.h"
 #include "adaptive_perception/world/camera_model.h"
 #include "adaptive_perception/world/color_class.h"
 
@@ -16,22 +17,26 @@ namespace adaptive_perception::ros_conv {
 namespace enc = sensor_msgs::image_encodings;
 
 namespace {
-void checkBuffer(const sensor_msgs::Image& msg, int bytes_per_pixel) {
-  if (msg.width == 0 || msg.height == 0)
-    throw ImageFormatError("image is empty (" + std::to_string(msg.width) + "x" +
-                           std::to_string(msg.height) + ")");
-  if (msg.step < msg.width * bytes_per_pixel ||
-      msg.data.size() < static_cast<size_t>(msg.step) * msg.height)
-    throw ImageFormatError("image buffer too small for " + std::to_string(msg.width) + "x" +
-                           std::to_string(msg.height) + " " + msg.encoding + " (step " +
+/// Sizes in 64 bits: width x bytes per pixel and step x height cannot wrap (a bgr8 width of
+/// 1431655766 is 4294967298 bytes a row, 2 in 32 bits).
+void checkBuffer(const sensor_msgs::Image& msg, int bytes_per_pixel, std::int64_t max_pixels) {
+  const std::string size = std::to_string(msg.width) + "x" + std::to_string(msg.height);
+  if (msg.width == 0 || msg.height == 0) throw ImageFormatError("image is empty (" + size + ")");
+  const std::uint64_t pixels = static_cast<std::uint64_t>(msg.width) * msg.height;
+  if (max_pixels < 0 || pixels > static_cast<std::uint64_t>(max_pixels))
+    throw ImageFormatError("image " + size + " has " + std::to_string(pixels) +
+                           " pixels, more than the limit of " + std::to_string(max_pixels));
+  const std::uint64_t row = static_cast<std::uint64_t>(msg.width) * bytes_per_pixel;
+  if (msg.step < row || msg.data.size() < static_cast<std::uint64_t>(msg.step) * msg.height)
+    throw ImageFormatError("image buffer too small for " + size + " " + msg.encoding + " (step " +
                            std::to_string(msg.step) + ", " + std::to_string(msg.data.size()) +
                            " bytes)");
 }
 }  // namespace
 
-cv::Mat imageToYuv(const sensor_msgs::Image& msg) {
+cv::Mat imageToYuv(const sensor_msgs::Image& msg, std::int64_t max_pixels) {
   if (msg.encoding == enc::YUV422) {
-    checkBuffer(msg, 2);
+    checkBuffer(msg, 2, max_pixels);
     if (msg.width % 2 != 0)
       throw ImageFormatError("yuv422 image of odd width " + std::to_string(msg.width));
     const cv::Mat uyvy(msg.height, msg.width, CV_8UC2, const_cast<std::uint8_t*>(msg.data.data()),
@@ -39,7 +44,7 @@ cv::Mat imageToYuv(const sensor_msgs::Image& msg) {
     return color::unpackUyvy(uyvy);
   }
   if (msg.encoding == enc::BGR8 || msg.encoding == enc::RGB8) {
-    checkBuffer(msg, 3);
+    checkBuffer(msg, 3, max_pixels);
     const bool bgr = msg.encoding == enc::BGR8;
     cv::Mat out(msg.height, msg.width, CV_8UC3);
     for (unsigned r = 0; r < msg.height; ++r) {
@@ -59,9 +64,9 @@ cv::Mat imageToYuv(const sensor_msgs::Image& msg) {
                          "' (accepted: yuv422, bgr8, rgb8)");
 }
 
-cv::Mat imageToBgr8(const sensor_msgs::Image& msg) {
+cv::Mat imageToBgr8(const sensor_msgs::Image& msg, std::int64_t max_pixels) {
   if (msg.encoding == enc::BGR8 || msg.encoding == enc::RGB8) {
-    checkBuffer(msg, 3);
+    checkBuffer(msg, 3, max_pixels);
     const cv::Mat view(msg.height, msg.width, CV_8UC3, const_cast<std::uint8_t*>(msg.data.data()),
                        msg.step);
     cv::Mat out;
@@ -72,7 +77,7 @@ cv::Mat imageToBgr8(const sensor_msgs::Image& msg) {
     return out;
   }
   if (msg.encoding == enc::MONO8) {  // grey: the three channels equal
-    checkBuffer(msg, 1);
+    checkBuffer(msg, 1, max_pixels);
     const cv::Mat view(msg.height, msg.width, CV_8UC1, const_cast<std::uint8_t*>(msg.data.data()),
                        msg.step);
     cv::Mat out;
@@ -80,7 +85,7 @@ cv::Mat imageToBgr8(const sensor_msgs::Image& msg) {
     return out;
   }
   if (msg.encoding == enc::YUV422) {
-    const cv::Mat yuv = imageToYuv(msg);
+    const cv::Mat yuv = imageToYuv(msg, max_pixels);
     cv::Mat out(yuv.size(), CV_8UC3);
     for (int r = 0; r < yuv.rows; ++r) {
       const cv::Vec3b* s = yuv.ptr<cv::Vec3b>(r);
@@ -109,10 +114,10 @@ sensor_msgs::Image bgr8ToImage(const cv::Mat& bgr, const std_msgs::Header& heade
   return *cv_bridge::CvImage(header, enc::BGR8, bgr).toImageMsg();
 }
 
-cv::Mat imageToMono8(const sensor_msgs::Image& msg) {
+cv::Mat imageToMono8(const sensor_msgs::Image& msg, std::int64_t max_pixels) {
   if (msg.encoding != enc::MONO8 && msg.encoding != enc::TYPE_8UC1)
     throw ImageFormatError("expected a mono8 image, got encoding '" + msg.encoding + "'");
-  checkBuffer(msg, 1);
+  checkBuffer(msg, 1, max_pixels);
   return cv::Mat(msg.height, msg.width, CV_8UC1, const_cast<std::uint8_t*>(msg.data.data()),
                  msg.step)
       .clone();
@@ -300,6 +305,37 @@ Eigen::Matrix3d planarCovariance(const geometry_msgs::PoseWithCovariance& msg) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) cov(i, j) = msg.covariance[idx[i] * 6 + idx[j]];
   return cov;
+}
+
+PlanarPoseInput planarPoseInput(const geometry_msgs::PoseWithCovariance& msg, PoseYaw yaw) {
+  const geometry_msgs::Point& p = msg.pose.position;
+  const geometry_msgs::Quaternion& q = msg.pose.orientation;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    throw std::invalid_argument("position (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
+                                ", " + std::to_string(p.z) + ") is not finite");
+  const double q_norm = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  if (!std::isfinite(q_norm) || q_norm < 1e-6)
+    throw std::invalid_argument("orientation quaternion of norm " + std::to_string(q_norm) +
+                                " is not a rotation");
+  PlanarPoseInput in;
+  in.pose = toSE2(msg.pose);
+  const Eigen::Matrix3d cov = planarCovariance(msg);
+  if (cov.hasNaN()) throw std::invalid_argument("the (x, y, yaw) covariance holds a NaN");
+  in.has_yaw = yaw == PoseYaw::kRequired ||
+               (std::isfinite(cov(2, 2)) && cov(2, 2) > 0.0 && cov(2, 2) < kUnknownYawVariance);
+  // The used block is checked as sent (symmetric to 1e-9), then symmetrised and checked again:
+  // what is returned is what passed (a Cholesky factorisation reads one triangle only).
+  const int n = in.has_yaw ? 3 : 2;
+  const Eigen::MatrixXd used = cov.topLeftCorner(n, n);
+  const Eigen::MatrixXd symmetric = 0.5 * (used + used.transpose());
+  std::string problem = math::covarianceProblem(used);
+  if (problem.empty()) problem = math::covarianceProblem(symmetric);
+  if (!problem.empty())
+    throw std::invalid_argument(std::string("the ") + (in.has_yaw ? "(x, y, yaw)" : "(x, y)") +
+                                " covariance " + problem);
+  in.cov = cov;
+  in.cov.topLeftCorner(n, n) = symmetric;
+  return in;
 }
 
 Eigen::Isometry3d mapToOdom(const math::SE2& map_to_base, const Eigen::Isometry3d& odom_to_base) {

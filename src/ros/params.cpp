@@ -204,8 +204,26 @@ config::ParameterDoc imageTransportParameter() {
           "JPEG or PNG)"};
 }
 
+namespace {
+constexpr int kMaxImagePixelsLimit = 2'000'000'000;  // an XML-RPC int
+}  // namespace
+
+ros_conv::ImageIntakeConfig loadImageIntake(const ros::NodeHandle& pnh) {
+  ros_conv::ImageIntakeConfig c;
+  c.order = loadStampOrder(pnh);
+  c.max_pixels =
+      getInRange(pnh, "max_image_pixels", static_cast<int>(c.max_pixels), 1, kMaxImagePixelsLimit);
+  return c;
+}
+
 std::vector<config::ParameterDoc> imageIntakeParameters() {
-  return {stampOrderParameter(), imageTransportParameter()};
+  const config::Range range = config::closed(1, kMaxImagePixelsLimit);
+  return {stampOrderParameter(),
+          {"max_image_pixels", "int", std::to_string(ros_conv::ImageIntakeConfig().max_pixels),
+           range.text(),
+           "an image (raw, or compressed before it is decoded) with more pixels (width x height) "
+           "is dropped with an error"},
+          imageTransportParameter()};
 }
 
 namespace {

@@ -91,9 +91,8 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   checkParticleMemory(pnh, input_.priors(), c);
 
   math::SE2 initial;
-  Eigen::Matrix3d initial_cov;
-  if (P::loadInitialPose(pnh, kInitialPoseStd, &initial, &initial_cov))
-    pending_pose_ = configured_pose_ = std::make_pair(initial, initial_cov);
+  if (P::loadInitialPose(pnh, kInitialPoseStd, &initial, &initial_pose_cov_))
+    pending_pose_ = configured_pose_ = std::make_pair(initial, initial_pose_cov_);
 
   odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   base_frame_ = P::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
@@ -256,6 +255,22 @@ void RbpfLocalizerNode::publish(const std_msgs::Header& image_header,
 }
 
 void RbpfLocalizerNode::onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg) {
+  // rviz sends x, y variance 0.25 and yaw 0.068; a message with no covariance at all (zeros) gets
+  // ~initial_pose_std. Anything else is read as every node reads a pose input, and refused when
+  // broken.
+  geometry_msgs::PoseWithCovariance input = msg->pose;
+  if (ros_conv::planarCovariance(input).isZero(0.0)) {
+    input.covariance[0] = initial_pose_cov_(0, 0);
+    input.covariance[7] = initial_pose_cov_(1, 1);
+    input.covariance[35] = initial_pose_cov_(2, 2);
+  }
+  ros_conv::PlanarPoseInput in;
+  try {
+    in = ros_conv::planarPoseInput(input, ros_conv::PoseYaw::kRequired);
+  } catch (const std::invalid_argument& e) {
+    ROS_ERROR("rbpf_localizer: initialpose ignored: %s", e.what());
+    return;
+  }
   Eigen::Isometry3d pose = ros_conv::toIsometry(msg->pose.pose);
   const std::string& map_frame = input_.mapFrame();
   if (!msg->header.frame_id.empty() && msg->header.frame_id != map_frame) {
@@ -272,19 +287,20 @@ void RbpfLocalizerNode::onInitialPose(const geometry_msgs::PoseWithCovarianceSta
       return;
     }
   }
-  Eigen::Matrix3d cov = ros_conv::planarCovariance(msg->pose);
-  // rviz sends x, y variance 0.25 and yaw 0.068; a zero or broken covariance gets the defaults.
-  if (!cov.allFinite() || cov(0, 0) <= 0 || cov(1, 1) <= 0 || cov(2, 2) <= 0 ||
-      Eigen::LLT<Eigen::Matrix3d>(cov).info() != Eigen::Success)
-    cov = Eigen::Vector3d(0.2 * 0.2, 0.2 * 0.2, 0.17 * 0.17).asDiagonal();
   const math::SE2 p = world::isometryToPlanar(pose);
+  const Eigen::Matrix3d& cov = in.cov;
   std::lock_guard<std::mutex> lock(mutex_);
   ROS_INFO("rbpf_localizer: initial pose (%.2f m, %.2f m, %.1f deg)", p.x_m, p.y_m,
            p.yaw_rad * 180.0 / M_PI);
-  if (rbpf_)
-    rbpf_->initGaussian(p, cov);
-  else
-    pending_pose_ = std::make_pair(p, cov);
+  try {
+    if (rbpf_)
+      rbpf_->initGaussian(p, cov);
+    else
+      pending_pose_ = std::make_pair(p, cov);
+  } catch (const std::exception& e) {  // planarPoseInput checked it: a failure here is a bug
+    ROS_ERROR("rbpf_localizer: initialpose ignored: %s", e.what());
+    return;
+  }
   ++resets_;
 }
 

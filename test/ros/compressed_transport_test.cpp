@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "adaptive_perception/color/color_space.h"
@@ -108,4 +109,52 @@ TEST(CompressedTransport, RefusesWhatItCannotReadNamingWhy) {
   } catch (const ros_conv::ImageFormatError& e) {
     EXPECT_NE(std::string(e.what()).find("jpeg_quality"), std::string::npos) << e.what();
   }
+}
+
+// A decompression bomb: a PNG's header can declare 32768 x 32768 pixels (a 1-bit PNG of that size
+// is about 130 kB; decoded as bgr8 it is 3 GiB). The size is read from the header and the image
+// refused before anything is decoded; a real image over a lowered limit is refused the same way,
+// and one within it is decoded.
+TEST(CompressedTransport, RefusesMorePixelsThanTheLimitBeforeDecoding) {
+  std::vector<std::uint8_t> jpeg, png;
+  cv::imencode(".jpg", testBgr(), jpeg);
+  cv::imencode(".png", testBgr(), png);
+  ASSERT_TRUE(ros_conv::encodedImageSize(jpeg));
+  EXPECT_EQ(*ros_conv::encodedImageSize(jpeg), cv::Size(80, 60));
+  ASSERT_TRUE(ros_conv::encodedImageSize(png));
+  EXPECT_EQ(*ros_conv::encodedImageSize(png), cv::Size(80, 60));
+  EXPECT_FALSE(ros_conv::encodedImageSize({0xff, 0xd8, 0xff}));  // a truncated JPEG
+  // FF 00 is no marker: a reader that took its next bytes as a segment length could land on a
+  // small frame hidden in the data while the decoder finds the real, large one.
+  const std::uint8_t head[6] = {0xff, 0xd8, 0xff, 0x00, 0x00, 0x04};
+  std::vector<std::uint8_t> stuffed(jpeg.size() + 4);
+  std::copy(head, head + 6, stuffed.begin());
+  std::copy(jpeg.begin() + 2, jpeg.end(), stuffed.begin() + 6);
+  EXPECT_FALSE(ros_conv::encodedImageSize(stuffed));
+  EXPECT_FALSE(ros_conv::encodedImageSize({}));
+
+  sensor_msgs::CompressedImage bomb;
+  bomb.format = "mono8; png compressed mono8";
+  bomb.data = png;  // the header of a real PNG, its size changed to 32768 x 32768
+  for (int k : {16, 20}) {
+    bomb.data[k] = 0x00;
+    bomb.data[k + 1] = 0x00;
+    bomb.data[k + 2] = 0x80;
+    bomb.data[k + 3] = 0x00;
+  }
+  EXPECT_EQ(*ros_conv::encodedImageSize(bomb.data), cv::Size(32768, 32768));
+  try {
+    ros_conv::decompressImage(bomb);
+    FAIL() << "decoded a PNG declaring 32768 x 32768 pixels";
+  } catch (const ros_conv::ImageFormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("1073741824 pixels) not decoded: more than the limit of "
+                                         "50000000"),
+              std::string::npos)
+        << e.what();
+  }
+  sensor_msgs::CompressedImage real;
+  real.format = "bgr8; png compressed bgr8";
+  real.data = png;
+  EXPECT_THROW(ros_conv::decompressImage(real, 80 * 60 - 1), ros_conv::ImageFormatError);
+  EXPECT_EQ(ros_conv::decompressImage(real, 80 * 60)->width, 80u);
 }

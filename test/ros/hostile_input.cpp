@@ -31,7 +31,12 @@
 //   trigger_topic (string)       the input whose stamp an output carries (latency, output fraction)
 //   output_topic (string)        the output watched; its message must start with a Header
 //   node (string)                the node's name, checked with the master at the end
-//   image_topic / scan_topic / lines_topic (string, "" = none): where hostile input goes
+//   image_topic / scan_topic / lines_topic / pose_topic (string, "" = none): where hostile input
+//                                goes; pose_topic takes PoseWithCovarianceStamped in pose_frame
+//                                (string, "map") that the node must refuse (initialpose,
+//                                external_pose)
+//   max_output_coordinate (1e4)  every output of every phase must be finite, and its positions
+//                                and line parameters within this of the origin (bounded)
 //   rate (1.0), storm_factor (10.0), max_storm_latency_s (2.0), min_output_fraction (0.5: outputs
 //   per trigger in pass B), settle_s (2.0: wall time after each phase)
 //   compare: identical  | min_identical_fraction (outputs with the same stamp in A and B that are
@@ -281,6 +286,18 @@ class Variants {
   std::vector<std::pair<std::string, M>> list_;
 };
 
+/// A change that makes an image one row of `width` pixels in `encoding` with `bytes` of data
+/// (and that step): a size whose byte count wraps in 32 bits.
+auto oneRow(const std::string& encoding, uint32_t width, uint32_t bytes) {
+  return [=](sensor_msgs::Image& m) {
+    m.encoding = encoding;
+    m.width = width;
+    m.height = 1;
+    m.step = bytes;
+    m.data.assign(bytes, 0);
+  };
+}
+
 std::vector<std::pair<std::string, sensor_msgs::Image>> hostileImages(
     const sensor_msgs::Image& good, const ros::Time& stamp) {
   using M = sensor_msgs::Image;
@@ -297,6 +314,9 @@ std::vector<std::pair<std::string, sensor_msgs::Image>> hostileImages(
       .add("dimensions far larger than the data", [](M& m) { m.width = m.height = 100000; })
       .add("step overflowing step x height",
            [](M& m) { m.step = std::numeric_limits<uint32_t>::max(); })
+      .add("bgr8 width whose row size wraps in 32 bits (1431655766 x 1, step 2)",
+           oneRow("bgr8", 1431655766u, 2))
+      .add("yuv422 width 0x80000002 (a negative int)", oneRow("yuv422", 0x80000002u, 4))
       .add("valid image of another size", [](M& m) {
         m.width /= 2;
         m.height /= 2;
@@ -387,6 +407,74 @@ std::vector<std::pair<std::string, ap::LineSegmentArray>> hostileLines(const std
       .add("empty frame id", [](M& m) { m.header.frame_id.clear(); })
       .addStale()
       .list();
+}
+
+/// Pose inputs a node must refuse: each would kill it, or turn its estimate to NaN, if taken.
+std::vector<std::pair<std::string, geometry_msgs::PoseWithCovarianceStamped>> hostilePoses(
+    const std::string& frame, const ros::Time& stamp) {
+  using M = geometry_msgs::PoseWithCovarianceStamped;
+  M good;
+  good.header.frame_id = frame;
+  good.pose.pose.position.x = 0.5;
+  good.pose.pose.position.y = -0.5;
+  good.pose.pose.orientation.w = 1.0;
+  good.pose.covariance[0] = good.pose.covariance[7] = 0.25;  // rviz's
+  good.pose.covariance[35] = 0.068;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  return Variants<M>(good, stamp)
+      .add("yaw-x covariance on one side only (covariance[30] = 10)",
+           [](M& m) { m.pose.covariance[30] = 10.0; })
+      .add("NaN yaw-x covariance (covariance[30])", [&](M& m) { m.pose.covariance[30] = nan; })
+      .add("NaN x-y covariance", [&](M& m) { m.pose.covariance[1] = m.pose.covariance[6] = nan; })
+      .add("x-y covariance not positive definite",
+           [](M& m) { m.pose.covariance[1] = m.pose.covariance[6] = 1.0; })
+      .add("infinite x variance", [&](M& m) { m.pose.covariance[0] = inf; })
+      .add("NaN position", [&](M& m) { m.pose.pose.position.x = nan; })
+      .add("zero quaternion", [](M& m) { m.pose.pose.orientation.w = 0.0; })
+      .add("NaN quaternion", [&](M& m) { m.pose.pose.orientation.z = nan; })
+      .list();
+}
+
+/// Why an output is not finite or not bounded (|coordinate| <= bound), or "": the published
+/// types whose numbers mean positions or line parameters are read; others pass.
+std::string outputProblem(const Recorded& r, double bound) {
+  std::string why;
+  const auto check = [&](double v, const char* what) {
+    if (why.empty() && !(std::isfinite(v) && std::abs(v) <= bound))
+      why = std::string(what) + " = " + std::to_string(v);
+  };
+  const std::string type = r.msg->getDataType();
+  if (type == "geometry_msgs/PoseWithCovarianceStamped") {
+    auto m = r.msg->instantiate<geometry_msgs::PoseWithCovarianceStamped>();
+    const auto& p = m->pose.pose;
+    check(p.position.x, "position.x");
+    check(p.position.y, "position.y");
+    check(p.position.z, "position.z");
+    check(p.orientation.x, "orientation.x");
+    check(p.orientation.y, "orientation.y");
+    check(p.orientation.z, "orientation.z");
+    check(p.orientation.w, "orientation.w");
+    for (double c : m->pose.covariance) check(c, "a covariance entry");
+  } else if (type == "adaptive_perception/LineSegmentArray") {
+    auto m = r.msg->instantiate<ap::LineSegmentArray>();
+    for (const auto& l : m->segments) {
+      check(l.rho, "rho");
+      check(l.alpha, "alpha");
+      for (double c : l.covariance) check(c, "a line covariance entry");
+      check(l.start.x, "start.x");
+      check(l.start.y, "start.y");
+      check(l.end.x, "end.x");
+      check(l.end.y, "end.y");
+    }
+  } else if (type == "adaptive_perception/TrackedObject") {
+    auto m = r.msg->instantiate<ap::TrackedObject>();
+    check(m->box.x_offset, "box.x_offset");
+    check(m->box.y_offset, "box.y_offset");
+    check(m->box.width, "box.width");
+    check(m->box.height, "box.height");
+  }
+  return why;
 }
 
 // ---- dynamic_reconfigure and services
@@ -484,6 +572,7 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
   const std::string image_topic = p.param<std::string>("image_topic", "");
   const std::string scan_topic = p.param<std::string>("scan_topic", "");
   const std::string lines_topic = p.param<std::string>("lines_topic", "");
+  const std::string pose_topic = p.param<std::string>("pose_topic", "");
   const double rate = p.param("rate", 1.0), storm_factor = p.param("storm_factor", 10.0);
   const double max_storm_latency = p.param("max_storm_latency_s", 2.0);
   const double min_output_fraction = p.param("min_output_fraction", 0.5);
@@ -549,6 +638,13 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
     lines_pub = nh.advertise<ap::LineSegmentArray>(lines_topic, 100);
     support::waitUntil([&] { return lines_pub.getNumSubscribers() > 0; }, 10.0);
     send(lines_pub, hostileLines(p.param<std::string>("lines_frame", "laser"), after));
+  }
+  ros::Publisher pose_pub;
+  if (!pose_topic.empty()) {
+    pose_pub = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>(pose_topic, 100);
+    ASSERT_TRUE(support::waitUntil([&] { return pose_pub.getNumSubscribers() > 0; }, 10.0))
+        << node << " does not subscribe to " << pose_topic;
+    send(pose_pub, hostilePoses(p.param<std::string>("pose_frame", "map"), after));
   }
   ros::WallDuration(settle).sleep();
 
@@ -622,6 +718,20 @@ TEST(HostileInput, KeepsPublishingCorrectOutput) {
               node.c_str(), hostile_cases, b.size(), triggers);
   EXPECT_GE(static_cast<double>(b.size()), min_output_fraction * triggers)
       << node << " stopped publishing after the hostile input";
+
+  // Whatever came in, every output was finite and bounded.
+  const double bound = p.param("max_output_coordinate", 1e4);
+  int outputs_checked = 0;
+  for (const char* phase : {"A", "hostile", "storm", "B"}) {
+    for (const Recorded& r : recorder.phase(phase)) {
+      const std::string why = outputProblem(r, bound);
+      EXPECT_EQ(why, "") << node << " published " << why << " in phase " << phase << " at "
+                         << r.stamp.toSec() << " s";
+      ++outputs_checked;
+    }
+  }
+  std::printf("hostile_input: %s %d outputs checked for finite values within %g\n", node.c_str(),
+              outputs_checked, bound);
 
   const auto ma = byStamp(a), mb = byStamp(b);
   if (compare == "identical" || compare == "image" || compare == "box" || compare == "place") {

@@ -3,17 +3,25 @@
 // and conditionals, and sampling.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "adaptive_perception/math/rng.h"
 
 namespace adaptive_perception::math {
 
+/// Why `cov` cannot be a Gaussian's covariance, or "" when it can: not square, a non-finite entry
+/// (named by its row and column), not symmetric (Eigen's isApprox with the transpose, relative
+/// precision 1e-9: the largest difference is named), or not positive definite (its Cholesky
+/// factorisation fails). The one test of a covariance: Gaussian's constructor and every node's
+/// pose-with-covariance input apply it.
+std::string covarianceProblem(const Eigen::MatrixXd& cov);
+
 class Gaussian {
  public:
   Gaussian() = default;
-  /// Throws std::invalid_argument when the sizes disagree or cov is not symmetric positive
-  /// definite.
+  /// Throws std::invalid_argument when the sizes disagree or covarianceProblem(cov) names a
+  /// problem.
   Gaussian(Eigen::VectorXd mean, Eigen::MatrixXd cov);
 
   int dim() const { return static_cast<int>(mean_.size()); }

@@ -7,8 +7,8 @@
 // in docs/nodes/appearance_localizer.md; the parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
-#include <nav_msgs/Odometry.h>
 #include <image_transport/image_transport.h>
+#include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Empty.h>
@@ -34,7 +34,9 @@ class AppearanceLocalizerNode {
   ~AppearanceLocalizerNode();
 
  private:
+  /// processImage() through ros_conv::processGuarded: no exception ends the node.
   void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void processImage(const sensor_msgs::ImageConstPtr& msg);
   void onOdom(const nav_msgs::OdometryConstPtr& msg);
   void onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool onGlobalLocalization(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -59,7 +61,8 @@ class AppearanceLocalizerNode {
   long frames_ = 0, classified_ = 0, reinits_ = 0;
   bool stable_ = false;
   std::string last_room_;
-  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
+  ros_conv::NodeDiagnostics
+      diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

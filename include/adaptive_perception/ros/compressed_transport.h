@@ -9,12 +9,20 @@
 //
 // Publisher parameters, in <topic>/compressed/ as ROS's plugin names them: format (jpeg | png,
 // default jpeg), jpeg_quality (1..100, default 80), png_level (0..9, default 9), as ROS's.
+// The subscriber refuses, before decoding, an image of more pixels than the subscribing node's
+// ~max_image_pixels (ros_conv::kDefaultMaxImagePixels when unset).
 #include <image_transport/simple_publisher_plugin.h>
 #include <image_transport/simple_subscriber_plugin.h>
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "adaptive_perception/ros/msg_conversion.h"
 
 namespace adaptive_perception::ros_conv {
 
@@ -28,9 +36,16 @@ struct CompressionConfig {
 /// config (naming the field).
 sensor_msgs::CompressedImage compressImage(const sensor_msgs::Image& image,
                                            const CompressionConfig& config);
-/// The image a CompressedImage holds (bgr8, or mono8 for a grey one), with its header; throws
-/// ImageFormatError when the data is not a JPEG or PNG file.
-sensor_msgs::ImagePtr decompressImage(const sensor_msgs::CompressedImage& compressed);
+/// The width and height a PNG (its IHDR chunk) or JPEG (its first start-of-frame segment) file
+/// declares, read from its header without decoding; nullopt for anything else, a truncated header,
+/// or a zero size.
+std::optional<cv::Size> encodedImageSize(const std::vector<std::uint8_t>& data);
+/// The image a CompressedImage holds (bgr8, or mono8 for a grey one), with its header. Its size is
+/// read from the file's header first (a 130 kB PNG can declare 32768 x 32768 pixels, 3 GiB once
+/// decoded): throws ImageFormatError, before decoding, when the data is not a JPEG or PNG file or
+/// declares more than `max_pixels` pixels, and when decoding fails.
+sensor_msgs::ImagePtr decompressImage(const sensor_msgs::CompressedImage& compressed,
+                                      std::int64_t max_pixels = kDefaultMaxImagePixels);
 
 class CompressedPublisher
     : public image_transport::SimplePublisherPlugin<sensor_msgs::CompressedImage> {

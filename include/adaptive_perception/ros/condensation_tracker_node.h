@@ -19,10 +19,10 @@
 #include "adaptive_perception/SetTarget.h"
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/ros/image_gate.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 #include "adaptive_perception/tracking/box_condensation_tracker.h"
 #include "adaptive_perception/tracking/condensation_tracker.h"
 #include "adaptive_perception/tracking/ellipse_tracker.h"
-#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -34,7 +34,9 @@ class CondensationTrackerNode {
   ~CondensationTrackerNode();
 
  private:
+  /// processImage() through ros_conv::processGuarded: no exception ends the node.
   void onImage(const sensor_msgs::ImageConstPtr& msg);
+  void processImage(const sensor_msgs::ImageConstPtr& msg);
   void onTarget(const geometry_msgs::PolygonStampedConstPtr& msg);
   bool onSetTarget(SetTarget::Request& req, SetTarget::Response& res);
   bool requestTarget(const cv::Rect2d& roi, std::string* why);
@@ -62,7 +64,8 @@ class CondensationTrackerNode {
   long frames_ = 0, lost_frames_ = 0, reacquired_ = 0;
   bool lost_ = false;
   double confidence_ = 0.0;
-  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
+  ros_conv::NodeDiagnostics
+      diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

@@ -12,6 +12,7 @@
 #include <std_msgs/Header.h>
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <stdexcept>
 #include <string>
@@ -32,13 +33,20 @@ class ImageFormatError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The most pixels (width x height) an image may have before a node refuses it, unless its
+/// ~max_image_pixels says otherwise: 50 megapixels, above any robot camera (8K UHD is 33.2 MP)
+/// while a bgr8 copy stays under 150 MB. Written once here; the camera nodes' parameter, the
+/// compressed transport's decoder and the image readers take it.
+constexpr std::int64_t kDefaultMaxImagePixels = 50'000'000;
+
 /// The image as per-pixel YUV (CV_8UC3, channels Y U V, BT.601 full range). Accepts `yuv422`
-/// (UYVY), `bgr8` and `rgb8`; throws ImageFormatError naming any other encoding or a malformed
-/// buffer.
-cv::Mat imageToYuv(const sensor_msgs::Image& msg);
+/// (UYVY), `bgr8` and `rgb8`; throws ImageFormatError naming any other encoding, a malformed
+/// buffer (sizes computed in 64 bits) or more than `max_pixels` pixels.
+cv::Mat imageToYuv(const sensor_msgs::Image& msg, std::int64_t max_pixels = kDefaultMaxImagePixels);
 /// The image as bgr8 (CV_8UC3, its own memory). Accepts `bgr8`, `rgb8`, `mono8` (the three
-/// channels equal) and `yuv422` (UYVY, BT.601 full range); throws ImageFormatError naming any other encoding or a malformed buffer.
-cv::Mat imageToBgr8(const sensor_msgs::Image& msg);
+/// channels equal) and `yuv422` (UYVY, BT.601 full range); throws ImageFormatError as imageToYuv.
+cv::Mat imageToBgr8(const sensor_msgs::Image& msg,
+                    std::int64_t max_pixels = kDefaultMaxImagePixels);
 /// UYVY (CV_8UC2) as a `yuv422` image message.
 sensor_msgs::Image uyvyToImage(const cv::Mat& uyvy, const std_msgs::Header& header);
 /// mono8 (CV_8UC1) / bgr8 (CV_8UC3) image messages.
@@ -47,7 +55,8 @@ sensor_msgs::Image bgr8ToImage(const cv::Mat& bgr, const std_msgs::Header& heade
 /// The axis-aligned bounding box of a polygon's points (pixels); empty for no point.
 cv::Rect2d polygonBox(const geometry_msgs::Polygon& polygon);
 /// A mono8 image as CV_8UC1 (shares no memory with the message); throws ImageFormatError otherwise.
-cv::Mat imageToMono8(const sensor_msgs::Image& msg);
+cv::Mat imageToMono8(const sensor_msgs::Image& msg,
+                     std::int64_t max_pixels = kDefaultMaxImagePixels);
 
 /// CameraInfo of a pinhole camera without distortion.
 sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& camera,
@@ -76,6 +85,26 @@ geometry_msgs::PoseWithCovarianceStamped toPoseWithCovariance(const math::SE2& p
                                                               const std_msgs::Header& header);
 /// The (x, y, yaw) block of a PoseWithCovariance's covariance.
 Eigen::Matrix3d planarCovariance(const geometry_msgs::PoseWithCovariance& msg);
+
+/// A yaw variance at or above this says "yaw unknown" in a pose input read with PoseYaw::kIfKnown
+/// (1e3 rad^2: a standard deviation of 31 rad, no information about a heading).
+constexpr double kUnknownYawVariance = 1e3;
+/// How a pose input's heading is read. kRequired (initialpose): the pose and the whole (x, y, yaw)
+/// covariance are used. kIfKnown (external_pose): the heading is used only when its variance is
+/// finite, positive and below kUnknownYawVariance; otherwise only the position and its (x, y)
+/// block are.
+enum class PoseYaw { kRequired, kIfKnown };
+struct PlanarPoseInput {
+  math::SE2 pose;
+  Eigen::Matrix3d cov;  // symmetrised; with has_yaw false only its (x, y) block is checked
+  bool has_yaw = true;
+};
+/// A pose-with-covariance input (initialpose, external_pose) read the one way every node reads
+/// it: the position finite, the orientation a finite quaternion of non-zero norm, no NaN in the
+/// (x, y, yaw) covariance, and the part of it that is used a covariance by
+/// math::covarianceProblem (finite, symmetric, positive definite). Throws std::invalid_argument
+/// naming what is wrong; the node logs it and keeps its estimate.
+PlanarPoseInput planarPoseInput(const geometry_msgs::PoseWithCovariance& msg, PoseYaw yaw);
 /// map -> odom from the estimated map -> base and the odometry odom -> base (flattened to the
 /// plane), as a localizer publishes it.
 Eigen::Isometry3d mapToOdom(const math::SE2& map_to_base, const Eigen::Isometry3d& odom_to_base);

@@ -15,6 +15,7 @@
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/math/se2.h"
+#include "adaptive_perception/ros/image_gate.h"
 #include "adaptive_perception/ros/stamp_order.h"
 #include "adaptive_perception/world/field_map.h"
 
@@ -149,7 +150,10 @@ config::ParameterDoc frameParameter(const std::string& frame);
 /// image_transport's own nodes read it. Throws ParamError naming a transport that is not installed.
 image_transport::TransportHints imageTransportHints(const ros::NodeHandle& pnh);
 config::ParameterDoc imageTransportParameter();
-/// The rows of an image node's intake: ~time_back_restart_s and ~image_transport.
+/// An image node's intake (ros_conv::ImageGate): ~time_back_restart_s and ~max_image_pixels.
+ros_conv::ImageIntakeConfig loadImageIntake(const ros::NodeHandle& pnh);
+/// The rows of an image node's intake: ~time_back_restart_s, ~max_image_pixels and
+/// ~image_transport.
 std::vector<config::ParameterDoc> imageIntakeParameters();
 /// ~seed of a node that samples (default 1, [0, 2^30]): the same seed replays the same run.
 std::uint64_t loadSeed(const ros::NodeHandle& pnh);

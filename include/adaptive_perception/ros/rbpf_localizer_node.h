@@ -22,9 +22,9 @@
 #include "adaptive_perception/color/color_lut.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
 #include "adaptive_perception/ros/field_camera_input.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
-#include "adaptive_perception/ros/node_diagnostics.h"
 
 namespace adaptive_perception {
 
@@ -60,6 +60,7 @@ class RbpfLocalizerNode {
   // is (re)built.
   std::optional<std::pair<math::SE2, Eigen::Matrix3d>> pending_pose_;
   std::optional<std::pair<math::SE2, Eigen::Matrix3d>> configured_pose_;  // ~initial_pose
+  Eigen::Matrix3d initial_pose_cov_;  // from ~initial_pose_std: an initialpose without covariance
   std::string odom_frame_, base_frame_;
   bool publish_tf_ = true;
   double transform_tolerance_s_ = 0.0;  // from ~transform_tolerance_s
@@ -73,12 +74,12 @@ class RbpfLocalizerNode {
   image_transport::Publisher classified_pub_, classified_color_pub_;
   ros_conv::ServiceQueue service_queue_;  // global_localization answers while a step waits
   ros::ServiceServer global_srv_;
-  long frames_ = 0, resets_ = 0, relocalizations_ = 0,
-       mirror_flips_ = 0;
+  long frames_ = 0, resets_ = 0, relocalizations_ = 0, mirror_flips_ = 0;
   double last_check_score_ = std::numeric_limits<double>::quiet_NaN();
   localization::RbpfLocalizer::StepResult last_;
   double last_compute_s_ = 0.0;
-  ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
+  ros_conv::NodeDiagnostics
+      diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 
 }  // namespace adaptive_perception

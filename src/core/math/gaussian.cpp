@@ -8,6 +8,32 @@ namespace adaptive_perception::math {
 
 namespace {
 constexpr double kLog2Pi = 1.8378770664093454836;
+
+/// covarianceProblem() short of the Cholesky factorisation, which the caller does.
+std::string shapeProblem(const Eigen::MatrixXd& cov) {
+  if (cov.rows() != cov.cols())
+    return "is " + std::to_string(cov.rows()) + "x" + std::to_string(cov.cols()) + ", not square";
+  for (Eigen::Index i = 0; i < cov.rows(); ++i)
+    for (Eigen::Index j = 0; j < cov.cols(); ++j)
+      if (!std::isfinite(cov(i, j)))
+        return "entry (" + std::to_string(i) + ", " + std::to_string(j) + ") is " +
+               std::to_string(cov(i, j)) + ", not finite";
+  if (!cov.isApprox(cov.transpose(), 1e-9)) {
+    Eigen::Index i = 0, j = 0;
+    (cov - cov.transpose()).cwiseAbs().maxCoeff(&i, &j);
+    return "is not symmetric (entry (" + std::to_string(i) + ", " + std::to_string(j) + ") is " +
+           std::to_string(cov(i, j)) + ", entry (" + std::to_string(j) + ", " + std::to_string(i) +
+           ") " + std::to_string(cov(j, i)) + ")";
+  }
+  return "";
+}
+constexpr const char* kNotPositiveDefinite = "is not positive definite";
+}  // namespace
+
+std::string covarianceProblem(const Eigen::MatrixXd& cov) {
+  const std::string problem = shapeProblem(cov);
+  if (!problem.empty()) return problem;
+  return Eigen::LLT<Eigen::MatrixXd>(cov).info() == Eigen::Success ? "" : kNotPositiveDefinite;
 }
 
 Gaussian::Gaussian(Eigen::VectorXd mean, Eigen::MatrixXd cov)
@@ -17,13 +43,11 @@ Gaussian::Gaussian(Eigen::VectorXd mean, Eigen::MatrixXd cov)
                                 std::to_string(cov_.cols()) + " but the mean has " +
                                 std::to_string(mean_.size()) + " components");
   }
-  if (!cov_.isApprox(cov_.transpose(), 1e-9)) {
-    throw std::invalid_argument("Gaussian: covariance is not symmetric");
-  }
+  const std::string problem = shapeProblem(cov_);
+  if (!problem.empty()) throw std::invalid_argument("Gaussian: covariance " + problem);
   llt_.compute(cov_);
-  if (llt_.info() != Eigen::Success) {
-    throw std::invalid_argument("Gaussian: covariance is not positive definite");
-  }
+  if (llt_.info() != Eigen::Success)
+    throw std::invalid_argument(std::string("Gaussian: covariance ") + kNotPositiveDefinite);
   const double log_det = 2.0 * llt_.matrixL().toDenseMatrix().diagonal().array().log().sum();
   log_norm_ = -0.5 * (static_cast<double>(mean_.size()) * kLog2Pi + log_det);
 }

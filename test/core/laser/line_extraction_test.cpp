@@ -212,6 +212,45 @@ TEST(LineExtraction, DropsInvalidRanges) {
   EXPECT_TRUE(ex.extract(empty).empty());
 }
 
+// A scan whose angle_min is +inf (a hostile or broken driver) has finite ranges at non-finite
+// bearings: its geometry is refused by name, and an extractor given it anyway makes no segment
+// (the split used to read before the start of its points and published NaN segments).
+TEST(LineExtraction, NonFiniteScanGeometryIsNamedAndGivesNoSegments) {
+  math::Rng rng(5);
+  LaserScan2D scan = roomScan(-2.0, 4.0, -1.5, 2.5, 361, 2 * M_PI * 0.75, 0.005, &rng);
+  EXPECT_EQ(scanGeometryProblem(scan), "");
+  const auto problem = [&](auto change) {
+    LaserScan2D s = scan;
+    change(s);
+    return scanGeometryProblem(s);
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(problem([&](LaserScan2D& s) { s.angle_min_rad = inf; }), "angle_min inf is not finite");
+  EXPECT_NE(problem([&](LaserScan2D& s) { s.angle_increment_rad = 0.0; }).find("angle_increment 0"),
+            std::string::npos);
+  EXPECT_NE(problem([&](LaserScan2D& s) {
+              s.angle_increment_rad = std::nan("");
+            }).find("angle_increment"),
+            std::string::npos);
+  EXPECT_NE(problem([&](LaserScan2D& s) { s.angle_increment_rad = 1e307; }).find("last beam"),
+            std::string::npos);
+  EXPECT_NE(problem([&](LaserScan2D& s) { s.range_max_m = 0.0; }).find("range_max 0"),
+            std::string::npos);
+  EXPECT_NE(problem([&](LaserScan2D& s) { s.range_min_m = std::nan(""); }).find("range_min"),
+            std::string::npos);
+  EXPECT_EQ(problem([&](LaserScan2D& s) { s.range_max_m = inf; }), "");  // no limit
+  for (auto method : {SplitMethod::kRecursive, SplitMethod::kHullTree}) {
+    LineExtractionConfig cfg;
+    cfg.split_method = method;
+    LineExtractor ex(cfg);
+    LaserScan2D s = scan;
+    s.angle_min_rad = inf;
+    std::vector<ScanPoint> pts;
+    EXPECT_EQ(validPoints(s, 0.0, &pts), static_cast<int>(s.ranges_m.size()));
+    EXPECT_TRUE(ex.extract(s).empty());
+  }
+}
+
 TEST(LineExtraction, RejectsBadConfigByName) {
   LineExtractionConfig c;
   c.split_threshold_m = 0.0;

@@ -47,6 +47,37 @@ TEST(Gaussian, RejectsBadCovariance) {
   EXPECT_THROW(Gaussian(Eigen::VectorXd::Zero(2), not_pd), std::invalid_argument);
 }
 
+// The pose-with-covariance inputs of the nodes (initialpose, external_pose) are checked by this one
+// function: a cross term written on one side only, a NaN cross term, and a matrix that is symmetric
+// but not positive definite are each named; rviz's initial pose covariance passes.
+TEST(Gaussian, CovarianceProblemNamesWhatIsWrong) {
+  using adaptive_perception::math::covarianceProblem;
+  Eigen::MatrixXd rviz = Eigen::Vector3d(0.25, 0.25, 0.068).asDiagonal();
+  EXPECT_EQ(covarianceProblem(rviz), "");
+  Eigen::MatrixXd one_sided = rviz;
+  one_sided(2, 0) = 10.0;  // covariance[30] of a 6x6 message: yaw-x on one side only
+  EXPECT_NE(covarianceProblem(one_sided).find("not symmetric (entry (2, 0) is 10"),
+            std::string::npos)
+      << covarianceProblem(one_sided);
+  // Eigen's LLT reads the lower triangle only: it accepts a small one-sided term, which is how
+  // such a covariance passed rbpf_localizer's check and then failed in the filter.
+  Eigen::MatrixXd small_one_sided = rviz;
+  small_one_sided(2, 0) = 0.1;
+  EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(small_one_sided).info(), Eigen::Success);
+  EXPECT_NE(covarianceProblem(small_one_sided).find("not symmetric"), std::string::npos);
+  Eigen::MatrixXd nan_cross = rviz;
+  nan_cross(2, 0) = nan_cross(0, 2) = std::nan("");
+  EXPECT_NE(covarianceProblem(nan_cross).find("entry (0, 2) is nan"), std::string::npos)
+      << covarianceProblem(nan_cross);
+  Eigen::MatrixXd indefinite = rviz;
+  indefinite(0, 1) = indefinite(1, 0) = 1.0;  // |rho| > 1
+  EXPECT_EQ(covarianceProblem(indefinite), "is not positive definite");
+  EXPECT_NE(covarianceProblem(Eigen::MatrixXd::Identity(2, 3)).find("not square"),
+            std::string::npos);
+  EXPECT_THROW(Gaussian(Eigen::VectorXd::Zero(3), one_sided), std::invalid_argument);
+  EXPECT_THROW(Gaussian(Eigen::VectorXd::Zero(3), nan_cross), std::invalid_argument);
+}
+
 TEST(Gaussian, MarginalPicksTheBlock) {
   Rng rng(2);
   const Eigen::MatrixXd s = randomSpd(4, rng);
