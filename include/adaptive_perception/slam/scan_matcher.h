@@ -80,10 +80,14 @@ Eigen::Matrix3d matchInformation(const LikelihoodField& field,
 
 /// Laser odometry: each scan matched against a local map of the last keyframes, the wheel
 /// odometry's increment as the prior. The match and the prior are fused by their information
-/// (matchInformation; the odometry's from odom_std_m + odom_std_per_m * distance and
-/// odom_std_rad + odom_std_per_rad * turn), so that the odometry fills in what the scan cannot
-/// see, unless the two disagree beyond odometry_gate_chi2: then the match alone when it scores at
-/// least odometry_gate_min_score, else the odometry alone. A scan becomes a keyframe (and the field is rebuilt) once the robot has moved
+/// (matchInformation H; the odometry's P^-1 from odom_std_m + odom_std_per_m * distance and
+/// odom_std_rad + odom_std_per_rad * turn) along the directions v of the generalised
+/// eigenproblem H v = lambda P^-1 v (lambda: the scan's information along v in units of the
+/// odometry's). A direction with lambda below min_match_information is degenerate (rotation in a
+/// round hall, the motion along a bare corridor): there the pose keeps the prior's value, whatever
+/// the match says. Along the others the two are fused unless they disagree there beyond
+/// odometry_gate_chi2: then the match alone along them when it scores at least
+/// odometry_gate_min_score, else the odometry alone. A scan becomes a keyframe (and the field is rebuilt) once the robot has moved
 /// keyframe_translation_m or turned keyframe_rotation_rad from the last one. A match scoring
 /// below min_score is not trusted: the pose follows the wheel odometry. When the odometry's
 /// increment differs from the last one by more than the matcher's window (a stalled or jumping
@@ -109,9 +113,21 @@ struct LaserOdometryConfig {
   double odom_std_per_m = 0.1;         // plus this share of the distance
   double odom_std_rad = 0.01;          // and in rotation
   double odom_std_per_rad = 0.1;
+  // A direction the match constrains with less than this many times the odometry's information
+  // (generalised eigenvalue of the match's information against the odometry's) is degenerate:
+  // along it the scan tells less than the odometry, and a match's value there is arbitrary
+  // (anywhere in the search window), so the pose keeps the odometry's. 1 is where the two are
+  // equally sure; 0 (the default) finds no direction degenerate. Off by default because
+  // matchInformation does not yet tell a free direction from a well-seen one in all worlds: in a
+  // bare corridor the motion along it has lambda 0-8 and at 1 the pose keeps the odometry's
+  // there; but in a furnished room a robot turning on the spot has lambda 0.4-3 along its
+  // translations (a 2 cm odometry floor), and at 1 a stalled odometry's zero turn is partly kept
+  // (BridgesAnOdometryThatStallsAndThenJumps: 0.040 rad instead of 0.016).
+  double min_match_information = 0.0;
   // A match that disagrees with the odometry's increment by more than this chi-square (3 dof;
-  // 16.27 is the 99.9% quantile) under both their covariances is taken alone: the odometry slipped,
-  // stalled or jumped.
+  // 16.27 is the 99.9% quantile) under both their covariances, measured along the
+  // well-constrained directions only, is taken alone there: the odometry slipped, stalled or
+  // jumped.
   double odometry_gate_chi2 = 16.27;
   // ... but only a match that explains the scan is believed over the odometry: below this score
   // (a new room, a crowd, half the scan beyond the local map) the disagreement is the match's
@@ -139,9 +155,21 @@ class LaserOdometry {
   /// odometry was kept.
   long weakMatchesRejected() const { return weak_rejected_; }
   long scans() const { return scans_; }
+  /// Of the last add(): the information (inverse covariance) of its step, the pose's (x, y in the
+  /// frame of the returned poses, yaw) given the previous pose: along the well-constrained
+  /// directions the match's (plus the odometry's when fused), along the others and when the
+  /// pose followed the odometry the odometry's. Positive definite when min_match_information > 0;
+  /// zero after the first scan.
+  const Eigen::Matrix3d& lastInformation() const { return last_information_; }
+  /// Of the last add(): how many of the 3 directions the match constrained less than
+  /// min_match_information times the odometry (they kept the odometry's value); 0 when no match
+  /// was made.
+  int lastDegenerateDirections() const { return last_degenerate_; }
 
  private:
   void rebuildField();
+  Eigen::Vector3d odometryStd(const math::SE2& step) const;  // (x, y, yaw) of an increment
+  void setOdometryInformation(const math::SE2& step);
 
   LaserOdometryConfig config_;
   struct Keyframe {
@@ -156,6 +184,8 @@ class LaserOdometry {
   double farthest_seen_m_ = 0.0;  // the farthest finite return so far: the sensor's reach
   double last_score_ = 0.0;
   bool last_matched_ = false;
+  int last_degenerate_ = 0;
+  Eigen::Matrix3d last_information_ = Eigen::Matrix3d::Zero();
   long matched_ = 0, scans_ = 0, odometry_rejected_ = 0, weak_rejected_ = 0;
 };
 

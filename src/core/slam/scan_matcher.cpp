@@ -54,6 +54,8 @@ void LaserOdometryConfig::validate() const {
        "LaserOdometryConfig: connect_gap_m must be >= 0");
   for (double v : {odom_std_m, odom_std_rad})
     need(std::isfinite(v) && v > 0.0, "LaserOdometryConfig: odom_std_m and odom_std_rad must be > 0");
+  need(std::isfinite(min_match_information) && min_match_information >= 0.0,
+       "LaserOdometryConfig: min_match_information must be >= 0");
   need(std::isfinite(odometry_gate_chi2) && odometry_gate_chi2 > 0.0,
        "LaserOdometryConfig: odometry_gate_chi2 must be > 0");
   need(std::isfinite(odometry_gate_min_score) && odometry_gate_min_score >= 0.0 &&
@@ -251,6 +253,19 @@ void LaserOdometry::reset() {
   pose_ = last_odom_ = last_step_ = math::SE2();
   last_score_ = 0.0;
   last_matched_ = false;
+  last_degenerate_ = 0;
+  last_information_.setZero();
+}
+
+Eigen::Vector3d LaserOdometry::odometryStd(const math::SE2& step) const {
+  const double sd_xy =
+      config_.odom_std_m + config_.odom_std_per_m * std::hypot(step.x_m, step.y_m);
+  const double sd_yaw = config_.odom_std_rad + config_.odom_std_per_rad * std::fabs(step.yaw_rad);
+  return {sd_xy, sd_xy, sd_yaw};
+}
+
+void LaserOdometry::setOdometryInformation(const math::SE2& step) {
+  last_information_ = odometryStd(step).array().square().inverse().matrix().asDiagonal();
 }
 
 void LaserOdometry::rebuildField() {
@@ -302,6 +317,7 @@ math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
   last_odom_ = odom;
   last_matched_ = false;
   last_score_ = 0.0;
+  last_degenerate_ = 0;
   // The priors the match starts from: the wheel odometry's increment, and when that differs from
   // the last increment by more than the search window (odometry that stalls and then jumps: in
   // the mit-csail log it stands still for 0.8 s while the robot turns, then catches up by 85
@@ -327,37 +343,60 @@ math::SE2 LaserOdometry::add(const std::vector<Eigen::Vector2d>& points_robot,
     }
     last_score_ = m.score;
     if (m.score >= config_.min_score) {
-      // Fuse the match with the prior by their information, in the prior's tangent space.
-      const math::SE2 step = math::between(pose_, prior);
-      const double sd_xy = config_.odom_std_m + config_.odom_std_per_m * std::hypot(step.x_m, step.y_m);
-      const double sd_yaw = config_.odom_std_rad + config_.odom_std_per_rad * std::fabs(step.yaw_rad);
-      const Eigen::Matrix3d P_inv =
-          Eigen::Vector3d(1.0 / (sd_xy * sd_xy), 1.0 / (sd_xy * sd_xy), 1.0 / (sd_yaw * sd_yaw))
-              .asDiagonal();
+      // Fuse the match with the prior by their information, in the prior's tangent space, each
+      // along the directions that whiten both: P^1/2 H P^1/2 = V diag(lambda) V^T, the
+      // generalised eigenproblem H v = lambda P^-1 v. Along v_i the scan's information is lambda_i
+      // times the odometry's; the disagreement whitened by the odometry's deviation is z.
+      const Eigen::Vector3d sd = odometryStd(math::between(pose_, prior));
       const Eigen::Matrix3d H = matchInformation(field_.front(), query, m.pose);
       const Eigen::Vector3d dm(m.pose.x_m - prior.x_m, m.pose.y_m - prior.y_m,
                                math::angleDiff(m.pose.yaw_rad, prior.yaw_rad));
-      const Eigen::LDLT<Eigen::Matrix3d> sum(P_inv + H);
-      // The disagreement's chi-square, dm^T (P + H^-1)^-1 dm = dm^T H (P^-1 + H)^-1 P^-1 dm (finite
-      // where H is singular: along a corridor the scan cannot see, no disagreement counts).
-      const double chi2 = dm.dot(H * sum.solve(P_inv * dm));
-      const bool weak = chi2 > config_.odometry_gate_chi2 &&
-                        m.score < config_.odometry_gate_min_score;
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(sd.asDiagonal() * H *
+                                                              sd.asDiagonal());
+      const Eigen::Matrix3d V = es.eigenvectors();
+      const Eigen::Vector3d lambda = es.eigenvalues().cwiseMax(0.0);
+      const Eigen::Vector3d z = V.transpose() * dm.cwiseQuotient(sd);
+      // The disagreement's chi-square, dm^T (P + H^-1)^-1 dm = sum lambda_i / (1 + lambda_i) z_i^2,
+      // over the well-constrained directions only: along a degenerate one the match's value is
+      // arbitrary (anywhere in the search window) and says nothing about the odometry.
+      bool constrained[3];
+      double chi2 = 0.0;
+      last_degenerate_ = 0;
+      for (int i = 0; i < 3; ++i) {
+        constrained[i] = lambda(i) >= config_.min_match_information;
+        if (constrained[i]) chi2 += lambda(i) / (1.0 + lambda(i)) * z(i) * z(i);
+        else ++last_degenerate_;
+      }
+      const bool gated = chi2 > config_.odometry_gate_chi2;
+      const bool weak = gated && m.score < config_.odometry_gate_min_score;
       if (weak) {
         prior = priors.front();  // a weak match against the odometry: the odometry alone
         ++weak_rejected_;
-      } else if (chi2 > config_.odometry_gate_chi2) {
-        prior = m.pose;  // the odometry disagrees beyond its noise: the match alone
-        ++odometry_rejected_;
+        setOdometryInformation(math::between(pose_, prior));
       } else {
-        const Eigen::Vector3d d = sum.solve(H * dm);
+        // Along each well-constrained direction the match alone when the odometry disagrees
+        // beyond its noise (it slipped, stalled or jumped), else the two fused; along a
+        // degenerate one the prior's value (the match's is arbitrary there).
+        Eigen::Vector3d w, info_w;
+        for (int i = 0; i < 3; ++i) {
+          w(i) = !constrained[i] ? 0.0 : gated ? 1.0 : lambda(i) / (1.0 + lambda(i));
+          info_w(i) = !constrained[i] ? 1.0 : gated ? lambda(i) : 1.0 + lambda(i);
+        }
+        const Eigen::Vector3d d = sd.cwiseProduct(V * w.cwiseProduct(z));
         prior = math::SE2(prior.x_m + d.x(), prior.y_m + d.y(), prior.yaw_rad + d.z());
+        const Eigen::Vector3d inv_sd = sd.cwiseInverse();
+        last_information_ =
+            inv_sd.asDiagonal() * V * info_w.asDiagonal() * V.transpose() * inv_sd.asDiagonal();
+        if (gated) ++odometry_rejected_;
       }
       last_matched_ = !weak;
       matched_ += last_matched_ ? 1 : 0;
     } else {
       prior = priors.front();  // no match to trust: the wheel odometry
+      setOdometryInformation(math::between(pose_, prior));
     }
+  } else {
+    setOdometryInformation(math::between(pose_, prior));
   }
   last_step_ = math::between(pose_, prior);
   pose_ = prior;

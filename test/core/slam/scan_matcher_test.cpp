@@ -202,6 +202,94 @@ TEST(LaserOdometry, DoesNotShrinkAFeaturelessCorridorAtTheEdgeOfTheSensorsReach)
   EXPECT_GT(std::fabs(without), 3.0 * std::fabs(with_margin));
 }
 
+// A drive through `walls` with a 180-degree laser reaching 8 m (1 cm noise), one scan per step of
+// `truth`, the wheel odometry the true increments plus `kick` every tenth step. Returns the worst
+// position and yaw errors of the laser odometry (and of the odometry alone) and the worst error
+// along `free_dir` (a unit vector, map frame).
+struct DriveErrors {
+  double worst_m = 0.0, worst_rad = 0.0, worst_free_m = 0.0, odom_worst_m = 0.0;
+  long rejected = 0;
+  int most_degenerate = 0;
+};
+template <class Truth>
+DriveErrors drive(const std::vector<adaptive_perception::test::Segment>& walls, Truth truth_at,
+                  int steps, const math::SE2& kick, const Eigen::Vector2d& free_dir,
+                  double min_match_information) {
+  slam::LaserOdometryConfig c;
+  c.min_match_information = min_match_information;
+  slam::LaserOdometry lo(c);
+  std::mt19937 rng(3);
+  DriveErrors e;
+  math::SE2 odom = truth_at(0);
+  for (int k = 0; k <= steps; ++k) {
+    const math::SE2 truth = truth_at(k);
+    if (k > 0) {
+      odom = odom * math::between(truth_at(k - 1), truth);
+      if (k % 10 == 0) odom = odom * kick;
+    }
+    const math::SE2 est =
+        lo.add(adaptive_perception::test::scanOf(walls, truth, &rng, 0.01, 8.0), odom);
+    const Eigen::Vector2d err(est.x_m - truth.x_m, est.y_m - truth.y_m);
+    e.worst_m = std::max(e.worst_m, err.norm());
+    e.worst_free_m = std::max(e.worst_free_m, std::fabs(err.dot(free_dir)));
+    e.worst_rad = std::max(e.worst_rad, std::fabs(math::angleDiff(est.yaw_rad, truth.yaw_rad)));
+    e.odom_worst_m =
+        std::max(e.odom_worst_m, std::hypot(odom.x_m - truth.x_m, odom.y_m - truth.y_m));
+    e.most_degenerate = std::max(e.most_degenerate, lo.lastDegenerateDirections());
+  }
+  e.rejected = lo.odometryRejected();
+  return e;
+}
+
+TEST(LaserOdometry, KeepsTheOdometryAlongABareCorridorWhenTheGateFires) {
+  // 40 m along a straight featureless corridor 2 m wide; the wheel odometry is exact along it but
+  // is kicked 0.1 m sideways every metre (a wheel sliding on a floor joint): the match sees the
+  // kick across the corridor and the gate fires. Before, the pose then took the match alone, also
+  // along the corridor, where the scan says nothing and the match lies anywhere in its window.
+  // With min_match_information 1 that direction is degenerate (its information below the
+  // odometry's) and keeps the exact odometry's motion; 0 (the default) is the match alone.
+  const std::vector<adaptive_perception::test::Segment> walls{{{0, 0}, {100, 0}},
+                                                              {{0, 2}, {100, 2}}};
+  const auto truth_at = [](int k) { return math::SE2(1.0 + 0.1 * k, 1.0, 0.0); };
+  const math::SE2 kick(0.0, 0.1, 0.0);
+  const DriveErrors now = drive(walls, truth_at, 400, kick, {1.0, 0.0}, 1.0);
+  const DriveErrors before = drive(walls, truth_at, 400, kick, {1.0, 0.0}, 0.0);
+  std::printf(
+      "bare corridor, odometry kicked sideways: worst error along it %.3f m (%.3f m overall, "
+      "%ld gated) with degenerate directions, %.3f m (%.3f m, %ld gated) without; odometry "
+      "alone %.3f m\n",
+      now.worst_free_m, now.worst_m, now.rejected, before.worst_free_m, before.worst_m,
+      before.rejected, now.odom_worst_m);
+  EXPECT_LT(now.worst_free_m, 0.1);
+  EXPECT_LT(now.worst_m, 0.3);
+  EXPECT_GT(before.worst_free_m, 1.0);
+  EXPECT_GE(now.most_degenerate, 1);
+}
+
+// Not yet held: in a round hall (a 72-gon of radius 4.5 m) the laser odometry turns away from the
+// truth about the hall's centre even with an exact wheel odometry, with and without degenerate
+// directions at min_match_information 1 (4.4 m and 2.7-3.1 rad worst over 18 m). matchInformation
+// there reports 1-8 times the odometry's information along the free rotation: the match sits on a
+// bump of the flat ridge (rasterised noisy walls) and the Hessian at half-cell steps measures that
+// bump, so the direction is not found degenerate. Kept as the target for that fix.
+TEST(LaserOdometry, DISABLED_KeepsTheOdometrysTurnInARoundHall) {
+  const auto truth_at = [](int k) {  // a circle of radius 1.5 m about (0.8, 0), 0.09 m a step
+    const double a = 0.06 * k;
+    return math::SE2(0.8 + 1.5 * std::cos(a), 1.5 * std::sin(a), a + M_PI / 2);
+  };
+  for (double doorway_m : {0.0, 1.0}) {
+    const auto walls = adaptive_perception::test::roundHall(4.5, 72, doorway_m);
+    const DriveErrors now = drive(walls, truth_at, 200, math::SE2(), {0.0, 0.0}, 1.0);
+    const DriveErrors before = drive(walls, truth_at, 200, math::SE2(), {0.0, 0.0}, 0.0);
+    std::printf(
+        "round hall (doorway %.1f m), exact odometry: worst error %.3f m, %.4f rad with "
+        "degenerate directions, %.3f m, %.4f rad without\n",
+        doorway_m, now.worst_m, now.worst_rad, before.worst_m, before.worst_rad);
+    EXPECT_LT(now.worst_m, 0.1);
+    EXPECT_LT(now.worst_rad, 0.02);
+  }
+}
+
 TEST(ScanMatcher, RefusesBadSettings) {
   slam::ScanMatcherConfig c;
   c.resolution_m = 0.0;
@@ -211,6 +299,9 @@ TEST(ScanMatcher, RefusesBadSettings) {
   EXPECT_THROW(slam::LaserOdometry{l}, std::invalid_argument);
   l = slam::LaserOdometryConfig();
   l.odometry_gate_min_score = 1.5;
+  EXPECT_THROW(l.validate(), std::invalid_argument);
+  l = slam::LaserOdometryConfig();
+  l.min_match_information = -1.0;
   EXPECT_THROW(l.validate(), std::invalid_argument);
 }
 

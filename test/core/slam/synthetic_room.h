@@ -31,6 +31,32 @@ inline std::vector<Eigen::Vector2d> roomPoints() {
   return pts;
 }
 
+/// A round hall: a regular `sides`-gon of circumradius `radius_m` about the origin. With
+/// `doorway_m` > 0 the edges within doorway_m / 2 of the +x axis (on the +x side) are left out
+/// and a 2 m corridor leads off through the gap.
+inline std::vector<Segment> roundHall(double radius_m, int sides, double doorway_m = 0.0) {
+  std::vector<Segment> walls;
+  double gap_lo = 0.0, gap_hi = 0.0;  // the y of the gap's jambs
+  for (int i = 0; i < sides; ++i) {
+    const double a0 = 2 * M_PI * i / sides, a1 = 2 * M_PI * (i + 1) / sides;
+    const Segment s{{radius_m * std::cos(a0), radius_m * std::sin(a0)},
+                    {radius_m * std::cos(a1), radius_m * std::sin(a1)}};
+    const Eigen::Vector2d mid = 0.5 * (s.a + s.b);
+    if (doorway_m > 0 && mid.x() > 0 && std::fabs(mid.y()) < 0.5 * doorway_m) {
+      gap_lo = std::min({gap_lo, s.a.y(), s.b.y()});
+      gap_hi = std::max({gap_hi, s.a.y(), s.b.y()});
+      continue;
+    }
+    walls.push_back(s);
+  }
+  if (doorway_m > 0) {
+    const double x = std::sqrt(radius_m * radius_m - gap_hi * gap_hi);
+    walls.push_back({{x, gap_lo}, {x + 2.0, gap_lo}});
+    walls.push_back({{x, gap_hi}, {x + 2.0, gap_hi}});
+  }
+  return walls;
+}
+
 /// Ray-casts 181 beams over 180 degrees from `pose` against `walls`: the hit points (robot
 /// frame) closer than max_range_m.
 inline std::vector<Eigen::Vector2d> scanOf(const std::vector<Segment>& walls, const math::SE2& pose,
