@@ -117,12 +117,8 @@ struct LaserOdometryConfig {
   // (generalised eigenvalue of the match's information against the odometry's) is degenerate:
   // along it the scan tells less than the odometry, and a match's value there is arbitrary
   // (anywhere in the search window), so the pose keeps the odometry's. 1 is where the two are
-  // equally sure; 0 (the default) finds no direction degenerate. Off by default because
-  // matchInformation does not yet tell a free direction from a well-seen one in all worlds: in a
-  // bare corridor the motion along it has lambda 0-8 and at 1 the pose keeps the odometry's
-  // there; but in a furnished room a robot turning on the spot has lambda 0.4-3 along its
-  // translations (a 2 cm odometry floor), and at 1 a stalled odometry's zero turn is partly kept
-  // (BridgesAnOdometryThatStallsAndThenJumps: 0.040 rad instead of 0.016).
+  // equally sure; 0 (the default, off) finds no direction degenerate. Why it is off for now:
+  // docs/slam_real_logs.md, "degenerate directions".
   double min_match_information = 0.0;
   // A match that disagrees with the odometry's increment by more than this chi-square (3 dof;
   // 16.27 is the 99.9% quantile) under both their covariances, measured along the
