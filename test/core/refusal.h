@@ -8,12 +8,13 @@
 
 namespace adaptive_perception::test_support {
 
-/// The message of the std::invalid_argument that `f()` throws, or "accepted" when it throws none.
-template <class F>
+/// The message of the exception E (std::invalid_argument unless given) that `f()` throws, or
+/// "accepted" when it throws none.
+template <class E = std::invalid_argument, class F>
 std::string refusal(F&& f) {
   try {
     f();
-  } catch (const std::invalid_argument& e) {
+  } catch (const E& e) {
     return e.what();
   }
   return "accepted";

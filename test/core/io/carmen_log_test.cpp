@@ -24,12 +24,7 @@ std::string writeTemp(const std::string& name, const std::string& text) {
 // The message of the std::runtime_error that f() throws, or "accepted".
 template <class F>
 std::string failure(F&& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "accepted";
+  return adaptive_perception::test_support::refusal<std::runtime_error>(f);
 }
 
 // A FLASER line of `ranges` (written as given), the laser and robot at the origin.
