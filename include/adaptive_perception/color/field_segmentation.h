@@ -1,0 +1,84 @@
+#pragma once
+// Pose-free field segmentation: which pixels of a camera image are the field's carpet and which its
+// painted lines, before the robot knows where it is (a robot at a new venue, a team calibrating).
+//
+// Contract: segmentField(image) labels every pixel world::kGreen (the field: the carpet
+// inside the field's boundary and whatever stands on it), world::kWhite (a painted line) or
+// world::kBackground (above the field's boundary). It needs no camera pose, no camera model and no
+// earlier image; it is deterministic.
+//
+// Method (what the field's geometry says without a pose, then the two-level colour model):
+//   1. The carpet's colour. A robot's camera looks at the field, so the carpet is the most common
+//      green chroma (Cb < 128 and Cr < 128) in the image's lower part: the mode of the (U, V)
+//      histogram there seeds a Gaussian in YUV.
+//   2. EM over the colour classes: a mixture of the carpet, the line paint (bright, neutral) and
+//      everything else (two Gaussians: the image's overall colour and a dark neutral one, for goal
+//      frames and shadows that a single broad class leaves to the carpet), the carpet's and the
+//      paint's means pulled towards their seeds by a Gaussian prior as in the two-level model
+//      (theta ~ N(seed, prior_std^2 I), pixel ~ N(theta, nu)).
+//   3. The field's boundary: in each column the row below which carpet outweighs the rest (the
+//      running sum from the bottom of +1 per carpet pixel, -boundary_other_weight per other pixel,
+//      boundary_line_weight per paint pixel), chosen for all columns at once by dynamic programming
+//      with a cost per row of step between neighbouring columns; then peaks narrower than
+//      boundary_min_width_share removed (something field-coloured above the field: grass seen
+//      through a goal's net), then the upper convex hull of the rows, since anything standing on
+//      the field can only hide the boundary, never raise it, and the field seen from inside it is
+//      convex in the image.
+//   4. Lines: inside the field, pixels no more saturated than the carpet that are thin and bright
+//      (a white top-hat of the smoothed luma with a window wider than a line, at least
+//      line_contrast_sigma carpet standard deviations), in strokes larger than line_min_area_share
+//      of the image (grass texture leaves specks): a robot or a ball is wider than the window.
+//
+// The defaults and the measurements that chose them: docs/field_segmentation.md.
+#include <opencv2/core.hpp>
+
+#include "adaptive_perception/config/fields.h"
+
+namespace adaptive_perception::color {
+
+struct FieldSegmentationConfig {
+  /// Share of the image height, from the bottom, where the carpet's chroma is looked for.
+  double seed_region_share = 0.5;
+  /// EM iterations of the colour mixture.
+  int em_iterations = 8;
+  /// EM runs on every n-th pixel in both directions.
+  int em_stride_px = 4;
+  /// Prior spread of each class mean around its seed (two-level model), 8-bit levels.
+  double prior_std = 20.0;
+  /// Weight of a line-paint pixel in the boundary's running sum (a carpet pixel counts +1).
+  double boundary_line_weight = -0.5;
+  /// Weight, negated, of a pixel of neither carpet nor paint in the running sum: 1 puts the
+  /// boundary where carpet stops being the majority.
+  double boundary_other_weight = 1.0;
+  /// Cost of moving the boundary by one row from one column to the next, in pixels of the running
+  /// sum (1: a row of boundary step costs as much as one pixel on the wrong side).
+  double boundary_step_cost = 1.0;
+  /// Replace the boundary by its upper convex hull.
+  bool boundary_convex = true;
+  /// Upward peaks of the boundary narrower than this share of the image width are removed.
+  double boundary_min_width_share = 0.1;
+  /// Top-hat window for the lines, as a share of the image width.
+  double line_window_share = 0.03;
+  /// A line pixel is at least this many carpet luma standard deviations above its surroundings.
+  double line_contrast_sigma = 1.0;
+  /// Standard deviation of the Gaussian smoothing of the luma before the top-hat, px.
+  double line_blur_px = 1.5;
+  /// Line strokes covering less than this share of the image are dropped.
+  double line_min_area_share = 2e-4;
+
+  static const config::Fields<FieldSegmentationConfig>& fields();
+  void validate() const;
+};
+
+struct FieldSegmentation {
+  cv::Mat labels;        // CV_8UC1: world::kGreen, world::kWhite or world::kBackground
+  cv::Mat boundary_row;  // CV_32SC1, 1 x width: the first field row of each column (rows: none)
+  cv::Vec3d carpet_mean_yuv;  // the carpet's colour after EM (Y, U, V)
+  cv::Vec3d line_mean_yuv;    // the line paint's colour after EM
+};
+
+/// Segments a BGR8 (CV_8UC3) image. Throws std::invalid_argument on an empty image or another
+/// type.
+FieldSegmentation segmentField(const cv::Mat& bgr, const FieldSegmentationConfig& config);
+
+}  // namespace adaptive_perception::color

@@ -1,0 +1,105 @@
+// color::segmentField on scenes drawn here, whose field, boundary and lines are known by
+// construction: a textured carpet below a grey wall, painted lines, a white robot standing across
+// the boundary, an image with no field at all.
+#include "adaptive_perception/color/field_segmentation.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "../refusal.h"
+#include "adaptive_perception/world/color_class.h"
+
+namespace ap = adaptive_perception;
+using ap::test_support::refusedNaming;
+
+namespace {
+
+constexpr int kW = 320, kH = 240, kBoundary = 90;
+
+struct Scene {
+  cv::Mat bgr;
+  cv::Mat lines;  // CV_8UC1, 255 on painted lines
+};
+
+// Carpet (BGR about (45, 130, 55), per-pixel noise like grass texture) below row kBoundary, a grey
+// wall above; a 4-px line across the field and one down it; a white 50 x 110 px robot standing on
+// the field and rising above the boundary.
+Scene drawScene() {
+  Scene s;
+  s.bgr = cv::Mat(kH, kW, CV_8UC3, cv::Scalar(150, 150, 145));
+  s.bgr(cv::Rect(0, kBoundary, kW, kH - kBoundary)).setTo(cv::Scalar(45, 130, 55));
+  s.lines = cv::Mat::zeros(kH, kW, CV_8UC1);
+  cv::rectangle(s.lines, cv::Rect(0, 170, kW, 4), 255, cv::FILLED);
+  cv::rectangle(s.lines, cv::Rect(100, kBoundary, 4, kH - kBoundary), 255, cv::FILLED);
+  s.bgr.setTo(cv::Scalar(235, 235, 235), s.lines);
+  cv::Mat noise(kH, kW, CV_16SC3);
+  cv::RNG rng(7);
+  rng.fill(noise, cv::RNG::NORMAL, 0, 10);
+  cv::Mat noisy;
+  s.bgr.convertTo(noisy, CV_16SC3);
+  noisy += noise;
+  noisy.convertTo(s.bgr, CV_8UC3);
+  // The robot is drawn over the noise: a flat white body.
+  cv::rectangle(s.bgr, cv::Rect(200, 60, 50, 110), cv::Scalar(225, 225, 225), cv::FILLED);
+  return s;
+}
+
+double iou(const cv::Mat& a, const cv::Mat& b) {
+  return double(cv::countNonZero(a & b)) / std::max(1, cv::countNonZero(a | b));
+}
+
+TEST(FieldSegmentation, FindsTheBoundaryBehindARobotAndThePaintedLines) {
+  const Scene s = drawScene();
+  const ap::color::FieldSegmentation seg = ap::color::segmentField(s.bgr, {});
+  ASSERT_EQ(seg.labels.size(), s.bgr.size());
+  // The boundary in every column, the robot's too (it hides the boundary, the hull bridges it).
+  int off = 0;
+  for (int c = 0; c < kW; ++c)
+    if (std::abs(seg.boundary_row.at<int>(0, c) - kBoundary) > 2) ++off;
+  EXPECT_EQ(off, 0);
+  // Field: everything below the boundary but the lines, the robot's lower body included.
+  cv::Mat true_field = cv::Mat::zeros(kH, kW, CV_8UC1);
+  true_field(cv::Rect(0, kBoundary, kW, kH - kBoundary)).setTo(255);
+  true_field.setTo(0, s.lines);
+  EXPECT_GT(iou(seg.labels == ap::world::kGreen, true_field), 0.95);
+  // Lines: the two painted lines; the robot is far wider than a line and is not one.
+  // Every line pixel found; what else is marked lies within 2 px of a line (the luma is smoothed
+  // before the top-hat, so a 4-px line comes out about 5-6 px wide) or on the robot's outline.
+  const cv::Mat found = seg.labels == ap::world::kWhite;
+  EXPECT_GT(double(cv::countNonZero(found & s.lines)) / cv::countNonZero(s.lines), 0.9);
+  cv::Mat near_line;
+  cv::dilate(s.lines, near_line, cv::getStructuringElement(cv::MORPH_RECT, {5, 5}));
+  const cv::Mat elsewhere = found & ~near_line;
+  EXPECT_LT(cv::countNonZero(elsewhere(cv::Rect(0, 0, 190, kH))), 20);
+  EXPECT_LT(cv::countNonZero(elsewhere), 0.1 * cv::countNonZero(found));
+  const cv::Mat robot_inside = seg.labels(cv::Rect(210, kBoundary, 30, 70));
+  EXPECT_EQ(cv::countNonZero(robot_inside == ap::world::kWhite), 0);
+  // The carpet's colour is the carpet's (YUV of BGR (45, 130, 55): Y 98, U 102, V 99).
+  EXPECT_NEAR(seg.carpet_mean_yuv[0], 98.0, 5.0);
+  EXPECT_LT(seg.carpet_mean_yuv[1], 115.0);
+  EXPECT_LT(seg.carpet_mean_yuv[2], 115.0);
+}
+
+TEST(FieldSegmentation, AnImageWithoutGreenHasNoField) {
+  cv::Mat grey(120, 160, CV_8UC3, cv::Scalar(120, 120, 120));
+  cv::rectangle(grey, cv::Rect(0, 60, 160, 60), cv::Scalar(40, 60, 200), cv::FILLED);  // red floor
+  const auto seg = ap::color::segmentField(grey, {});
+  EXPECT_EQ(cv::countNonZero(seg.labels != ap::world::kBackground), 0);
+}
+
+TEST(FieldSegmentation, IsDeterministic) {
+  const Scene s = drawScene();
+  const auto a = ap::color::segmentField(s.bgr, {}), b = ap::color::segmentField(s.bgr, {});
+  EXPECT_EQ(cv::countNonZero(a.labels != b.labels), 0);
+}
+
+TEST(FieldSegmentation, BadInputIsRefusedNamingIt) {
+  EXPECT_TRUE(refusedNaming([] { ap::color::segmentField(cv::Mat(), {}); }, "BGR8"));
+  EXPECT_TRUE(refusedNaming([] { ap::color::segmentField(cv::Mat(4, 4, CV_8UC1), {}); }, "BGR8"));
+  ap::color::FieldSegmentationConfig cfg;
+  cfg.line_window_share = 0.0;
+  EXPECT_TRUE(refusedNaming([&] { cfg.validate(); }, "line_window_share"));
+}
+
+}  // namespace
