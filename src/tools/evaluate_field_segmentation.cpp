@@ -13,7 +13,8 @@
 // Baseline (the same tool, the same images): field = excess green 2G-R-B above its Otsu threshold;
 // lines = pixels inside the convex hull of that field brighter (HSV value) and paler (saturation)
 // than the field's medians.
-// Prints one CSV line per image (image,field_iou,line_iou,baseline_field_iou,baseline_line_iou,ms)
+// Prints one CSV line per image (image, field_iou, line_iou, line_precision, line_recall,
+// baseline_field_iou, baseline_line_iou, ms)
 // and writes it to OUTPUT/images.csv with OUTPUT/NAME.png (image | segmentation | mask). Last line:
 //   evaluate_field_segmentation: images=.. field_iou=.. line_iou=.. baseline_field_iou=..
 //   baseline_line_iou=.. masks_scaled=.. ms_per_image=..
@@ -100,7 +101,7 @@ int main(int argc, char** argv) {
     const std::vector<io::MaskedImage> pairs = io::pairImagesWithMasks(images_dir, masks_dir);
     fs::create_directories(output);
     std::ofstream csv(output + "/images.csv");
-    const std::string header = "image,field_iou,line_iou,baseline_field_iou,baseline_line_iou,ms";
+    const std::string header = "image,field_iou,line_iou,line_precision,line_recall,baseline_field_iou,baseline_line_iou,ms";
     csv << header << "\n";
     std::cout << header << "\n";
     double sum[4] = {0, 0, 0, 0}, ms_total = 0.0;
@@ -122,13 +123,17 @@ int main(int argc, char** argv) {
       cv::Mat base_field, base_line;
       baseline(bgr, &base_field, &base_line);
       const cv::Mat true_field = mask == kMaskField, true_line = mask == kMaskLine;
-      const double s[4] = {iou(seg.labels == world::kGreen, true_field),
-                           iou(seg.labels == world::kWhite, true_line), iou(base_field, true_field),
-                           iou(base_line, true_line)};
+      const cv::Mat our_line = seg.labels == world::kWhite;
+      const double s[4] = {iou(seg.labels == world::kGreen, true_field), iou(our_line, true_line),
+                           iou(base_field, true_field), iou(base_line, true_line)};
       for (int i = 0; i < 4; ++i) sum[i] += s[i];
+      const double hit = cv::countNonZero(our_line & true_line);
+      const double precision = hit / std::max(1, cv::countNonZero(our_line)),
+                   recall = hit / std::max(1, cv::countNonZero(true_line));
       char line[512];
-      std::snprintf(line, sizeof line, "%s,%.4f,%.4f,%.4f,%.4f,%.1f",
-                    fs::path(p.image_path).filename().c_str(), s[0], s[1], s[2], s[3], ms);
+      std::snprintf(line, sizeof line, "%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.1f",
+                    fs::path(p.image_path).filename().c_str(), s[0], s[1], precision, recall, s[2],
+                    s[3], ms);
       std::cout << line << std::endl;
       csv << line << "\n";
       // image | segmentation | mask, in the classes' display colours.
