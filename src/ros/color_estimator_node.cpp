@@ -144,7 +144,10 @@ void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   }
   const std::optional<Eigen::Isometry3d> pose =
       input_.tf().transform(input_.mapFrame(), msg->header.frame_id, msg->header.stamp, "image");
-  if (!pose) return;
+  if (!pose) {
+    classifyWithoutPose(*msg, yuv);
+    return;
+  }
   std::lock_guard<std::mutex> lock(mutex_);
   color::ColorEstimator::Result r;
   try {
@@ -170,6 +173,33 @@ void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   if (classified_color_pub_.getNumSubscribers() > 0)
     classified_color_pub_.publish(
         ros_conv::bgr8ToImage(color::colorizeLabels(r.classified), msg->header));
+  diagnostics_.update();
+}
+
+void ColorEstimatorNode::classifyWithoutPose(const sensor_msgs::Image& msg, const cv::Mat& yuv) {
+  color::FieldSegmentationConfig config;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!config_.pose_free) return;
+    config = config_.segmentation;
+  }
+  color::FieldSegmentation seg;  // segmented unlocked: services and camera_info answer meanwhile
+  try {
+    seg = color::segmentFieldYuv(yuv, config);
+  } catch (const std::exception& e) {  // no exception leaves a callback
+    ROS_ERROR_THROTTLE(10.0, "color_estimator: frame dropped: %s", e.what());
+    std::lock_guard<std::mutex> lock(mutex_);
+    input_.countBadImage();
+    return;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (pose_free_frames_++ == 0)
+    ROS_INFO("color_estimator: no camera pose in tf yet: classifying without one (pose_free)");
+  diagnostics_.tick();
+  classified_pub_.publish(ros_conv::mono8ToImage(seg.labels, msg.header));
+  if (classified_color_pub_.getNumSubscribers() > 0)
+    classified_color_pub_.publish(
+        ros_conv::bgr8ToImage(color::colorizeLabels(seg.labels), msg.header));
   diagnostics_.update();
 }
 
@@ -219,13 +249,16 @@ bool ColorEstimatorNode::onSavePrior(SavePrior::Request& req, SavePrior::Respons
 
 void ColorEstimatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   if (!estimator_) {
-    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no image processed yet");
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                 pose_free_frames_ > 0 ? "classifying without a camera pose (pose_free)"
+                                       : "no image processed yet");
   } else {
     stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "estimating");
     stat.add("active mode", estimator_->filter().modeName(estimator_->filter().activeMode()));
     stat.add("lookup table rebuilds", estimator_->lutRebuilds());
   }
   stat.add("frames", frames_);
+  stat.add("frames classified without a pose", pose_free_frames_);
   input_.diagnose(stat);
   stat.add("last log likelihood", last_log_likelihood_);
 }

@@ -13,6 +13,7 @@
 #include "adaptive_perception/color/color_lut.h"
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/color/color_model.h"
+#include "adaptive_perception/color/field_segmentation.h"
 #include "adaptive_perception/color/switching_color_filter.h"
 #include "adaptive_perception/world/label_renderer.h"
 
@@ -26,10 +27,16 @@ struct ColorEstimatorConfig {
   /// Pixels within this many pixels of a label edge in the rendered map are not used for the colour
   /// statistics (pose error and the camera's motion blur make edges unreliable). 0 uses every pixel.
   int edge_margin_px = 1;
+  /// Images without a camera pose are classified without one (color/field_segmentation.h: field,
+  /// lines, background) instead of being dropped; images with a pose take the pose-driven update.
+  bool pose_free = false;
+  /// The pose-free segmentation's settings.
+  FieldSegmentationConfig segmentation;
   /// A class id (0..5) whose observations are withheld from the filter (the Table 1 experiment); -1: none.
   int withheld_class = -1;
   /// The tunable fields (config/fields.h), color_estimator's parameters: the colour model's and
-  /// the switching filter's numbers, edge_margin_px, lut_rebuild_sigma. The enums
+  /// the switching filter's numbers, edge_margin_px, lut_rebuild_sigma, pose_free and the pose-free
+  /// segmentation's (FieldSegmentationConfig::fields()). The enums
   /// (observation_noise, mixing) and withheld_class (an experiment's) aside.
   static const config::Fields<ColorEstimatorConfig>& fields();
   void validate() const;

@@ -80,5 +80,8 @@ struct FieldSegmentation {
 /// Segments a BGR8 (CV_8UC3) image. Throws std::invalid_argument on an empty image or another
 /// type.
 FieldSegmentation segmentField(const cv::Mat& bgr, const FieldSegmentationConfig& config);
+/// The same for a YUV image (CV_8UC3: Y, U, V, BT.601 full range, color/color_space.h), what the
+/// nodes hold.
+FieldSegmentation segmentFieldYuv(const cv::Mat& yuv, const FieldSegmentationConfig& config);
 
 }  // namespace adaptive_perception::color

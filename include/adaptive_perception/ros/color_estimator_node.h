@@ -1,6 +1,7 @@
 #pragma once
 // color_estimator: adaptive colour classification with the hierarchical Bayesian colour model and a
-// switching Kalman filter over lighting (Schulz & Fox 2004, section III), given the camera pose.
+// switching Kalman filter over lighting (Schulz & Fox 2004, section III), given the camera pose;
+// with ~pose_free, images that have no pose yet are segmented without one (field, lines).
 //
 // Its interface (parameters, subscribed and published topics, services, tf) is documented once,
 // in docs/nodes/color_estimator.md; the parameter table there is made from parameters().
@@ -40,6 +41,8 @@ class ColorEstimatorNode {
  private:
   void onImage(const sensor_msgs::ImageConstPtr& msg);
   void onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg);
+  /// ~pose_free: an image without a camera pose, segmented by color::segmentFieldYuv.
+  void classifyWithoutPose(const sensor_msgs::Image& msg, const cv::Mat& yuv);
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSavePrior(SavePrior::Request& req, SavePrior::Response& res);
   void onReconfigure(adaptive_perception::ColorEstimatorConfig& config, uint32_t level);
@@ -60,6 +63,7 @@ class ColorEstimatorNode {
   std::unique_ptr<dynamic_reconfigure::Server<adaptive_perception::ColorEstimatorConfig>>
       reconfigure_;
   long frames_ = 0;
+  long pose_free_frames_ = 0;
   double last_log_likelihood_ = 0.0;
   ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };

@@ -31,7 +31,11 @@ const config::Fields<ColorEstimatorConfig>& ColorEstimatorConfig::fields() {
                "pixels this close to a label edge of the rendered map are left out (px)")
           .add("lut_rebuild_sigma", &C::lut_rebuild_sigma, closed(0, 5),
                "rebuild the YUV lookup table when a colour mean moved this many standard "
-               "deviations");
+               "deviations")
+          .add("pose_free", &C::pose_free,
+               "classify images without a camera pose in tf without one (field, lines, "
+               "background) instead of dropping them")
+          .nest(&C::segmentation, FieldSegmentationConfig::fields());
   return f;
 }
 

@@ -121,7 +121,6 @@ bool seedCarpet(const cv::Mat& yuv, const FieldSegmentationConfig& cfg, Gauss* c
 }  // namespace
 
 FieldSegmentation segmentField(const cv::Mat& bgr, const FieldSegmentationConfig& cfg) {
-  cfg.validate();
   if (bgr.empty() || bgr.type() != CV_8UC3)
     throw std::invalid_argument("segmentField: expected a non-empty BGR8 (CV_8UC3) image");
   cv::Mat yuv;
@@ -130,6 +129,13 @@ FieldSegmentation segmentField(const cv::Mat& bgr, const FieldSegmentationConfig
   cv::split(yuv, planes);
   std::swap(planes[1], planes[2]);
   cv::merge(planes, 3, yuv);
+  return segmentFieldYuv(yuv, cfg);
+}
+
+FieldSegmentation segmentFieldYuv(const cv::Mat& yuv, const FieldSegmentationConfig& cfg) {
+  cfg.validate();
+  if (yuv.empty() || yuv.type() != CV_8UC3)
+    throw std::invalid_argument("segmentFieldYuv: expected a non-empty YUV (CV_8UC3) image");
   const int rows = yuv.rows, cols = yuv.cols;
 
   FieldSegmentation out;
