@@ -78,9 +78,25 @@ Eigen::Matrix3d matchInformation(const LikelihoodField& field,
                                  const std::vector<Eigen::Vector2d>& points_robot,
                                  const math::SE2& pose);
 
+/// The information of a match from the scan's geometry (the degeneracy analysis of
+/// point-to-line matching): a point whose neighbours in the scan (consecutive points within
+/// `wall_gap_m` of each other, at least one) lie on a line measures its distance to that wall
+/// along the line's normal n; one at a corner measures both coordinates; an isolated return
+/// (a wall sampled sparser than wall_gap_m, at a grazing angle or far away) nothing. Each
+/// measurement has the field's width `hit_std_m` as its noise and counts by the field's value at
+/// the point (a point the map does not explain tells nothing); its Jacobian row in (x, y, yaw) is
+/// [n^T, n . d(R p)/dyaw]. So a round hall's walls, whose normals all pass through its centre, say
+/// nothing about a turn about that centre, and a bare corridor's nothing about the motion along
+/// it: exactly 0 there, where matchInformation's Hessian of the rasterised field measures its
+/// bumps. `points_robot` in scan order (the beams'), at `pose`.
+Eigen::Matrix3d geometricMatchInformation(const LikelihoodField& field,
+                                          const std::vector<Eigen::Vector2d>& points_robot,
+                                          const math::SE2& pose, double hit_std_m,
+                                          double wall_gap_m);
+
 /// Laser odometry: each scan matched against a local map of the last keyframes, the wheel
 /// odometry's increment as the prior. The match and the prior are fused by their information
-/// (matchInformation H; the odometry's P^-1 from odom_std_m + odom_std_per_m * distance and
+/// (geometricMatchInformation H; the odometry's P^-1 from odom_std_m + odom_std_per_m * distance and
 /// odom_std_rad + odom_std_per_rad * turn) along the directions v of the generalised
 /// eigenproblem H v = lambda P^-1 v (lambda: the scan's information along v in units of the
 /// odometry's). A direction with lambda below min_match_information is degenerate (rotation in a
@@ -116,10 +132,11 @@ struct LaserOdometryConfig {
   // A direction the match constrains with less than this many times the odometry's information
   // (generalised eigenvalue of the match's information against the odometry's) is degenerate:
   // along it the scan tells less than the odometry, and a match's value there is arbitrary
-  // (anywhere in the search window), so the pose keeps the odometry's. 1 is where the two are
-  // equally sure; 0 (the default, off) finds no direction degenerate. Why it is off for now:
-  // docs/slam_real_logs.md, "degenerate directions".
-  double min_match_information = 0.0;
+  // (anywhere in the search window), so the pose keeps the odometry's; 0 finds no direction
+  // degenerate. 0.25: the scan knows the direction at least half as well as the odometry (std at
+  // most twice the odometry's). The free directions of the synthetic round hall and bare corridor
+  // stay below 0.06, a furnished room's weakest above 0.7 (docs/slam_real_logs.md).
+  double min_match_information = 0.25;
   // A match that disagrees with the odometry's increment by more than this chi-square (3 dof;
   // 16.27 is the 99.9% quantile) under both their covariances, measured along the
   // well-constrained directions only, is taken alone there: the odometry slipped, stalled or
