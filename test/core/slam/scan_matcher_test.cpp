@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -64,6 +66,50 @@ TEST(LikelihoodField, EqualsTheBruteForceFieldOfTheNearestMapCell) {
       }
     }
   EXPECT_GT(near, 1000);
+}
+
+TEST(ScanMatcher, GeometricInformationOfAWallIsTheClosedForm) {
+  // A straight wall y = 2 m sampled every 5 cm from x = -1 to 1, seen from the origin, its own
+  // field: every return lies on its map point (weight 1) and its normal is (0, 1). The row of a
+  // return at (x, 2) is [0, 1, x] (d(Rp)/dyaw = (-2, x)), so H = sum [0 0 0; 0 1 x; 0 x x^2] /
+  // hit_std^2: nothing along the wall.
+  std::vector<Eigen::Vector2d> wall;
+  double n = 0.0, sx = 0.0, sxx = 0.0;
+  for (int k = -20; k <= 20; ++k) {
+    const double x = 0.05 * k + 0.013;  // off-centre, so that the cross term is not 0
+    wall.emplace_back(x, 2.0);
+    n += 1.0;
+    sx += x;
+    sxx += x * x;
+  }
+  const double sd = 0.1;
+  const slam::LikelihoodField field(wall, 0.01, sd, 0.5, 0.3);
+  const Eigen::Matrix3d H =
+      slam::geometricMatchInformation(field, wall, math::SE2(), sd, 0.3);
+  const double s2 = sd * sd;
+  EXPECT_NEAR(H(0, 0), 0.0, 1e-6 * n / s2);
+  EXPECT_NEAR(H(0, 1), 0.0, 1e-6 * n / s2);
+  EXPECT_NEAR(H(1, 1), n / s2, 0.01 * n / s2);
+  EXPECT_NEAR(H(1, 2), sx / s2, 0.01 * n / s2);
+  EXPECT_NEAR(H(2, 2), sxx / s2, 0.01 * sxx / s2);
+
+  // A circular wall of radius 4 m about the origin seen from (1, 0) facing +y: every normal is
+  // radial, so a turn about the centre, which moves the robot by (0, 1) per radian and turns it
+  // by 1, is not seen: v^T H v is about 0 against H's largest eigenvalue.
+  const math::SE2 pose(1.0, 0.0, M_PI / 2);
+  std::vector<Eigen::Vector2d> circle_map, circle_robot;
+  for (int k = 0; k < 720; ++k) {
+    const double a = 2 * M_PI * k / 720;
+    circle_map.emplace_back(4.0 * std::cos(a), 4.0 * std::sin(a));
+  }
+  for (const auto& q : circle_map) circle_robot.push_back(pose.inverse().transformPoint(q));
+  const slam::LikelihoodField round(circle_map, 0.02, sd, 0.5, 0.3);
+  const Eigen::Matrix3d Hc = slam::geometricMatchInformation(round, circle_robot, pose, sd, 0.3);
+  const Eigen::Vector3d v(0.0, 1.0, 1.0);
+  const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Hc).eigenvalues()(2);
+  EXPECT_LT(v.dot(Hc * v) / v.squaredNorm(), 1e-4 * largest);
+  EXPECT_GT(Hc(0, 0), 0.1 * largest);  // the translations are seen
+  EXPECT_GT(Hc(1, 1), 0.1 * largest);
 }
 
 TEST(ScanMatcher, RecoversAKnownOffset) {
