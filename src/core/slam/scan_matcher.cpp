@@ -250,7 +250,7 @@ Eigen::Matrix3d geometricMatchInformation(const LikelihoodField& field,
   // A neighbourhood is a line when its scatter's smaller eigenvalue is below this share of the
   // larger: 1 cm of noise on 0.3 m of wall gives about 0.015, a right-angle corner 0.3 or more.
   constexpr double kLineShare = 0.1;
-  constexpr int kReach = 10;  // neighbours looked for on each side, in scan order
+  constexpr int kReach = 64;  // at most this many neighbours on each side, in scan order
   const int n = static_cast<int>(points_robot.size());
   const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
   const double gap2 = wall_gap_m * wall_gap_m;

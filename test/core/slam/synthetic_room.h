@@ -57,10 +57,11 @@ inline std::vector<Segment> roundHall(double radius_m, int sides, double doorway
   return walls;
 }
 
-/// Ray-casts 181 beams over 180 degrees from `pose` against `walls`: the hit points (robot
-/// frame) closer than max_range_m.
+/// Ray-casts `beams` beams (181 unless given) over 180 degrees from `pose` against `walls`: the
+/// hit points (robot frame) closer than max_range_m.
 inline std::vector<Eigen::Vector2d> scanOf(const std::vector<Segment>& walls, const math::SE2& pose,
-                                           std::mt19937* rng, double noise_m, double max_range_m);
+                                           std::mt19937* rng, double noise_m, double max_range_m,
+                                           int beams = 181);
 
 /// Ray-casts 181 beams over 180 degrees from `pose` in room(): the hit points in the robot frame.
 inline std::vector<Eigen::Vector2d> scanFrom(const math::SE2& pose, std::mt19937* rng = nullptr,
@@ -69,11 +70,12 @@ inline std::vector<Eigen::Vector2d> scanFrom(const math::SE2& pose, std::mt19937
 }
 
 inline std::vector<Eigen::Vector2d> scanOf(const std::vector<Segment>& walls, const math::SE2& pose,
-                                           std::mt19937* rng, double noise_m, double max_range_m) {
+                                           std::mt19937* rng, double noise_m, double max_range_m,
+                                           int beams) {
   std::vector<Eigen::Vector2d> out;
   std::normal_distribution<double> n(0.0, noise_m > 0 ? noise_m : 1.0);
-  for (int i = 0; i <= 180; ++i) {
-    const double b = -M_PI / 2 + i * M_PI / 180;
+  for (int i = 0; i < beams; ++i) {
+    const double b = -M_PI / 2 + i * M_PI / (beams - 1);
     const Eigen::Vector2d o(pose.x_m, pose.y_m);
     const Eigen::Vector2d d(std::cos(pose.yaw_rad + b), std::sin(pose.yaw_rad + b));
     double best = 1e9;
