@@ -178,14 +178,22 @@ void ColorEstimatorNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
 
 void ColorEstimatorNode::classifyWithoutPose(const sensor_msgs::Image& msg, const cv::Mat& yuv) {
   color::FieldSegmentationConfig config;
+  cv::Mat rectified;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!config_.pose_free) return;
     config = config_.segmentation;
+    try {
+      rectified = input_.camera().rectify(yuv);  // as the pose-driven path classifies
+    } catch (const std::exception& e) {
+      ROS_ERROR_THROTTLE(10.0, "color_estimator: frame dropped: %s", e.what());
+      input_.countBadImage();
+      return;
+    }
   }
   color::FieldSegmentation seg;  // segmented unlocked: services and camera_info answer meanwhile
   try {
-    seg = color::segmentFieldYuv(yuv, config);
+    seg = color::segmentFieldYuv(rectified, config);
   } catch (const std::exception& e) {  // no exception leaves a callback
     ROS_ERROR_THROTTLE(10.0, "color_estimator: frame dropped: %s", e.what());
     std::lock_guard<std::mutex> lock(mutex_);

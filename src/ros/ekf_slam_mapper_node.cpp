@@ -256,6 +256,12 @@ void EkfSlamMapperNode::processLines(const ros::MessageEvent<const LineSegmentAr
     scan2d = laser::LaserScan2D();
   }
   if (scan) {
+    bool found_now = false;
+    no_returns_marked_ += no_return_.mark(&scan2d.ranges_m, scan2d.range_max_m, &found_now);
+    if (found_now)
+      ROS_WARN("ekf_slam_mapper: the scans' range_max is %.2f m, but %ld readings are exactly "
+               "%.2f m and none spread below: taken for the laser's no-return value (not walls)",
+               scan2d.range_max_m, no_return_.readingsAtValue(), *no_return_.value());
     std::vector<laser::ScanPoint> pts;
     laser::validPoints(scan2d, 0.0, &pts);
     points_robot.reserve(pts.size());
@@ -592,6 +598,7 @@ void EkfSlamMapperNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   stat.add("grid renders", grid_renders_);
   stat.add("grid render time last (s)", last_grid_s_);
   stat.add("lines without their scan (not in the grid)", scans_without_laser_scan_);
+  stat.add("readings taken for no returns below range_max", no_returns_marked_);
 }
 
 }  // namespace adaptive_perception

@@ -102,7 +102,7 @@ void LineExtractorNode::onReconfigure(adaptive_perception::LineExtractorConfig& 
 
 void LineExtractorNode::onScan(const ros::MessageEvent<const sensor_msgs::LaserScan>& event) {
   const boost::shared_ptr<const sensor_msgs::LaserScan> msg = event.getConstMessage();
-  const laser::LaserScan2D scan = ros_conv::fromLaserScan(*msg);
+  laser::LaserScan2D scan = ros_conv::fromLaserScan(*msg);
   if (const std::string problem = laser::scanGeometryProblem(scan); !problem.empty()) {
     ROS_ERROR_THROTTLE(10.0, "line_extractor: scan dropped: %s", problem.c_str());
     ++bad_scans_;
@@ -115,6 +115,12 @@ void LineExtractorNode::onScan(const ros::MessageEvent<const sensor_msgs::LaserS
     if (stamp_order_.check(msg->header.stamp, event.getPublisherName()) ==
         ros_conv::StampOrder::Verdict::kDrop)
       return;
+    bool found_now = false;
+    no_returns_marked_ += no_return_.mark(&scan.ranges_m, scan.range_max_m, &found_now);
+    if (found_now)
+      ROS_WARN("line_extractor: the scans' range_max is %.2f m, but %ld readings are exactly "
+               "%.2f m and none spread below: taken for the laser's no-return value (not walls)",
+               scan.range_max_m, no_return_.readingsAtValue(), *no_return_.value());
     segs = extractor_.extract(scan);
   }
   const LineSegmentArray lines = ros_conv::toLineSegmentArray(segs, msg->header);

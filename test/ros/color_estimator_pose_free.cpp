@@ -77,7 +77,7 @@ class ColorEstimatorPoseFree : public ::testing::Test {
 TEST_F(ColorEstimatorPoseFree, ClassifiesWithoutAPoseThenHandsOver) {
   std::lock_guard<std::mutex> l(mutex_);
   ASSERT_EQ(images_, expected_frames_);
-  int pose_free = 0, pose_driven = 0;
+  int pose_free = 0, pose_driven = 0, pose_free_after = 0;
   long carpet = 0, carpet_as_field = 0, sky = 0, sky_as_background = 0;
   bool handed_over = false;
   for (const auto& [stamp, cls] : classified_) {
@@ -90,21 +90,25 @@ TEST_F(ColorEstimatorPoseFree, ClassifiesWithoutAPoseThenHandsOver) {
       ++pose_driven;
       continue;
     }
-    // Pose-free frames only come before the hand-over, and hold field, line and background only.
-    EXPECT_FALSE(handed_over) << "a frame without a pose after the pose arrived";
+    // Pose-free frames hold field, line and background only. After the hand-over a frame whose
+    // pose lookup timed out (a loaded machine) is classified without one, as designed: counted.
+    if (handed_over) ++pose_free_after;
     ++pose_free;
     for (size_t i = 0; i < t.size(); ++i) {
       const std::uint8_t c = cls->data[i];
       ASSERT_TRUE(c == W::kGreen || c == W::kWhite || c == W::kBackground) << int(c);
-      if (t[i] == W::kGreen) ++carpet, carpet_as_field += c != W::kBackground;
+      if (t[i] == W::kGreen) ++carpet, carpet_as_field += c == W::kGreen;
       if (t[i] == W::kBackground) ++sky, sky_as_background += c == W::kBackground;
     }
   }
   EXPECT_GE(pose_free, frames_before_pose_);
   EXPECT_GE(pose_driven, 10) << "the node did not hand over to the pose-driven update";
   ASSERT_GT(carpet, 0);
+  ASSERT_GT(sky, 0);
+  // The hand-over holds: after the first pose-driven frame, most frames are pose-driven.
+  EXPECT_LT(pose_free_after, pose_driven / 4) << pose_free_after << " pose-free frames after it";
   const double carpet_rate = double(carpet_as_field) / carpet;
-  const double sky_rate = sky > 0 ? double(sky_as_background) / sky : 1.0;
+  const double sky_rate = double(sky_as_background) / sky;
   std::printf("color_estimator_pose_free: pose_free=%d pose_driven=%d carpet_as_field=%.3f "
               "background_as_background=%.3f\n",
               pose_free, pose_driven, carpet_rate, sky_rate);

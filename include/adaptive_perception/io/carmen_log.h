@@ -33,7 +33,7 @@
 // its no-return value, and its maximum range, when all of
 //   - m > 0,
 //   - at least `no_return_min_count` readings are exactly m (the same number as the log writes it),
-//   - more readings are exactly m than lie in the kNoReturnGapM (1 m) below it;
+//   - more readings are exactly m than lie in the metre below it (laser::NoReturnConfig::gap_m);
 // a far wall seen once, or a few times among its noisy neighbours, is not. (The bundled logs: intel
 // 68313 readings at 81.83 and none in the metre below; mit-csail 23711 at 81.91, none below.)
 //
@@ -43,6 +43,8 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "adaptive_perception/laser/no_return.h"
 
 #include "adaptive_perception/math/se2.h"
 
@@ -111,14 +113,13 @@ struct CarmenLog {
 /// commas (`-` when there is no laser).
 std::string maxRangeSummary(const CarmenLog& log);
 
-/// Readings within this of the largest one count against it being the no-return value (above), m.
-constexpr double kNoReturnGapM = 1.0;
-
 struct CarmenReadOptions {
   double max_range_m = 0.0;           // > 0: every laser's maximum range (1. above); 0: the log's
   double default_max_range_m = 81.9;  // SICK LMS maximum when neither PARAM nor inference gives one
-  double no_return_margin_m = 0.1;    // readings >= max - this are no returns, >= 0
-  long no_return_min_count = 10;      // readings exactly at the largest value to take it, >= 1
+  // readings >= max - this are no returns, >= 0
+  double no_return_margin_m = laser::NoReturnConfig{}.margin_m;
+  // readings exactly at the largest value to take it, >= 1
+  long no_return_min_count = laser::NoReturnConfig{}.min_count;
   // ipc_timestamps outside this are refused line by line. The default is what a 32-bit count of
   // seconds holds (Unix time to 2106, and ros::Time's range, which carmen_to_bag writes): CARMEN
   // stamps are gettimeofday()'s seconds, so one beyond it, or negative, is a corrupt line.

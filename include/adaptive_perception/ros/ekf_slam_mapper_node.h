@@ -25,6 +25,7 @@
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/SaveMap.h"
 #include "adaptive_perception/config/fields.h"
+#include "adaptive_perception/laser/no_return.h"
 #include "adaptive_perception/ros/measurement_tf.h"
 #include "adaptive_perception/ros/service_queue.h"
 #include "adaptive_perception/ros/stamp_order.h"
@@ -87,6 +88,10 @@ class EkfSlamMapperNode {
   std::vector<int> grid_scan_index_;
   std::vector<math::SE2> grid_mount_;
   long grid_renders_ = 0, scans_without_laser_scan_ = 0;
+  // The laser's no-return value found from its readings, for a scan whose range_max is wrong
+  // (laser/no_return.h); readings at it are not walls.
+  laser::NoReturnFinder no_return_;
+  long no_returns_marked_ = 0;
   double last_grid_s_ = 0.0;
 
   long scans_ = 0, bad_segments_ = 0, resets_ = 0, external_used_ = 0,

@@ -17,6 +17,7 @@
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/laser/line_extraction.h"
+#include "adaptive_perception/laser/no_return.h"
 #include "adaptive_perception/ros/stamp_order.h"
 #include "adaptive_perception/ros/node_diagnostics.h"
 
@@ -44,6 +45,10 @@ class LineExtractorNode {
       reconfigure_;
   ros_conv::StampOrder stamp_order_{"line_extractor", "scan"};
   long scans_ = 0, bad_scans_ = 0;
+  // The laser's no-return value found from its readings, for a scan whose range_max is wrong
+  // (laser/no_return.h); readings at it are not walls.
+  laser::NoReturnFinder no_return_;
+  long no_returns_marked_ = 0;
   ros_conv::NodeDiagnostics diagnostics_;  // last: its heartbeat stops before the state it reads goes
 };
 

@@ -80,9 +80,10 @@ Eigen::Matrix3d matchInformation(const LikelihoodField& field,
 
 /// The information of a match from the scan's geometry (the degeneracy analysis of
 /// point-to-line matching): a point whose neighbours in the scan (consecutive points within
-/// `wall_gap_m` of each other, at least one) lie on a line measures its distance to that wall
-/// along the line's normal n; one at a corner measures both coordinates; an isolated return
-/// (a wall sampled sparser than wall_gap_m, at a grazing angle or far away) nothing. Each
+/// `wall_gap_m` of each other and of it, however many, at least two) lie on a line measures its
+/// distance to that wall along the line's normal n; a return with fewer neighbours (a wall sampled
+/// sparser than wall_gap_m, at a grazing angle or far away) or none on a line (a corner, clutter)
+/// nothing, so that the information is a lower bound; non-finite points are skipped. Each
 /// measurement has the field's width `hit_std_m` as its noise and counts by the field's value at
 /// the point (a point the map does not explain tells nothing); its Jacobian row in (x, y, yaw) is
 /// [n^T, n . d(R p)/dyaw]. So a round hall's walls, whose normals all pass through its centre, say
@@ -135,7 +136,7 @@ struct LaserOdometryConfig {
   // (anywhere in the search window), so the pose keeps the odometry's; 0 finds no direction
   // degenerate. 0.25: the scan knows the direction at least half as well as the odometry (std at
   // most twice the odometry's). The free directions of the synthetic round hall and bare corridor
-  // stay below 0.06, a furnished room's weakest above 0.7 (docs/slam_real_logs.md).
+  // stay below 0.06, a furnished room's weakest at 0.62 or more (docs/slam_real_logs.md).
   double min_match_information = 0.25;
   // A match that disagrees with the odometry's increment by more than this chi-square (3 dof;
   // 16.27 is the 99.9% quantile) under both their covariances, measured along the

@@ -10,6 +10,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -120,30 +121,19 @@ void validate(const CarmenReadOptions& o) {
   check(o.max_decompressed_bytes >= 1, "max_decompressed_bytes = 0 (allowed: >= 1)");
 }
 
-// The no-return value of lasers[i] for i in `which` (the rule in the header), or 0 when there is
-// none; *count: the readings exactly at it.
+// The no-return value of lasers[i] for i in `which` (the rule in the header; laser/no_return.h
+// applies it), or 0 when there is none; *count: the readings exactly at it.
 float inferNoReturn(const std::vector<CarmenLaser>& lasers, const std::vector<size_t>& which,
                     long min_count, long* count) {
-  float m = -std::numeric_limits<float>::infinity();
-  long at = 0;
+  laser::NoReturnConfig config;
+  config.min_count = min_count;
+  laser::NoReturnFinder finder(config);
   for (size_t i : which)
-    for (float r : lasers[i].ranges_m) {
-      if (!std::isfinite(r)) continue;  // beyond a float: a no return whatever the maximum
-      if (r > m) {
-        m = r;
-        at = 1;
-      } else if (r == m) {
-        ++at;
-      }
-    }
-  if (!(m > 0.0f) || at < min_count) return 0.0f;
-  long below = 0;
-  for (size_t i : which)
-    for (float r : lasers[i].ranges_m)
-      if (r < m && r >= m - kNoReturnGapM) ++below;
-  if (at <= below) return 0.0f;
-  *count = at;
-  return m;
+    finder.add(lasers[i].ranges_m, std::numeric_limits<double>::infinity());
+  const std::optional<double> m = finder.value();
+  if (!m) return 0.0f;
+  *count = finder.readingsAtValue();
+  return static_cast<float>(*m);
 }
 }  // namespace
 

@@ -56,6 +56,9 @@ void LaserOdometryConfig::validate() const {
     need(std::isfinite(v) && v > 0.0, "LaserOdometryConfig: odom_std_m and odom_std_rad must be > 0");
   need(std::isfinite(min_match_information) && min_match_information >= 0.0,
        "LaserOdometryConfig: min_match_information must be >= 0");
+  need(min_match_information == 0.0 || connect_gap_m > 0.0,
+       "LaserOdometryConfig: connect_gap_m must be > 0 when min_match_information > 0 (the match's "
+       "information comes from the walls through neighbouring returns)");
   need(std::isfinite(odometry_gate_chi2) && odometry_gate_chi2 > 0.0,
        "LaserOdometryConfig: odometry_gate_chi2 must be > 0");
   need(std::isfinite(odometry_gate_min_score) && odometry_gate_min_score >= 0.0 &&
@@ -248,57 +251,49 @@ Eigen::Matrix3d geometricMatchInformation(const LikelihoodField& field,
                                           const math::SE2& pose, double hit_std_m,
                                           double wall_gap_m) {
   // A neighbourhood is a line when its scatter's smaller eigenvalue is below this share of the
-  // larger: 1 cm of noise on 0.3 m of wall gives about 0.015, a right-angle corner 0.3 or more.
+  // larger: 1.5 cm of noise on 0.6 m of wall gives about 0.008, a right-angle corner 0.3 or more.
   constexpr double kLineShare = 0.1;
-  constexpr int kReach = 64;  // at most this many neighbours on each side, in scan order
   const int n = static_cast<int>(points_robot.size());
   const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
   const double gap2 = wall_gap_m * wall_gap_m;
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d& p = points_robot[i];
+    if (!p.allFinite()) continue;
     // d(R p)/dyaw in the map frame: R p turned by a quarter.
     const Eigen::Vector2d rp(c * p.x() - s * p.y(), s * p.x() + c * p.y());
     const Eigen::Vector2d drp(-rp.y(), rp.x());
     const double w = field.at(Eigen::Vector2d(pose.x_m, pose.y_m) + rp);
     if (!(w > 0.0)) continue;
-    // The wall through p: the consecutive points within wall_gap_m of their predecessor and of p
-    // (a span of wall long against the range noise, so that a noisy wall is not a corner).
+    // The wall through p: the consecutive points within wall_gap_m of their predecessor and of p,
+    // however many (a dense laser's returns a few mm apart: a span of wall long against the range
+    // noise, so that a noisy wall is not taken for a corner).
     Eigen::Vector2d sum = p;
     Eigen::Matrix2d outer = p * p.transpose();
     int count = 1;
     for (int dir : {-1, 1}) {
       Eigen::Vector2d last = p;
-      for (int k = 1; k <= kReach; ++k) {
-        const int j = i + dir * k;
-        if (j < 0 || j >= n || (points_robot[j] - last).squaredNorm() > gap2 ||
-            (points_robot[j] - p).squaredNorm() > gap2)
-          break;
-        last = points_robot[j];
+      for (int j = i + dir; j >= 0 && j < n; j += dir) {
+        const Eigen::Vector2d& q = points_robot[j];
+        if (!((q - last).squaredNorm() <= gap2 && (q - p).squaredNorm() <= gap2)) break;
+        last = q;
         sum += last;
         outer += last * last.transpose();
         ++count;
       }
     }
-    if (count < 2) continue;  // an isolated return: the wall it samples is unknown
-    Eigen::Matrix3d Hi = Eigen::Matrix3d::Zero();
-    bool on_line = false;
-    {
-      const Eigen::Vector2d mean = sum / count;
-      const Eigen::Matrix2d cov = outer / count - mean * mean.transpose();
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-      if (es.eigenvalues()(0) <= kLineShare * es.eigenvalues()(1)) {
-        const Eigen::Vector2d nr = es.eigenvectors().col(0);  // the normal, robot frame
-        const Eigen::Vector2d nm(c * nr.x() - s * nr.y(), s * nr.x() + c * nr.y());
-        const Eigen::Vector3d J(nm.x(), nm.y(), nm.dot(drp));
-        Hi = J * J.transpose();
-        on_line = true;
-      }
-    }
-    if (!on_line) {  // a corner: both coordinates
-      const Eigen::Vector3d Jx(1.0, 0.0, drp.x()), Jy(0.0, 1.0, drp.y());
-      Hi = Jx * Jx.transpose() + Jy * Jy.transpose();
-    }
+    // Fewer than three returns (a wall sampled sparser than wall_gap_m) or no line through them
+    // (a corner, clutter): the direction of the surface is not known, and the return tells
+    // nothing (the information is a lower bound, as degenerate directions need).
+    if (count < 3) continue;
+    const Eigen::Vector2d mean = sum / count;
+    const Eigen::Matrix2d cov = outer / count - mean * mean.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
+    if (!(es.eigenvalues()(0) <= kLineShare * es.eigenvalues()(1))) continue;
+    const Eigen::Vector2d nr = es.eigenvectors().col(0);  // the normal, robot frame
+    const Eigen::Vector2d nm(c * nr.x() - s * nr.y(), s * nr.x() + c * nr.y());
+    const Eigen::Vector3d J(nm.x(), nm.y(), nm.dot(drp));
+    const Eigen::Matrix3d Hi = J * J.transpose();
     H += w * Hi;
   }
   return H / (hit_std_m * hit_std_m);

@@ -113,24 +113,50 @@ TEST(ScanMatcher, GeometricInformationOfAWallIsTheClosedForm) {
 }
 
 TEST(ScanMatcher, GeometricInformationOfADenseNoisyCorridorHasNothingAlongIt) {
-  // A bare corridor 2 m wide seen by a dense laser (361 beams over 180 degrees, 1.5 cm of range
-  // noise, 8 m reach), as the simulated loop bag's. Near a wall the beams are 9 mm apart: a
-  // neighbourhood of a fixed count of returns spans a few cm there, and the noise made many of
-  // them "corners" that claimed the corridor's length (the loop bag's laser odometry shrank its
-  // first corridor by 0.46 m in 15 m). Taken over up to wall_gap_m, the walls stay walls.
+  // A bare corridor 2 m wide seen by lasers of 181 to 3601 beams over 180 degrees with 1 to 3 cm
+  // of range noise, 8 m reach. Near a wall a dense laser's beams are mm apart: a neighbourhood of
+  // a fixed count of returns spanned a few cm there, and the noise made many of them "corners"
+  // that claimed the corridor's length (the simulated loop bag's 361-beam laser shrank its first
+  // corridor by 0.46 m in 15 m). Taken over wall_gap_m, the walls stay walls: along the corridor
+  // the information stays far below min_match_information times an odometry step's (0.1 m:
+  // odom_std_m + odom_std_per_m * 0.1 = 0.03 m).
   const std::vector<adaptive_perception::test::Segment> walls{{{0, 0}, {100, 0}},
                                                               {{0, 2}, {100, 2}}};
-  std::mt19937 rng(5);
+  const slam::LaserOdometryConfig lo;
+  const double step_sd = lo.odom_std_m + lo.odom_std_per_m * 0.1;
+  const double sd = lo.matcher.hit_std_m;
   const math::SE2 pose(10.0, 1.0, 0.0);
-  const auto scan = adaptive_perception::test::scanOf(walls, pose, &rng, 0.015, 8.0, 361);
-  std::vector<Eigen::Vector2d> map;
-  for (const auto& p : scan) map.push_back(pose.transformPoint(p));
-  const double sd = slam::ScanMatcherConfig().hit_std_m;
-  const slam::LikelihoodField field(map, 0.05, sd, 1.0, 0.3);
-  const Eigen::Matrix3d H = slam::geometricMatchInformation(field, scan, pose, sd, 0.3);
-  std::printf("dense noisy corridor: information along it %.1f, across it %.1f (1/m^2)\n", H(0, 0),
-              H(1, 1));
-  EXPECT_LT(H(0, 0), 0.01 * H(1, 1));
+  for (int beams : {181, 361, 1441, 3601})
+    for (double noise_m : {0.01, 0.015, 0.03}) {
+      std::mt19937 rng(5);
+      const auto scan = adaptive_perception::test::scanOf(walls, pose, &rng, noise_m, 8.0, beams);
+      std::vector<Eigen::Vector2d> map;
+      for (const auto& p : scan) map.push_back(pose.transformPoint(p));
+      const slam::LikelihoodField field(map, 0.05, sd, 1.0, lo.connect_gap_m);
+      const Eigen::Matrix3d H =
+          slam::geometricMatchInformation(field, scan, pose, sd, lo.connect_gap_m);
+      const double lambda_along = H(0, 0) * step_sd * step_sd;
+      std::printf("corridor, %d beams, %.3f m noise: information along it %.1f, across %.1f "
+                  "(1/m^2); along, in odometry steps' %.3f\n",
+                  beams, noise_m, H(0, 0), H(1, 1), lambda_along);
+      EXPECT_LT(lambda_along, 0.25 * lo.min_match_information) << beams << " " << noise_m;
+      EXPECT_GT(H(1, 1) * step_sd * step_sd, 10.0);  // across it the scan knows far more
+    }
+}
+
+TEST(ScanMatcher, GeometricInformationSkipsNonFiniteReturns) {
+  // A straight wall with one NaN return in it: the NaN neither joins its neighbours' wall nor
+  // makes them corners; the information along the wall stays 0.
+  std::vector<Eigen::Vector2d> wall;
+  for (int k = -20; k <= 20; ++k) wall.emplace_back(0.05 * k, 2.0);
+  const slam::LikelihoodField field(wall, 0.01, 0.1, 0.5, 0.3);
+  const Eigen::Matrix3d clean = slam::geometricMatchInformation(field, wall, math::SE2(), 0.1, 0.3);
+  wall[20] = Eigen::Vector2d(NAN, NAN);
+  const Eigen::Matrix3d with_nan =
+      slam::geometricMatchInformation(field, wall, math::SE2(), 0.1, 0.3);
+  EXPECT_TRUE(with_nan.allFinite());
+  EXPECT_NEAR(with_nan(0, 0), 0.0, 1e-9 * clean(1, 1));
+  EXPECT_NEAR(with_nan(1, 1), clean(1, 1) * 40.0 / 41.0, 0.01 * clean(1, 1));
 }
 
 TEST(ScanMatcher, RecoversAKnownOffset) {
@@ -372,7 +398,7 @@ TEST(LaserOdometry, KeepsTheOdometrysTurnInARoundHall) {
       EXPECT_LT(now.worst_rad, 0.02);
     } else {
       // With the doorway in view the turn is seen (its information 0.5-3.7 times the
-      // odometry's), so it is fused, and the match's error there enters: 0.036 rad worst.
+      // odometry's), so it is fused, and the match's error there enters: 0.024 rad worst.
       EXPECT_LT(now.worst_rad, 0.5 * before.worst_rad);
     }
   }
@@ -390,6 +416,9 @@ TEST(ScanMatcher, RefusesBadSettings) {
   EXPECT_THROW(l.validate(), std::invalid_argument);
   l = slam::LaserOdometryConfig();
   l.min_match_information = -1.0;
+  EXPECT_THROW(l.validate(), std::invalid_argument);
+  l = slam::LaserOdometryConfig();
+  l.connect_gap_m = 0.0;  // no walls through neighbouring returns: no information at all
   EXPECT_THROW(l.validate(), std::invalid_argument);
 }
 
