@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes every parser of user files (test/fuzz/fuzz_*.cpp: CARMEN logs, relations files, field and
-# world YAML, colour priors, tracking dynamics, image-list CSVs, place databases) with libFuzzer +
+# world YAML, colour priors, tracking dynamics, image-list CSVs, place databases, saved line maps,
+# map_server YAML) with libFuzzer +
 # AddressSanitizer + UndefinedBehaviorSanitizer (clang), each for a bounded time, starting from its
 # seed corpus in test/fuzz/corpus/<parser> (the target's name without fuzz_). The corpus grown by a run is kept in
 # results/fuzz/<target>/corpus; a crashing input is written to results/fuzz/<target>/ (crash-*,

@@ -219,7 +219,10 @@ OccupancyGrid readMapServerFiles(const std::string& yaml_path) {
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(yaml_path + ": a map value has the wrong type: " + e.what());
   }
-  if (!(g.resolution_m > 0.0)) throw std::runtime_error(yaml_path + ": 'resolution' must be > 0");
+  if (!(std::isfinite(g.resolution_m) && g.resolution_m > 0.0))
+    throw std::runtime_error(yaml_path + ": 'resolution' must be finite and > 0");
+  if (!(std::isfinite(g.origin_x_m) && std::isfinite(g.origin_y_m)))
+    throw std::runtime_error(yaml_path + ": 'origin' must be finite");
   if (!(free >= 0.0 && free < occupied && occupied <= 1.0))
     throw std::runtime_error(yaml_path + ": needs 0 <= free_thresh < occupied_thresh <= 1");
   fs::path img_path(image);

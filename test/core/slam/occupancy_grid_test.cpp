@@ -169,6 +169,9 @@ TEST(OccupancyGrid, MalformedMapFilesAreNamed) {
               "nowhere.pgm' cannot be read");
   expectError("image: a.pgm\nresolution: 0.05\norigin: [0, 0]\n" + good_tail, "'origin'");
   expectError("image: a.pgm\nresolution: fine\norigin: [0, 0, 0]\n" + good_tail, "wrong type");
+  // yaml-cpp reads .inf and .nan as doubles: an infinite cell or a NaN origin is no map.
+  expectError("image: a.pgm\nresolution: .inf\norigin: [0, 0, 0]\n" + good_tail, "'resolution'");
+  expectError("image: a.pgm\nresolution: 0.05\norigin: [.nan, 0, 0]\n" + good_tail, "'origin'");
   expectError(
       "image: a.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
       "occupied_thresh: 0.1\nfree_thresh: 0.5\n",
