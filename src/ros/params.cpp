@@ -194,8 +194,9 @@ world::FieldMap loadFieldMap(const ros::NodeHandle& pnh, std::string* path) {
 
 config::ParameterDoc fieldFileParameter() {
   return {"field_file", "string", kFieldFile, "",
-          "the field's dimensions (YAML); a relative path is looked up in the current directory, "
-          "then in the package"};
+          "the field (YAML, format in docs/fields.md; shipped: config/field_4legged.yaml, "
+          "config/field_spl.yaml, config/field_spl_landmarks.yaml); a relative path is looked up in "
+          "the current directory, then in the package"};
 }
 
 config::ParameterDoc imageTransportParameter() {

@@ -64,6 +64,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"global", "truth"}));
   std::string priors_dir = "config/color_priors";
   cli.option("priors_dir", &priors_dir, "folder of the lighting priors");
+  std::string field = "config/field_4legged.yaml";
+  cli.option("field", &field, "the bag's field (YAML, docs/fields.md; relative: from the package)");
   const std::string& output = cli.resultsFolder("results.yaml, frames.csv and the trajectories");
   std::string name;
   cli.option("name", &name, "label of the run (empty: the bag's file name)");
@@ -82,7 +84,8 @@ int main(int argc, char** argv) {
     ros_bag::BagFrameReader reader(bag);
     const auto frames = reader.readAll();
     if (frames.empty()) throw std::runtime_error(bag + ": no readable camera frames");
-    localization::RbpfLocalizer rbpf(world::FieldMap(), frames.front().camera, priors, cfg);
+    const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));
+    localization::RbpfLocalizer rbpf(map, frames.front().camera, priors, cfg);
     if (init == "truth") {  // tracking: start around the first true pose (0.2 m, 10 degrees)
       for (const auto& f : frames)
         if (f.has_truth) {

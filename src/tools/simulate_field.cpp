@@ -1,4 +1,5 @@
-// simulate_field: a legged robot on the four-legged-league field, written to a bag.
+// simulate_field: a legged robot on a RoboCup field (--field; default the four-legged one),
+// written to a bag.
 //
 //   simulate_field --help   (every option with its default, unit and range)
 //
@@ -38,7 +39,7 @@ std::string slash(const char* topic) { return std::string("/") + topic; }
 
 int main(int argc, char** argv) {
   tools::CommandLine cli("simulate_field",
-                         "A legged robot on the four-legged-league field, written to a bag "
+                         "A legged robot on a RoboCup field (default the four-legged one), written to a bag "
                          "(deterministic for the seeds).");
   const std::string& output = cli.outputFile("the bag to write", "the bag");
   sim::FieldSimConfig cfg;
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
   cli.option("environment_seed", &cfg.environment_seed, "the venue (0: the nominal lab)");
   cli.fields(sim::FieldSimConfig::fields(), &cfg);
   std::string field = "config/field_4legged.yaml";
-  cli.option("field", &field, "field description (YAML; relative: from the package)");
+  cli.option("field", &field, "field description (YAML, docs/fields.md; relative: from the package)");
   double start_time_s = 1.6e9;
   cli.option("start_time_s", &start_time_s, config::closed(1, 4e9), "the bag's first stamp, s");
   bool no_compression = false;

@@ -1,14 +1,20 @@
 #pragma once
-// 3-D map of a Sony four-legged-league soccer field, in the `map` frame: origin at the centre spot,
-// x towards the cyan (sky-blue) goal, y to the left when facing it, z up; metres.
+// 3-D map of a RoboCup soccer field, in the `map` frame: origin at the centre spot, x along the long
+// axis (towards the cyan goal on the four-legged field), y to the left when facing +x, z up; metres.
 //
-// The map is built from league dimensions (FieldDimensions, loaded from config/field_4legged.yaml)
-// into a few kinds of primitive that the label renderer intersects:
+// Any field is data: FieldDimensions holds the league's dimensions, its goals (coloured panels, or
+// round posts with a crossbar and an optional net) and its landmarks as a list (a cylinder with
+// coloured bands from the bottom up). config/field_4legged.yaml (the default, the 2005 Sony
+// four-legged field), config/field_spl.yaml (the 2024 Standard Platform League field) and
+// config/field_spl_landmarks.yaml (SPL plus six four-legged landmarks) are the shipped fields.
+//
+// The map is built from a FieldDimensions into a few kinds of primitive that the label renderer
+// intersects:
 //   - the carpet: the plane z = 0 inside |x| <= carpet_half_length_m, |y| <= carpet_half_width_m;
 //   - paint on the carpet: axis-aligned rectangles (lines) and rings (centre circle);
-//   - vertical quads: field walls and the goal panels (a segment in the plane times a height
-//   range);
-//   - vertical cylinders in coloured bands: the beacons;
+//   - vertical quads: field walls, goal panels, crossbars and nets (a segment in the plane times a
+//   height range);
+//   - vertical cylinders in coloured bands: the landmarks (beacons) and round goal posts;
 //   - spheres: the ball.
 #include <Eigen/Core>
 #include <string>
@@ -47,7 +53,28 @@ struct Cylinder {  // vertical cylinder, axis through (cx, cy)
   double cx_m, cy_m, radius_m;
   std::vector<CylinderBand> bands;  // bottom to top, contiguous
   std::string name;
+  SurfaceKind kind = SurfaceKind::kBeacon;  // kGoal for a goal post
 };
+
+/// One band of a landmark, listed from the bottom up.
+struct LandmarkBand {
+  ColorClass color;
+  double height_m;
+};
+
+/// A cylindrical landmark standing on the carpet (a four-legged-league beacon).
+struct Landmark {
+  std::string name;  // empty: named after its bands, top first ("pink_over_yellow")
+  Eigen::Vector2d xy_m{0.0, 0.0};
+  double radius_m = 0.05;
+  std::vector<LandmarkBand> bands;  // bottom to top; at least one
+};
+
+/// The four beacons of the 2005 four-legged field (the default landmarks): 100 mm across, a 200 mm
+/// white base and two 100 mm bands, at x = +-1.35, y = +-1.95 m. Looking from the yellow goal (-x)
+/// to the cyan goal (+x): on the right (-y) the top band is pink and the lower band has the colour
+/// of the nearer goal; on the left (+y) it is the other way round.
+std::vector<Landmark> fourLeggedBeacons();
 
 struct Sphere {
   Eigen::Vector3d centre_m;
@@ -55,28 +82,36 @@ struct Sphere {
   ColorClass color;
 };
 
-/// League dimensions; defaults are the 2005 Sony four-legged-league field (see
-/// config/field_4legged.yaml).
+/// A field's description; defaults are the 2005 Sony four-legged-league field (see
+/// config/field_4legged.yaml). YAML keys are the member names.
 struct FieldDimensions {
   double field_length_m = 5.4;             // between the goal lines (outer edges)
   double field_width_m = 3.6;              // between the side lines (outer edges)
-  double carpet_margin_m = 0.3;            // green carpet beyond the lines up to the field wall
+  double carpet_margin_m = 0.3;            // green carpet beyond the lines (to the wall, if any)
   double line_width_m = 0.025;             // every painted line
   double centre_circle_diameter_m = 0.36;  // to the middle of the line
   double penalty_area_depth_m = 0.65;      // from the goal line into the field
   double penalty_area_width_m = 1.3;
-  double wall_height_m = 0.1;  // white field wall around the carpet
-  double goal_width_m = 0.8;   // inner width of the goal mouth
+  double goal_area_depth_m = 0.0;  // the smaller box in front of each goal; 0: none
+  double goal_area_width_m = 0.0;
+  double penalty_mark_distance_m = 0.0;  // goal line (outer edge) to the mark's centre; 0: none
+  double mark_size_m = 0.1;              // the arms of the penalty and centre marks (crosses)
+  bool centre_mark = false;              // a cross on the centre spot
+  double wall_height_m = 0.1;            // white field wall around the carpet; 0: no wall
+  double goal_width_m = 0.8;             // inner width of the goal mouth
   double goal_depth_m = 0.3;
   double goal_height_m = 0.3;
-  double beacon_x_m = 1.35;  // |x| of the beacons (from the halfway line)
-  double beacon_y_m = 1.95;  // |y| of the beacon axes
-  double beacon_radius_m = 0.05;
-  double beacon_white_height_m = 0.2;  // white base (part C)
-  double beacon_band_height_m = 0.1;   // each coloured band (parts B and A)
+  /// 0: each goal is three coloured panels (the four-legged goal). Otherwise two round posts of
+  /// this diameter, a crossbar as deep, and the net (if goal_net_color is set) behind.
+  double goal_post_diameter_m = 0.0;
+  ColorClass goal_color_minus_x = kYellow;  // the goal behind -x (panels, or posts and crossbar)
+  ColorClass goal_color_plus_x = kCyan;
+  ColorClass goal_net_color = kBackground;  // kBackground (YAML "none"): an open net, not drawn
+  std::vector<Landmark> landmarks = fourLeggedBeacons();
   bool ball_enabled = false;
   Eigen::Vector2d ball_xy_m{0.0, 0.0};
   double ball_radius_m = 0.043;
+  ColorClass ball_color = kOrange;
 
   /// Throws std::invalid_argument naming the first bad field (non-positive size, goal wider than
   /// the field...).
@@ -88,9 +123,10 @@ class FieldMap {
   FieldMap() : FieldMap(FieldDimensions{}) {}
   explicit FieldMap(const FieldDimensions& dims);
 
-  /// Loads dimensions from YAML (keys as in FieldDimensions; missing keys keep defaults). Throws
-  /// std::runtime_error with the file name (and line, for syntax errors) on a missing/bad file, an
-  /// unknown key or an invalid value.
+  /// Loads a field from YAML (keys as in FieldDimensions; missing keys keep defaults; `landmarks`
+  /// is a list of {name, x_m, y_m, radius_m, bands: [{color, height_m}, ...]}, colours by name).
+  /// Throws std::runtime_error with the file name and line on a missing/bad file, an unknown key,
+  /// a landmark without bands or an invalid value.
   static FieldMap loadYaml(const std::string& path);
   static FieldDimensions parseYaml(const std::string& yaml_text, const std::string& source_name);
 

@@ -69,6 +69,7 @@ class LabelRenderer {
     double cx, cy, r2;
     std::vector<CylinderBand> bands;
     double zmin, zmax;
+    SurfaceKind kind;
   };
   std::vector<QuadP> quads_;
   std::vector<CylP> cylinders_;

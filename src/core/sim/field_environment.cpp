@@ -93,7 +93,14 @@ const Eigen::Vector3d& FieldEnvironment::albedo(const world::RayHit& hit) const 
     case SurfaceKind::kWall:
       return materials.wall;
     case SurfaceKind::kGoal:
-      return hit.color == world::kYellow ? materials.goal_yellow : materials.goal_cyan;
+      switch (hit.color) {
+        case world::kYellow:
+          return materials.goal_yellow;
+        case world::kCyan:
+          return materials.goal_cyan;
+        default:  // white posts and nets
+          return materials.wall;
+      }
     case SurfaceKind::kBall:
       return materials.orange;
     case SurfaceKind::kBeacon:
@@ -104,6 +111,8 @@ const Eigen::Vector3d& FieldEnvironment::albedo(const world::RayHit& hit) const 
           return materials.yellow;
         case world::kCyan:
           return materials.cyan;
+        case world::kGreen:
+          return materials.carpet;
         default:
           return materials.beacon_white;
       }

@@ -49,7 +49,7 @@ LabelRenderer::LabelRenderer(const FieldMap& map, const PinholeCamera& camera)
   }
   for (const auto& c : map.cylinders()) {
     cylinders_.push_back({c.cx_m, c.cy_m, c.radius_m * c.radius_m, c.bands, c.bands.front().z0_m,
-                          c.bands.back().z1_m});
+                          c.bands.back().z1_m, c.kind});
   }
 }
 
@@ -161,7 +161,7 @@ inline void LabelRenderer::trace(const PoseSetup& s, double dx, double dy, doubl
       }
     }
     best_t = t;
-    kind = SurfaceKind::kBeacon;
+    kind = c.kind;
     what = 2;
     which = s.cyl_idx[k];
   }
