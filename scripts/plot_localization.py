@@ -29,27 +29,44 @@ def tum(path):
     return xs, ys
 
 
+COLOURS = {"green": "#3cb043", "white": "white", "pink": "hotpink", "yellow": "gold",
+           "cyan": "deepskyblue", "orange": "darkorange"}
+# The four-legged field's beacons (world::fourLeggedBeacons): a file without `landmarks` has them.
+DEFAULT_LANDMARKS = [
+    {"x_m": sx * 1.35, "y_m": sy * 1.95, "radius_m": 0.05,
+     "bands": [{"color": "white"}, {"color": ("yellow" if sx < 0 else "cyan") if sy < 0 else "pink"},
+               {"color": "pink" if sy < 0 else ("yellow" if sx < 0 else "cyan")}]}
+    for sx in (-1, 1) for sy in (-1, 1)]
+
+
 def draw_field(ax, field):
+    """The field as docs/fields.md describes it: carpet, lines, goals in their colours, and each
+    landmark as a disc in its top band's colour ringed by the band below."""
     length = field.get("field_length_m", 5.4)
     width = field.get("field_width_m", 3.6)
     margin = field.get("carpet_margin_m", 0.3)
     goal_w = field.get("goal_width_m", 0.8)
     goal_d = field.get("goal_depth_m", 0.3)
     circle = field.get("centre_circle_diameter_m", 0.36)
-    bx, by = field.get("beacon_x_m", 1.35), field.get("beacon_y_m", 1.95)
     ax.add_patch(patches.Rectangle((-length / 2 - margin, -width / 2 - margin), length + 2 * margin,
                                    width + 2 * margin, color="#2e8b3a", zorder=0))
     ax.add_patch(patches.Rectangle((-length / 2, -width / 2), length, width, fill=False,
                                    edgecolor="white", lw=1.5, zorder=1))
     ax.plot([0, 0], [-width / 2, width / 2], color="white", lw=1.5, zorder=1)
     ax.add_patch(patches.Circle((0, 0), circle / 2, fill=False, edgecolor="white", lw=1.5, zorder=1))
-    ax.add_patch(patches.Rectangle((-length / 2 - goal_d, -goal_w / 2), goal_d, goal_w,
-                                   color="gold", zorder=1))
-    ax.add_patch(patches.Rectangle((length / 2, -goal_w / 2), goal_d, goal_w, color="deepskyblue",
-                                   zorder=1))
-    for sx in (-1, 1):
-        for sy in (-1, 1):
-            ax.add_patch(patches.Circle((sx * bx, sy * by), 0.07, color="hotpink", zorder=2))
+    for sign, key, default in ((-1, "goal_color_minus_x", "yellow"), (1, "goal_color_plus_x", "cyan")):
+        colour = COLOURS.get(field.get(key, default), "gray")
+        x0 = -length / 2 - goal_d if sign < 0 else length / 2
+        ax.add_patch(patches.Rectangle((x0, -goal_w / 2), goal_d, goal_w, fill=False,
+                                       edgecolor=colour, lw=2.5, zorder=1))
+    for lm in field.get("landmarks", DEFAULT_LANDMARKS) or []:
+        bands = lm.get("bands") or [{"color": "white"}]
+        r = max(lm.get("radius_m", 0.05), 0.07)
+        below = bands[-2]["color"] if len(bands) > 1 else bands[-1]["color"]
+        ax.add_patch(patches.Circle((lm["x_m"], lm["y_m"]), r * 1.6, color=COLOURS.get(below, "gray"),
+                                    zorder=2))
+        ax.add_patch(patches.Circle((lm["x_m"], lm["y_m"]), r, color=COLOURS.get(bands[-1]["color"], "gray"),
+                                    zorder=3))
 
 
 def main(argv):
@@ -87,8 +104,10 @@ def main(argv):
     if tx:
         ax.plot(tx[0], ty[0], "o", color="red", ms=6)
     ax.set_aspect("equal")
-    ax.set_xlim(-3.3, 3.3)
-    ax.set_ylim(-2.4, 2.4)
+    half_l = field.get("field_length_m", 5.4) / 2 + field.get("carpet_margin_m", 0.3) + 0.3
+    half_w = field.get("field_width_m", 3.6) / 2 + field.get("carpet_margin_m", 0.3) + 0.3
+    ax.set_xlim(-half_l, half_l)
+    ax.set_ylim(-half_w, half_w)
     ax.legend(loc="upper right", fontsize=8)
     ax.set_title(title)
     fig.tight_layout()

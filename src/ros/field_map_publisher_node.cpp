@@ -86,7 +86,8 @@ visualization_msgs::MarkerArray fieldMapMarkers(const world::FieldMap& map,
   }
   for (const auto& c : map.cylinders()) {
     for (const auto& band : c.bands) {
-      auto m = base("beacons", visualization_msgs::Marker::CYLINDER);
+      auto m = base(c.kind == world::SurfaceKind::kGoal ? "goals" : "beacons",
+                    visualization_msgs::Marker::CYLINDER);
       m.pose.position.x = c.cx_m;
       m.pose.position.y = c.cy_m;
       m.pose.position.z = 0.5 * (band.z0_m + band.z1_m);
