@@ -161,7 +161,7 @@ int main(int argc, char** argv) {
     places::ImageDescriptors tquery = places::computeDescriptors(kitchen, tcfg.descriptor);
     tquery.sift = places::extractSift(kitchen, places::SiftConfig());
     for (const char* method :
-         {"thumbnail", "gradient", "chromaticity", "layout", "words", "fused", "sequence"}) {
+         {"thumbnail", "gradient", "chromaticity", "layout", "words", "fused", "sequence", "route"}) {
       places::TraversalMatcherConfig c = tcfg;
       c.method = method;
       places::TraversalMatcher matcher(refs, c);

@@ -187,7 +187,7 @@ inline void addTraversalOptions(CommandLine& cli, TraversalOptions* o) {
       ->group(group);
   cli.option("method", &m.method,
              "method of the summary line: thumbnail, gradient, chromaticity, layout, words, "
-             "fused or sequence")
+             "fused, sequence or route")
       ->group(group);
   cli.option("sequence_frames", &m.sequence.sequence_frames, "frames of a sequence match")
       ->group(group);
@@ -196,6 +196,21 @@ inline void addTraversalOptions(CommandLine& cli, TraversalOptions* o) {
   cli.option("max_velocity", &m.sequence.max_velocity, "fastest sequence slope, references per query")
       ->group(group);
   cli.option("velocity_steps", &m.sequence.velocity_steps, "slopes tried between the two")
+      ->group(group);
+  cli.option("route_likelihood_gain", &m.route.likelihood_gain,
+             "route filter: likelihood exp(-gain * enhanced distance)")
+      ->group(group);
+  cli.option("route_speed_change_probability", &m.route.speed_change_probability,
+             "route filter: probability that the query's speed changes, per frame")
+      ->group(group);
+  cli.option("route_hub_prior_queries", &m.route.hub_prior_queries,
+             "route filter: prior weight of each reference's distance statistics (0: off)")
+      ->group(group);
+  cli.option("route_contrast_window_frames", &m.route.contrast_window_frames,
+             "route filter: contrast enhancement window (0: none)")
+      ->group(group);
+  cli.option("route_jump_probability", &m.route.jump_probability,
+             "route filter: probability of a jump anywhere, per query frame")
       ->group(group);
 }
 
@@ -256,7 +271,7 @@ inline int runTraversalEvaluation(CommandLine& cli, TraversalOptions opts,
                 query_path.c_str());
 
     std::vector<std::string> methods = {"thumbnail", "gradient", "chromaticity", "layout",
-                                        "words",     "fused",    "sequence"};
+                                        "words",     "fused",    "sequence", "route"};
     if (!refs.words()) {
       if (cfg.method == "words")
         throw std::runtime_error("--method words: no reference image has a SIFT keypoint");
@@ -287,7 +302,7 @@ inline int runTraversalEvaluation(CommandLine& cli, TraversalOptions opts,
         const std::vector<float>& s = matchers[m].add(d);
         places::QueryOutcome o;
         o.ranked = places::smallestK(s, 5);
-        o.confidence = places::separation(s);
+        o.confidence = matchers[m].confidence();
         match_s[m] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
         o.truth_reference = truth[i].reference;
         o.tolerance = truth[i].tolerance;
@@ -339,7 +354,8 @@ inline int runTraversalEvaluation(CommandLine& cli, TraversalOptions opts,
     y << YAML::EndMap;
     const bool uses_words =
         cfg.method == "words" ||
-        ((cfg.method == "fused" || cfg.method == "sequence") && cfg.fusion.words > 0);
+        ((cfg.method == "fused" || cfg.method == "sequence" || cfg.method == "route") &&
+         cfg.fusion.words > 0);
     const double qps =
         nq / (describe_s + (uses_words ? sift_s : 0.0) + chosen_match_ms * nq / 1000.0);
     y << YAML::Key << "queries" << YAML::Value << query_files.size();

@@ -26,6 +26,8 @@ class PlaceDescriptorIndex {
   int numPlaces() const { return static_cast<int>(names_.size()); }
   const std::vector<std::string>& placeNames() const { return names_; }
   int totalImages() const { return rows_.size(); }
+  /// The place of the training image in row `row` (the order stored).
+  int placeOfImage(int row) const { return place_.at(static_cast<size_t>(row)); }
   const GlobalDescriptorConfig& config() const { return rows_.config(); }
 
   /// Per place: the smallest cue distance of its training images to `query`, minus the smallest

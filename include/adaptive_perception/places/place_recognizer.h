@@ -10,7 +10,9 @@
 // the paper's colour histograms (eq. 5) in color_space / method, with the most confident space /
 // method when those are "auto" (papers/004 section 6). With the whole-image cues the filter also
 // takes the sequence matcher's view of the last images (use_sequence); its answer is the fused
-// one.
+// one. When the database is one drive (a reference traversal: each place one training image, each
+// image's place joined to the one stored before it), the route filter (route_filter.h) over its
+// images gives the answer instead (use_route): the posterior's best frame and its mass.
 #include <deque>
 #include <string>
 #include <vector>
@@ -19,6 +21,7 @@
 #include "adaptive_perception/places/place_descriptor_index.h"
 #include "adaptive_perception/places/place_filter.h"
 #include "adaptive_perception/places/place_matcher.h"
+#include "adaptive_perception/places/route_filter.h"
 #include "adaptive_perception/places/sequence_matcher.h"
 
 namespace adaptive_perception::places {
@@ -40,6 +43,11 @@ struct PlaceRecognizerConfig {
   // (omni: 0.84-0.96 -> 0.54-0.76; docs/places_across_light.md).
   bool use_sequence = false;
   SequenceMatcherConfig sequence;
+  // Whole-image cues with the filter on, over a database that is one drive: the route filter
+  // answers. On: it follows a stop, a change of speed and a kidnap where the topological filter
+  // over single places cannot tell speed (route_filter_test; docs/places_across_light.md).
+  bool use_route = true;
+  RouteFilterConfig route;
 
   /// The numbers and switches histogram_place_recognizer sets (config/fields.h); the names
   /// (cue, color_space, method) aside.
@@ -55,6 +63,8 @@ struct PlaceResult {
   int filtered_place = -1;           // the fused answer: the filter's most probable place
   double filtered_confidence = 0.0;  // its belief
   int sequence_place = -1;           // the sequence matcher's best place (-1 when it does not run)
+  int route_frame = -1;              // the route filter's best training image (the order stored;
+                                     // -1 when it does not run); its place is filtered_place
 };
 
 class PlaceRecognizer {
@@ -77,10 +87,14 @@ class PlaceRecognizer {
   PlaceResult add(const ImageHistograms& h, const ImageDescriptors* d = nullptr);
   /// Clears the window and resets the filter (time jumped back, robot kidnapped).
   void reset();
+  /// True when the route filter answers: whole-image cues, use_filter and use_route on, and the
+  /// database one drive (each place one image, each image's place adjacent to the one before).
+  bool usesRoute() const { return !route_.empty(); }
   const PlaceIndex& index() const { return index_; }
   const PlaceRecognizerConfig& config() const { return config_; }
 
  private:
+  bool isOneDrive() const;
   PlaceRecognizerConfig config_;
   PlaceIndex index_;
   PlaceDescriptorIndex descriptors_;
@@ -90,6 +104,7 @@ class PlaceRecognizer {
   std::vector<std::vector<int>> adjacency_;
   std::vector<PlaceFilter> filter_;        // zero or one
   std::vector<SequenceMatcher> sequence_;  // zero or one
+  std::vector<RouteFilter> route_;         // zero or one
   long seen_ = 0;                          // images since reset()
 };
 

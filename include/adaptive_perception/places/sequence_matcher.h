@@ -36,6 +36,10 @@ struct SequenceMatcherConfig {
   void validate() const;  // throws std::invalid_argument naming the bad field
 };
 
+/// Step 1: each distance as a z-score over the `window_frames` references centred on it (the
+/// window kept inside the traversal). A window of equal distances gives 0.
+std::vector<float> contrastEnhance(const std::vector<float>& distances, int window_frames);
+
 class SequenceMatcher {
  public:
   explicit SequenceMatcher(SequenceMatcherConfig config = {});

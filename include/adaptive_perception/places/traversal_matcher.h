@@ -10,7 +10,10 @@
 //              z-scores over the references (so that cues of different scales add), then the
 //              weighted mean with `fusion`'s weights (the words among them when fusion.words > 0);
 //   sequence   (default) SeqSLAM trajectory search (sequence_matcher.h) over the fused distances
-//              of the last sequence.sequence_frames queries.
+//              of the last sequence.sequence_frames queries;
+//   route      the Bayes filter along the reference traversal (route_filter.h) observing the fused
+//              distances; its scores are the negated posterior and its confidence the posterior's
+//              mass around the best frame.
 // The fusion weights are settings chosen once on development data (docs/places_across_light.md
 // gives the measurements), never from the images being recognised. Every method's scores are
 // z-scores over the references (lower = better).
@@ -21,6 +24,7 @@
 
 #include "adaptive_perception/places/bag_of_words.h"
 #include "adaptive_perception/places/global_descriptor.h"
+#include "adaptive_perception/places/route_filter.h"
 #include "adaptive_perception/places/sequence_matcher.h"
 
 namespace adaptive_perception::places {
@@ -28,7 +32,8 @@ namespace adaptive_perception::places {
 struct TraversalMatcherConfig {
   GlobalDescriptorConfig descriptor;
   SequenceMatcherConfig sequence;
-  std::string method = "sequence";  // thumbnail, gradient, chromaticity, words, fused, sequence
+  RouteFilterConfig route;
+  std::string method = "sequence";  // thumbnail, gradient, chromaticity, words, fused, sequence, route
   FusionWeights fusion;
 
   void validate() const;  // throws std::invalid_argument naming the bad field
@@ -74,7 +79,10 @@ class TraversalMatcher {
   /// std::invalid_argument when the reference traversal is empty, or when the method uses the
   /// words and the references have none or the query no `sift` matrix.
   const std::vector<float>& add(const ImageDescriptors& query);
-  /// Forgets the query history (sequence), e.g. when time jumped back.
+  /// The latest answer's confidence (higher = surer): the route filter's posterior mass, or for
+  /// every other method how far the best score lies below the others (separation()).
+  double confidence() const;
+  /// Forgets the query history (sequence, route), e.g. when time jumped back.
   void reset();
   const TraversalMatcherConfig& config() const { return config_; }
 
@@ -82,6 +90,7 @@ class TraversalMatcher {
   const ReferenceTraversal& refs_;
   TraversalMatcherConfig config_;
   SequenceMatcher sequence_;
+  RouteFilter route_;
   std::vector<float> scores_;
 };
 

@@ -30,7 +30,14 @@ const config::Fields<PlaceRecognizerConfig>& PlaceRecognizerConfig::fields() {
                "filter, whole-image cues: also observe the sequence matcher (for a database "
                "that is one continuous drive)")
           .add("sequence_frames", &C::sequence, &SequenceMatcherConfig::sequence_frames,
-               closed(1, 1000), "sequence matcher: images on one trajectory");
+               closed(1, 1000), "sequence matcher: images on one trajectory")
+          .add("use_route", &C::use_route,
+               "filter, whole-image cues, a database that is one drive (each place one image, "
+               "joined in the order stored): the route filter over its images answers")
+          .add("route_likelihood_gain", &C::route, &RouteFilterConfig::likelihood_gain,
+               config::aboveZero(100), "route filter: likelihood exp(-gain * distance z-score)")
+          .add("route_jump_probability", &C::route, &RouteFilterConfig::jump_probability,
+               config::belowOne(), "route filter: chance per image of a jump anywhere (kidnap)");
   return f;
 }
 
@@ -45,6 +52,7 @@ void PlaceRecognizerConfig::validate() const {
   if (method != "auto") distanceFromName(method);
   filter.validate();
   sequence.validate();
+  route.validate();
 }
 
 PlaceRecognizer::PlaceRecognizer(PlaceRecognizerConfig config) : config_(std::move(config)) {
@@ -91,11 +99,24 @@ void PlaceRecognizer::reset() {
   seen_ = 0;
   filter_.clear();
   sequence_.clear();
+  route_.clear();
   if (config_.use_filter && index_.numPlaces() > 0) {
     filter_.emplace_back(adjacency_, config_.filter);
     if (config_.use_sequence && usesDescriptors() && descriptors_.totalImages() > 0)
       sequence_.emplace_back(config_.sequence);
+    if (config_.use_route && usesDescriptors() && isOneDrive()) route_.emplace_back(config_.route);
   }
+}
+
+bool PlaceRecognizer::isOneDrive() const {
+  const int n = descriptors_.totalImages();
+  if (n < 2 || n != descriptors_.numPlaces()) return false;
+  for (int r = 1; r < n; ++r) {
+    const int a = descriptors_.placeOfImage(r - 1), b = descriptors_.placeOfImage(r);
+    const auto& next = adjacency_.at(static_cast<size_t>(a));
+    if (std::find(next.begin(), next.end(), b) == next.end()) return false;
+  }
+  return true;
 }
 
 PlaceResult PlaceRecognizer::add(const ImageHistograms& h, const ImageDescriptors* d) {
@@ -111,6 +132,7 @@ PlaceResult PlaceRecognizer::add(const ImageHistograms& h, const ImageDescriptor
         descriptors_.imageDistances(cueWeights(config_.cue, config_.fusion), *d);
     per_combo.push_back(descriptors_.nodeDistancesOf(images));
     if (!sequence_.empty()) sequence_nodes = descriptors_.nodeDistancesOf(sequence_[0].add(images));
+    if (!route_.empty()) route_[0].add(images);
   } else {
     for (int s : spaces_)
       for (Distance m : methods_) per_combo.push_back(index_.nodeDistances(s, m, h));
@@ -150,6 +172,15 @@ PlaceResult PlaceRecognizer::add(const ImageHistograms& h, const ImageDescriptor
     out.belief = filter_[0].belief();
     out.filtered_place = filter_[0].best();
     out.filtered_confidence = out.belief[out.filtered_place];
+    if (!route_.empty()) {  // the route filter's posterior, summed per place, answers
+      const RouteFilter& route = route_[0];
+      std::fill(out.belief.begin(), out.belief.end(), 0.0);
+      for (int r = 0; r < static_cast<int>(route.posterior().size()); ++r)
+        out.belief[descriptors_.placeOfImage(r)] += route.posterior()[r];
+      out.route_frame = route.best();
+      out.filtered_place = descriptors_.placeOfImage(route.best());
+      out.filtered_confidence = route.confidence();
+    }
   }
   return out;
 }

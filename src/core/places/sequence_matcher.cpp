@@ -35,13 +35,17 @@ void SequenceMatcher::reset() {
 }
 
 std::vector<float> SequenceMatcher::enhance(const std::vector<float>& d) const {
+  return contrastEnhance(d, config_.contrast_window_frames);
+}
+
+std::vector<float> contrastEnhance(const std::vector<float>& d, int window_frames) {
   const int n = static_cast<int>(d.size());
   std::vector<double> s(n + 1, 0.0), q(n + 1, 0.0);
   for (int j = 0; j < n; ++j) {
     s[j + 1] = s[j] + d[j];
     q[j + 1] = q[j] + static_cast<double>(d[j]) * d[j];
   }
-  const int w = std::min(n, config_.contrast_window_frames);
+  const int w = std::min(n, window_frames);
   std::vector<float> out(n);
   for (int j = 0; j < n; ++j) {
     const int a = std::clamp(j - w / 2, 0, n - w), b = a + w;

@@ -1,5 +1,7 @@
 #include "adaptive_perception/places/traversal_matcher.h"
 
+#include "adaptive_perception/places/traversal_metrics.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -24,14 +26,15 @@ void zScore(std::vector<float>& v) {
 }  // namespace
 
 const char* TraversalMatcherConfig::methodNames() {
-  return "thumbnail, gradient, chromaticity, layout, words, fused, sequence";
+  return "thumbnail, gradient, chromaticity, layout, words, fused, sequence, route";
 }
 
 void TraversalMatcherConfig::validate() const {
   descriptor.validate();
   sequence.validate();
+  route.validate();
   fusion.validate();
-  need(isCueName(method) || method == "sequence" || method == "words",
+  need(isCueName(method) || method == "sequence" || method == "route" || method == "words",
        "method '" + method + "' is not one of " + methodNames());
 }
 
@@ -62,9 +65,19 @@ void ReferenceTraversal::learnWords(const std::vector<cv::Mat>& sift,
 
 TraversalMatcher::TraversalMatcher(const ReferenceTraversal& references,
                                    TraversalMatcherConfig config)
-    : refs_(references), config_(config), sequence_((config.validate(), config.sequence)) {}
+    : refs_(references),
+      config_(config),
+      sequence_((config.validate(), config.sequence)),
+      route_(config.route) {}
 
-void TraversalMatcher::reset() { sequence_.reset(); }
+void TraversalMatcher::reset() {
+  sequence_.reset();
+  route_.reset();
+}
+
+double TraversalMatcher::confidence() const {
+  return config_.method == "route" ? route_.confidence() : separation(scores_);
+}
 
 std::vector<float> cueDistances(const ReferenceTraversal& stored, const ImageDescriptors& query,
                                 const std::array<double, kNumDescriptorKinds>& weights) {
@@ -100,8 +113,8 @@ std::vector<float> wordDistances(const ReferenceTraversal& refs, const ImageDesc
 const std::vector<float>& TraversalMatcher::add(const ImageDescriptors& query) {
   if (refs_.size() == 0) throw std::invalid_argument("TraversalMatcher: no reference image");
   if (config_.method == "words") return scores_ = wordDistances(refs_, query);
-  const bool sequence = config_.method == "sequence";
-  const bool fused = sequence || config_.method == "fused";
+  const bool sequence = config_.method == "sequence", route = config_.method == "route";
+  const bool fused = sequence || route || config_.method == "fused";
   const FusionWeights& f = config_.fusion;
   scores_ = cueDistances(refs_, query, cueWeights(fused ? "fused" : config_.method, f));
   if (fused && f.words > 0.0) {
@@ -110,7 +123,9 @@ const std::vector<float>& TraversalMatcher::add(const ImageDescriptors& query) {
     for (size_t j = 0; j < scores_.size(); ++j)
       scores_[j] = static_cast<float>((rest * scores_[j] + f.words * w[j]) / (rest + f.words));
   }
-  return sequence ? sequence_.add(scores_) : scores_;
+  if (sequence) return scores_ = sequence_.add(scores_);
+  if (route) return scores_ = route_.add(scores_);
+  return scores_;
 }
 
 }  // namespace adaptive_perception::places

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+
 #include <opencv2/imgproc.hpp>
 
 using namespace adaptive_perception::places;
@@ -163,9 +166,70 @@ TEST(PlaceRecognizer, SequenceJoinsTheFilterOverADrive) {
       }
       filter_right += x.filtered_place == v / 6;
     }
+    EXPECT_FALSE(r.usesRoute());  // six images a place: not one drive
     if (use) {
       EXPECT_EQ(sequence_right, 24);
     }
     EXPECT_GE(filter_right, 22) << (use ? "with" : "without") << " the sequence";
   }
+}
+
+TEST(PlaceRecognizer, RouteFilterAnswersOverOneDriveAndFollowsAKidnap) {
+  // A reference drive of 30 views, each its own place, joined in the order stored (as
+  // evaluate_places --database stores a traversal: names frame_N, so the index's name order is not
+  // the drive's). Driven again under half the light: views 0-14, then carried to view 25.
+  const int n = 30;
+  PlaceIndex index(2);
+  std::vector<std::string> names;
+  for (int v = 0; v < n; ++v) names.push_back("frame_" + std::to_string(v + 1));
+  std::vector<std::string> sorted = names;
+  std::sort(sorted.begin(), sorted.end());
+  for (const std::string& name : sorted) index.addPlace(name);
+  auto placeOf = [&](int v) {
+    return static_cast<int>(std::find(sorted.begin(), sorted.end(), names[v]) - sorted.begin());
+  };
+  PlaceDescriptorIndex desc(index.placeNames());
+  const GlobalDescriptorConfig dc;
+  std::vector<std::vector<int>> adjacency(n);
+  for (int v = 0; v < n; ++v) {
+    index.addImage(placeOf(v), hist(0.5f, 0.5f));
+    desc.addImage(placeOf(v), computeDescriptors(texture(100 + v), dc));
+    if (v > 0) {
+      adjacency[placeOf(v)].push_back(placeOf(v - 1));
+      adjacency[placeOf(v - 1)].push_back(placeOf(v));
+    }
+  }
+  PlaceRecognizerConfig off;
+  off.use_route = false;
+  PlaceRecognizer without(off);
+  without.setDatabase(index, adjacency, desc);
+  EXPECT_FALSE(without.usesRoute());
+  PlaceRecognizer r;
+  r.setDatabase(index, adjacency, desc);
+  ASSERT_TRUE(r.usesRoute());
+  std::vector<int> drive;
+  for (int v = 0; v < 15; ++v) drive.push_back(v);
+  for (int v = 25; v < n; ++v) drive.push_back(v);
+  int right = 0;
+  for (size_t t = 0; t < drive.size(); ++t) {
+    cv::Mat dim;
+    texture(100 + drive[t]).convertTo(dim, -1, 0.5, 0.0);
+    const ImageDescriptors q = computeDescriptors(dim, dc);
+    const PlaceResult x = r.add(hist(0.5f, 0.5f), &q);
+    ASSERT_GE(x.route_frame, 0);
+    EXPECT_EQ(x.filtered_place, placeOf(x.route_frame));
+    EXPECT_GT(x.filtered_confidence, 0.0);
+    EXPECT_LE(x.filtered_confidence, 1.0);
+    double total = 0.0;
+    for (double b : x.belief) total += b;
+    EXPECT_NEAR(total, 1.0, 1e-9);
+    right += x.route_frame == drive[t];
+    if (t == 0) {
+      EXPECT_EQ(x.route_frame, 0);  // the first answer is the single image's
+    }
+    if (t >= 17) {
+      EXPECT_EQ(x.route_frame, drive[t]) << "query " << t << " after the kidnap";
+    }
+  }
+  EXPECT_GE(right, 18);
 }

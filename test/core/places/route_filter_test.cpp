@@ -1,0 +1,183 @@
+#include "adaptive_perception/places/route_filter.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "adaptive_perception/places/sequence_matcher.h"
+
+using namespace adaptive_perception::places;
+
+namespace {
+
+// One query's distances to n references: chance everywhere (unit normal noise), a dip of `depth`
+// at the true reference, and another as deep at `alias` (a look-alike place) when
+// it is >= 0. The dips are Gaussians of 2 frames sigma: neighbouring frames of a drive look alike.
+std::vector<float> distancesAt(int n, double truth, double depth, std::mt19937& rng,
+                               double noise = 1.0, double alias = -1.0) {
+  std::normal_distribution<double> g(0.0, noise);
+  std::vector<float> d(n);
+  for (int j = 0; j < n; ++j) {
+    double v = g(rng) - depth * std::exp(-0.125 * (j - truth) * (j - truth));
+    if (alias >= 0.0) v -= depth * std::exp(-0.125 * (j - alias) * (j - alias));
+    d[j] = static_cast<float>(v);
+  }
+  return d;
+}
+
+int argminOf(const std::vector<float>& v) {
+  return static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
+}
+
+}  // namespace
+
+// The motion step against the numbers worked out by hand.
+TEST(RouteFilter, PredictMovesMassAsTheModelSays) {
+  RouteFilterConfig whole;
+  whole.subframes = 1;  // positions are frames
+  RouteFilter f(whole);  // speeds -1, 0, 0.5 .. 2 (5, log-spaced); change 0.1; jump 0.001
+  const std::vector<double>& v = f.speeds();
+  ASSERT_EQ(v.size(), 7u);
+  EXPECT_DOUBLE_EQ(v[0], -1.0);
+  EXPECT_DOUBLE_EQ(v[1], 0.0);
+  EXPECT_NEAR(v[3], std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(v[4], 1.0, 1e-12);
+  EXPECT_NEAR(v[6], 2.0, 1e-12);
+  const int n = 10, ns = 7;
+  auto at = [&](const std::vector<double>& b, int s, int j) { return b[s * n + j]; };
+  std::vector<double> joint(ns * n, 0.0);
+  joint[4 * n + 5] = 1.0;  // frame 5, speed 1
+  const std::vector<double> p = f.predict(joint, n);
+  const double jump = 0.001 / (n * ns), keep = 0.999;
+  EXPECT_NEAR(at(p, 4, 6), keep * 0.9 + jump, 1e-12);  // kept its speed, one frame on
+  const double r = std::sqrt(0.5), q = std::sqrt(2.0);
+  EXPECT_NEAR(at(p, 3, 5), keep * 0.05 * (1.0 - r) + jump, 1e-12);  // slowed to 0.71: 5.71
+  EXPECT_NEAR(at(p, 3, 6), keep * 0.05 * r + jump, 1e-12);
+  EXPECT_NEAR(at(p, 5, 6), keep * 0.05 * (2.0 - q) + jump, 1e-12);  // sped up to 1.41: 6.41
+  EXPECT_NEAR(at(p, 5, 7), keep * 0.05 * (q - 1.0) + jump, 1e-12);
+  EXPECT_NEAR(at(p, 0, 3), jump, 1e-15);
+  EXPECT_NEAR(std::accumulate(p.begin(), p.end(), 0.0), 1.0, 1e-12);
+  // Standing still next to the back speed: a change goes all to its one neighbour at the end.
+  std::fill(joint.begin(), joint.end(), 0.0);
+  joint[0 * n + 5] = 1.0;  // frame 5, going back
+  const std::vector<double> b = f.predict(joint, n);
+  EXPECT_NEAR(at(b, 0, 4), keep * 0.9 + jump, 1e-12);
+  EXPECT_NEAR(at(b, 1, 5), keep * 0.1 + jump, 1e-12);
+  // Past the end of the traversal the mass stays on the last frame.
+  std::fill(joint.begin(), joint.end(), 0.0);
+  joint[6 * n + 9] = 1.0;  // frame 9, speed 2
+  const std::vector<double> e = f.predict(joint, n);
+  EXPECT_NEAR(at(e, 6, 9), keep * 0.9 + jump, 1e-12);
+  EXPECT_NEAR(at(e, 5, 9), keep * 0.1 + jump, 1e-12);  // slowed to 1.41: 10.41, still the end
+  EXPECT_NEAR(std::accumulate(e.begin(), e.end(), 0.0), 1.0, 1e-12);
+  // With quarter-frame positions (the default) half a frame is two positions: no split.
+  RouteFilter fine;
+  const int p_n = 40;
+  std::vector<double> g(ns * p_n, 0.0);
+  g[2 * p_n + 8] = 1.0;  // frame 2, speed 0.5
+  const std::vector<double> h = fine.predict(g, p_n);
+  const double jump_fine = 0.001 / (p_n * ns);
+  EXPECT_NEAR(h[2 * p_n + 10], keep * 0.9 + jump_fine, 1e-12);
+  EXPECT_NEAR(h[2 * p_n + 9] + h[2 * p_n + 11], 2 * jump_fine, 1e-12);
+}
+
+TEST(RouteFilter, FirstAnswerIsTheSingleImageOne) {
+  std::mt19937 rng(3);
+  RouteFilter f;
+  const std::vector<float> d = distancesAt(200, 120, 4.0, rng);
+  f.add(d);
+  const int w = f.config().contrast_window_frames;
+  EXPECT_EQ(f.best(), argminOf(w > 0 ? contrastEnhance(d, w) : d));
+  EXPECT_NEAR(f.best(), 120, 1);
+  const auto& post = f.posterior();
+  EXPECT_NEAR(std::accumulate(post.begin(), post.end(), 0.0), 1.0, 1e-9);
+  EXPECT_GT(f.confidence(), 0.0);
+  EXPECT_LE(f.confidence(), 1.0);
+}
+
+// A drive along a 400-frame route with what the straight-line search cannot follow: the query
+// stands still for 12 frames, drives at half and at twice the reference's speed, passes a stretch
+// that looks like another 60 frames away, and is carried off (kidnapped) 100 frames back. Single
+// images are noisy (the true reference is 2.2 standard deviations closer than chance).
+TEST(RouteFilter, FollowsStopsSpeedChangesLookAlikesAndAKidnap) {
+  std::mt19937 rng(11);
+  std::vector<double> truth;
+  double pos = 0.0;
+  for (int t = 0; t < 60; ++t) truth.push_back(pos += 1.0);
+  for (int t = 0; t < 12; ++t) truth.push_back(pos);  // a stop
+  for (int t = 0; t < 60; ++t) truth.push_back(pos += 0.5);
+  for (int t = 0; t < 50; ++t) truth.push_back(pos += 2.0);  // to 222
+  const size_t kidnap = truth.size();
+  pos -= 100.0;
+  for (int t = 0; t < 80; ++t) truth.push_back(pos += 1.0);
+  const int n = 400;
+  RouteFilter route;
+  SequenceMatcher sequence;
+  int route_right = 0, single_right = 0, sequence_right = 0, late_after_kidnap = -1;
+  for (size_t t = 0; t < truth.size(); ++t) {
+    // References 150..170 look like 210..230 (both dips equally deep there).
+    const double alias = truth[t] >= 150 && truth[t] <= 170 ? truth[t] + 60 : -1.0;
+    const std::vector<float> d = distancesAt(n, truth[t], 2.2, rng, 1.0, alias);
+    route.add(d);
+    const int seq_best = argminOf(sequence.add(d));
+    const bool right = std::abs(route.best() - truth[t]) <= 2.0;
+    route_right += right;
+    single_right += std::abs(argminOf(d) - truth[t]) <= 2.0;
+    sequence_right += std::abs(seq_best - truth[t]) <= 2.0;
+    if (t >= kidnap && right && late_after_kidnap < 0) late_after_kidnap = static_cast<int>(t - kidnap);
+    EXPECT_TRUE(std::isfinite(route.confidence()));
+  }
+  const double total = static_cast<double>(truth.size());
+  EXPECT_GE(route_right / total, 0.9) << "route " << route_right << " single " << single_right
+                                      << " sequence " << sequence_right << " of " << total;
+  EXPECT_GT(route_right, sequence_right);
+  EXPECT_GT(route_right, single_right);
+  ASSERT_GE(late_after_kidnap, 0);
+  EXPECT_LE(late_after_kidnap, 15) << "frames to recover after the kidnap";
+}
+
+// The posterior mass is a confidence that means something: along a route whose images say little
+// (the true reference 1.2 standard deviations closer than chance), the answers it is sure of are
+// right more often than those it is not.
+TEST(RouteFilter, ConfidenceSeparatesRightFromWrong) {
+  std::mt19937 rng(5);
+  RouteFilter f;
+  std::vector<std::pair<double, bool>> answers;
+  for (int t = 0; t < 300; ++t) {
+    const double truth = t;
+    f.add(distancesAt(300, truth, 1.2, rng));
+    answers.push_back({f.confidence(), std::abs(f.best() - truth) <= 2.0});
+  }
+  double right_sum = 0, wrong_sum = 0;
+  int right = 0, wrong = 0;
+  for (const auto& a : answers) (a.second ? (right_sum += a.first, ++right) : (wrong_sum += a.first, ++wrong));
+  ASSERT_GT(right, 0);
+  ASSERT_GT(wrong, 0);
+  EXPECT_GT(right_sum / right, wrong_sum / wrong + 0.2) << right_sum / right << " " << wrong_sum / wrong << " " << right << " right, " << wrong << " wrong";
+}
+
+TEST(RouteFilter, BadInputIsRefusedAndChangesNothing) {
+  std::mt19937 rng(1);
+  RouteFilter f;
+  EXPECT_THROW(f.add({}), std::invalid_argument);
+  f.add(distancesAt(50, 10, 3.0, rng));
+  const std::vector<double> before = f.posterior();
+  EXPECT_THROW(f.add(distancesAt(49, 10, 3.0, rng)), std::invalid_argument);
+  std::vector<float> nan = distancesAt(50, 10, 3.0, rng);
+  nan[7] = std::nanf("");
+  EXPECT_THROW(f.add(nan), std::invalid_argument);
+  EXPECT_EQ(f.posterior(), before);
+  EXPECT_EQ(f.queries(), 1);
+  RouteFilterConfig c;
+  c.max_speed = 0.4;  // below min_speed
+  EXPECT_THROW(RouteFilter{c}, std::invalid_argument);
+  c = {};
+  c.likelihood_gain = 0.0;
+  EXPECT_THROW(RouteFilter{c}, std::invalid_argument);
+  c = {};
+  c.jump_probability = 1.0;
+  EXPECT_THROW(RouteFilter{c}, std::invalid_argument);
+}
