@@ -10,6 +10,7 @@
 #include "adaptive_perception/ros/ekf_slam_mapper_node.h"
 #include "adaptive_perception/ros/field_map_publisher_node.h"
 #include "adaptive_perception/ros/ground_truth_tf_publisher_node.h"
+#include "adaptive_perception/ros/head_tf_publisher_node.h"
 #include "adaptive_perception/ros/histogram_place_recognizer_node.h"
 #include "adaptive_perception/ros/line_extractor_node.h"
 #include "adaptive_perception/ros/node_nodelet.h"
@@ -23,6 +24,7 @@ using CondensationTrackerNodelet = NodeNodelet<CondensationTrackerNode>;
 using EkfSlamMapperNodelet = NodeNodelet<EkfSlamMapperNode>;
 using FieldMapPublisherNodelet = NodeNodelet<FieldMapPublisherNode>;
 using GroundTruthTfNodelet = NodeNodelet<GroundTruthTfNode>;
+using HeadTfNodelet = NodeNodelet<HeadTfNode>;
 using HistogramPlaceRecognizerNodelet = NodeNodelet<HistogramPlaceRecognizerNode>;
 using LineExtractorNodelet = NodeNodelet<LineExtractorNode>;
 using RbpfLocalizerNodelet = NodeNodelet<RbpfLocalizerNode>;
@@ -35,6 +37,7 @@ PLUGINLIB_EXPORT_CLASS(adaptive_perception::CondensationTrackerNodelet, nodelet:
 PLUGINLIB_EXPORT_CLASS(adaptive_perception::EkfSlamMapperNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(adaptive_perception::FieldMapPublisherNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(adaptive_perception::GroundTruthTfNodelet, nodelet::Nodelet)
+PLUGINLIB_EXPORT_CLASS(adaptive_perception::HeadTfNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(adaptive_perception::HistogramPlaceRecognizerNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(adaptive_perception::LineExtractorNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(adaptive_perception::RbpfLocalizerNodelet, nodelet::Nodelet)

@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/world/robot_camera.h"
 
 namespace adaptive_perception::ros_conv {
 
@@ -14,17 +16,30 @@ constexpr char kAibo[] = "aibo_ers7";
 
 CameraModelSource::CameraModelSource(std::string node, const std::string& assumed)
     : node_(std::move(node)) {
-  if (assumed == kAibo)
-    assume_aibo_ = true;
-  else if (!assumed.empty())
+  const auto ends_with = [&](const std::string& tail) {
+    return assumed.size() >= tail.size() &&
+           assumed.compare(assumed.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  if (assumed == kAibo) {
+    assumed_ = world::PinholeCamera::aiboErs7();
+    assumed_name_ = "the AIBO ERS-7 camera";
+  } else if (ends_with(".yaml") || ends_with(".yml")) {
+    const world::RobotCamera file =
+        world::RobotCamera::loadYaml(ros_params::resolvePackagePath(assumed));
+    assumed_ = file.camera;
+    assumed_name_ = file.name + " (" + assumed + ")";
+  } else if (!assumed.empty()) {
     throw std::invalid_argument("camera_model = '" + assumed +
-                                "' (allowed: empty, to wait for camera_info, or aibo_ers7)");
+                                "' (allowed: empty, to wait for camera_info, aibo_ers7, or a "
+                                "camera file NAME.yaml such as config/cameras/nao_v6_top.yaml)");
+  }
 }
 
 config::ParameterDoc CameraModelSource::parameter() {
-  return {"camera_model", "string", "", "(empty), aibo_ers7",
+  return {"camera_model", "string", "", "(empty), aibo_ers7, a camera file",
           "the camera assumed until a camera_info arrives: empty waits for camera/camera_info "
-          "(and says so); aibo_ers7 the AIBO ERS-7's 208x160 camera"};
+          "(and says so); aibo_ers7 the AIBO ERS-7's 208x160 camera; a camera file (.yaml, "
+          "config/cameras/, relative from the package) its intrinsics"};
 }
 
 bool CameraModelSource::onCameraInfo(const sensor_msgs::CameraInfo& info) {
@@ -58,15 +73,18 @@ bool CameraModelSource::onCameraInfo(const sensor_msgs::CameraInfo& info) {
 
 bool CameraModelSource::readyFor(int width, int height) {
   if (!camera_) {
-    if (!assume_aibo_ || width != 208 || height != 160) {
-      ROS_WARN_THROTTLE(5.0,
-                        "%s: waiting for camera/camera_info (image is %dx%d; ~camera_model "
-                        "aibo_ers7 assumes the AIBO camera for 208x160 images)",
-                        node_.c_str(), width, height);
+    if (!assumed_ || width != assumed_->width_px || height != assumed_->height_px) {
+      ROS_WARN_THROTTLE(
+          5.0, "%s: waiting for camera/camera_info (image is %dx%d; ~camera_model %s)",
+          node_.c_str(), width, height,
+          assumed_ ? ("is " + assumed_name_ + ", " + std::to_string(assumed_->width_px) + "x" +
+                      std::to_string(assumed_->height_px))
+                         .c_str()
+                   : "names none: aibo_ers7 or a camera file would assume one");
       return false;
     }
-    camera_ = world::PinholeCamera::aiboErs7();
-    ROS_INFO("%s: no camera_info yet: the AIBO ERS-7 camera (~camera_model)", node_.c_str());
+    camera_ = assumed_;
+    ROS_INFO("%s: no camera_info yet: %s (~camera_model)", node_.c_str(), assumed_name_.c_str());
   }
   if (camera_->width_px != width || camera_->height_px != height) {
     ROS_ERROR_THROTTLE(5.0, "%s: image is %dx%d but %s says %dx%d: frame dropped", node_.c_str(),

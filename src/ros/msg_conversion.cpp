@@ -45,20 +45,12 @@ cv::Mat imageToYuv(const sensor_msgs::Image& msg, std::int64_t max_pixels) {
   }
   if (msg.encoding == enc::BGR8 || msg.encoding == enc::RGB8) {
     checkBuffer(msg, 3, max_pixels);
-    const bool bgr = msg.encoding == enc::BGR8;
-    cv::Mat out(msg.height, msg.width, CV_8UC3);
-    for (unsigned r = 0; r < msg.height; ++r) {
-      const std::uint8_t* s = msg.data.data() + static_cast<size_t>(r) * msg.step;
-      std::uint8_t* o = out.ptr<std::uint8_t>(r);
-      for (unsigned c = 0; c < msg.width; ++c) {
-        const double red = s[3 * c + (bgr ? 2 : 0)], green = s[3 * c + 1],
-                     blue = s[3 * c + (bgr ? 0 : 2)];
-        const Eigen::Vector3d yuv = color::rgbToYuv({red, green, blue});
-        for (int k = 0; k < 3; ++k)
-          o[3 * c + k] = static_cast<std::uint8_t>(std::clamp(std::lround(yuv[k]), 0L, 255L));
-      }
-    }
-    return out;
+    const cv::Mat view(msg.height, msg.width, CV_8UC3, const_cast<std::uint8_t*>(msg.data.data()),
+                       msg.step);
+    if (msg.encoding == enc::BGR8) return color::bgrToYuv(view);
+    cv::Mat bgr;
+    cv::cvtColor(view, bgr, cv::COLOR_RGB2BGR);
+    return color::bgrToYuv(bgr);
   }
   throw ImageFormatError("unsupported image encoding '" + msg.encoding +
                          "' (accepted: yuv422, bgr8, rgb8)");

@@ -9,6 +9,7 @@
 #include "adaptive_perception/ros/ekf_slam_mapper_node.h"
 #include "adaptive_perception/ros/field_map_publisher_node.h"
 #include "adaptive_perception/ros/ground_truth_tf_publisher_node.h"
+#include "adaptive_perception/ros/head_tf_publisher_node.h"
 #include "adaptive_perception/ros/histogram_place_recognizer_node.h"
 #include "adaptive_perception/ros/line_extractor_node.h"
 #include "adaptive_perception/ros/rbpf_localizer_node.h"
@@ -24,6 +25,7 @@ const std::map<std::string, std::vector<config::ParameterDoc>>& nodeParameters()
       {"ekf_slam_mapper", EkfSlamMapperNode::parameters()},
       {"field_map_publisher", FieldMapPublisherNode::parameters()},
       {"ground_truth_tf_publisher", GroundTruthTfNode::parameters()},
+      {"head_tf_publisher", HeadTfNode::parameters()},
       {"histogram_place_recognizer", HistogramPlaceRecognizerNode::parameters()},
       {"line_extractor", LineExtractorNode::parameters()},
       {"rbpf_localizer", RbpfLocalizerNode::parameters()}};

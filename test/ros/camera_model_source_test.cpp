@@ -1,5 +1,5 @@
 // The camera model of the image nodes (ros/camera_model_source.h), without a master: no camera
-// without camera_info unless ~camera_model names one, and a distorted camera_info's images
+// without camera_info unless ~camera_model names one (the AIBO, or a camera file), and a distorted camera_info's images
 // rectified so that a point lands where the plumb_bob model, written out by hand, says.
 #include "adaptive_perception/ros/camera_model_source.h"
 
@@ -40,6 +40,12 @@ TEST(CameraModelSource, WaitsForCameraInfoUnlessACameraIsNamed) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("camera_model"), std::string::npos) << e.what();
   }
+  // A camera file (relative: from the package): its intrinsics, for its image size only.
+  CameraModelSource nao("test", "config/cameras/nao_v6_top.yaml");
+  EXPECT_FALSE(nao.readyFor(208, 160));
+  EXPECT_TRUE(nao.readyFor(640, 480));
+  EXPECT_DOUBLE_EQ(nao.camera().fx_px, 625.5);
+  EXPECT_THROW(CameraModelSource("test", "/nonexistent/camera.yaml"), std::runtime_error);
   EXPECT_TRUE(waiting.onCameraInfo(info({0, 0, 0, 0, 0})));
   EXPECT_TRUE(waiting.readyFor(320, 240));
   EXPECT_FALSE(waiting.readyFor(208, 160));                   // the size disagrees with camera_info

@@ -34,6 +34,9 @@ cv::Mat unpackUyvy(const cv::Mat& uyvy);
 /// (world::colorClassDisplayBgr).
 cv::Mat colorizeLabels(const cv::Mat& labels);
 
+/// Per-pixel YUV (CV_8UC3: Y, U, V, BT.601 full range, rounded) from BGR8 (CV_8UC3), as the nodes
+/// convert a bgr8 image message; std::invalid_argument on another type.
+cv::Mat bgrToYuv(const cv::Mat& bgr);
 /// BGR8 (CV_8UC3) for display, from per-pixel YUV (CV_8UC3).
 cv::Mat yuvToBgr(const cv::Mat& yuv);
 /// BGR8 (CV_8UC3) for display, from UYVY.

@@ -6,7 +6,10 @@
 // Contract:
 //  - A pixel whose predicted class has no colour model (background) scores the uniform density over
 //    the YUV cube, so every grid pixel contributes and a pose does not win by seeing less of the
-//    field (the paper skips such pixels).
+//    field (the paper skips such pixels); or, with background_from_image, the density of the
+//    image's own background colours (BackgroundDensity): a real room beyond the field is white
+//    walls, windows and people, and under the uniform density a pose wins by putting a white goal
+//    post over a white wall.
 //  - Each modelled pixel's density is a mixture with that uniform density (outlier_probability:
 //    robots, people, mislabelled edges); the sum over pixels is multiplied by `exponent`
 //    (neighbouring pixels are not independent).
@@ -52,6 +55,11 @@ struct ImageLikelihoodConfig {
   // scaled with its width, and the exponent by the reference grid's pixel count over its own, so
   // that an image weighs the same at any resolution (RbpfConfig::forCamera).
   int reference_width_px = 208;
+  // What a pixel the map shows as background scores: false, the uniform density over the YUV cube
+  // (the simulator's room is no colour in particular); true, the density of the colours the
+  // image's pose-free segmentation (color/field_segmentation.h) finds above the field's boundary,
+  // rebuilt for every image (BackgroundDensity).
+  bool background_from_image = false;
   /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
   static const config::Fields<ImageLikelihoodConfig>& fields();
   void validate() const { fields().validate(*this); }
@@ -75,6 +83,25 @@ std::vector<NeighbourOffset> neighbourOffsets(const world::PinholeCamera& camera
                                               int stride, const Eigen::Isometry3d& base_to_optical,
                                               const ImageLikelihoodConfig& config);
 
+/// The colours of what lies beyond the field in one image, for the pixels a pose predicts as
+/// background: a histogram of the YUV colours of the pixels a mask marks, in cubes of kBinLevels
+/// levels, mixed with the uniform density over the YUV cube (weight uniform_weight, so that a
+/// colour the mask never saw keeps a density). With fewer than kMinPixels marked pixels it is the
+/// uniform density.
+class BackgroundDensity {
+ public:
+  static constexpr int kBinLevels = 16;
+  static constexpr int kMinPixels = 500;
+  /// `yuv` CV_8UC3, `mask` CV_8UC1 of its size (non-zero: background); uniform_weight in (0, 1].
+  /// std::invalid_argument otherwise.
+  BackgroundDensity(const cv::Mat& yuv, const cv::Mat& mask, double uniform_weight);
+  /// The log density (per YUV level cubed) of a colour.
+  double logDensity(const Eigen::Vector3d& yuv) const;
+
+ private:
+  std::vector<float> log_density_;  // per bin; empty: uniform
+};
+
 /// An image on a pixel grid: the grid, its colours and each pixel's neighbour offsets (for the
 /// camera pose they were computed for).
 struct SampledImage {
@@ -83,6 +110,8 @@ struct SampledImage {
   int stride = 1;
   std::vector<Eigen::Vector3d> values;  // YUV at pixels
   std::vector<NeighbourOffset> offsets;
+  // Per pixel, the log density of its colour as background (empty: the uniform density).
+  std::vector<double> background_log_density;
 };
 
 class ImageLikelihood {
@@ -95,13 +124,14 @@ class ImageLikelihood {
   /// The grid of every stride-th pixel, without colours or offsets.
   SampledImage grid(int stride) const;
   /// Fills image->values from `yuv` (CV_8UC3 of the camera's size; std::invalid_argument
-  /// otherwise).
-  void setColours(const cv::Mat& yuv, SampledImage* image) const;
+  /// otherwise), and image->background_log_density from `background` (null: the uniform density).
+  void setColours(const cv::Mat& yuv, SampledImage* image,
+                  const BackgroundDensity* background = nullptr) const;
   /// Fills image->offsets for a camera at base_to_optical on the robot.
   void setOffsets(const Eigen::Isometry3d& base_to_optical, SampledImage* image) const;
   /// grid + setColours + setOffsets.
-  SampledImage sample(const cv::Mat& yuv, int stride,
-                      const Eigen::Isometry3d& base_to_optical) const;
+  SampledImage sample(const cv::Mat& yuv, int stride, const Eigen::Isometry3d& base_to_optical,
+                      const BackgroundDensity* background = nullptr) const;
 
   /// The tempered log-likelihood of `image` for a robot pose and lighting estimate; fills `obs`
   /// (may be null) with the colour means under that pose's labels and `used` (may be null) with the

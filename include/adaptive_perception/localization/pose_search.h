@@ -57,8 +57,13 @@ class PoseSearch {
 
   /// A pose uniform over where a robot can stand (the field's centre after 10000 misses).
   math::SE2 uniformPose(math::Rng& rng) const;
-  /// The image on the search's coarse grid, with offsets for the camera at base_to_optical.
+  /// The image on the search's coarse grid, with offsets for the camera at base_to_optical (and
+  /// the background density of setBackground()).
   SampledImage coarseImage(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical) const;
+  /// The current image's background density (null: the uniform density), for coarseImage().
+  void setBackground(std::shared_ptr<const BackgroundDensity> background) {
+    background_ = std::move(background);
+  }
   /// pool[i] for i < n: uniform poses in point-mirrored pairs.
   void fillUniform(std::vector<math::SE2>* pool, std::size_t n, std::uint64_t seed) const;
   /// Moves pool[first..] by odom_delta (when `move`) and adds each pose's log-likelihood of `image`
@@ -103,6 +108,7 @@ class PoseSearch {
   PoseSearchConfig config_;
   int threads_;
   std::vector<WindowFrame> window_;
+  std::shared_ptr<const BackgroundDensity> background_;
 };
 
 }  // namespace adaptive_perception::localization

@@ -3,8 +3,9 @@
 // camera/camera_info: its intrinsics, and when the camera_info has lens distortion
 // image_geometry's PinholeCameraModel, which rectifies each image (the model is then the
 // rectified camera, camera_info's P). Without a camera_info the node waits and says so, unless
-// ~camera_model names a camera to assume until one arrives ("aibo_ers7": the AIBO ERS-7's 208x160
-// camera). Not thread-safe: call under the node's mutex.
+// ~camera_model names a camera to assume until one arrives: "aibo_ers7" (the AIBO ERS-7's 208x160
+// camera) or a camera file (world/robot_camera.h, e.g. config/cameras/nao_v6_top.yaml: its
+// intrinsics; relative paths from the package). Not thread-safe: call under the node's mutex.
 #include <image_geometry/pinhole_camera_model.h>
 #include <sensor_msgs/CameraInfo.h>
 
@@ -19,8 +20,9 @@ namespace adaptive_perception::ros_conv {
 
 class CameraModelSource {
  public:
-  /// `node` prefixes the log messages; `assumed` is ~camera_model: "" (wait for camera_info) or
-  /// "aibo_ers7". Throws std::invalid_argument naming the allowed values.
+  /// `node` prefixes the log messages; `assumed` is ~camera_model: "" (wait for camera_info),
+  /// "aibo_ers7" or a camera file (a value ending in .yaml). Throws std::invalid_argument naming the
+  /// allowed values, std::runtime_error naming the file and line of a bad camera file.
   CameraModelSource(std::string node, const std::string& assumed);
   /// The ~camera_model row of the node's parameter table.
   static config::ParameterDoc parameter();
@@ -39,7 +41,8 @@ class CameraModelSource {
 
  private:
   std::string node_;
-  bool assume_aibo_ = false;
+  std::optional<world::PinholeCamera> assumed_;  // from ~camera_model
+  std::string assumed_name_;
   std::optional<world::PinholeCamera> camera_;
   bool from_camera_info_ = false;
   bool distorted_ = false;

@@ -38,12 +38,13 @@ struct HeadChain {
   Eigen::Vector3d base_to_pan_m{0.07, 0.0, 0.19};  // neck joint above the shoulders
   Eigen::Vector3d pan_to_tilt_m{0.0, 0.0, 0.04};
   Eigen::Vector3d tilt_to_camera_m{0.075, 0.0, 0.02};  // snout camera ahead of the tilt axis
+  double camera_pitch_rad = 0.0;  // the camera's fixed pitch in the head (positive = nose down)
   double min_pan_rad = -1.62, max_pan_rad = 1.62;      // ERS-7: +-93 degrees
   double min_tilt_rad = -0.78, max_tilt_rad = 1.3;
 
   Eigen::Isometry3d basePan(double pan_rad) const;   // base_link -> head_pan_link
   Eigen::Isometry3d panTilt(double tilt_rad) const;  // head_pan_link -> head_tilt_link
-  Eigen::Isometry3d tiltCamera() const;              // head_tilt_link -> camera_link (fixed)
+  Eigen::Isometry3d tiltCamera() const;  // head_tilt_link -> camera_link (fixed; its pitch)
   static Eigen::Isometry3d cameraOptical();          // camera_link -> camera_optical_frame (fixed)
   /// base_link -> camera_optical_frame.
   Eigen::Isometry3d baseToOptical(double pan_rad, double tilt_rad) const;

@@ -1,5 +1,6 @@
 #include "adaptive_perception/color/color_space.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -50,6 +51,22 @@ cv::Mat unpackUyvy(const cv::Mat& uyvy) {
       o[3 * c + 3] = y1;
       o[3 * c + 4] = u;
       o[3 * c + 5] = v;
+    }
+  }
+  return out;
+}
+
+cv::Mat bgrToYuv(const cv::Mat& bgr) {
+  if (bgr.type() != CV_8UC3) throw std::invalid_argument("bgrToYuv: expects BGR8 (CV_8UC3)");
+  cv::Mat out(bgr.rows, bgr.cols, CV_8UC3);
+  for (int r = 0; r < bgr.rows; ++r) {
+    const std::uint8_t* s = bgr.ptr<std::uint8_t>(r);
+    std::uint8_t* o = out.ptr<std::uint8_t>(r);
+    for (int c = 0; c < bgr.cols; ++c) {
+      const Eigen::Vector3d yuv =
+          rgbToYuv({double(s[3 * c + 2]), double(s[3 * c + 1]), double(s[3 * c])});
+      for (int k = 0; k < 3; ++k)
+        o[3 * c + k] = static_cast<std::uint8_t>(std::clamp(std::lround(yuv[k]), 0L, 255L));
     }
   }
   return out;

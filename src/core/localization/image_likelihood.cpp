@@ -85,7 +85,47 @@ SampledImage ImageLikelihood::grid(int stride) const {
   return image;
 }
 
-void ImageLikelihood::setColours(const cv::Mat& yuv, SampledImage* image) const {
+BackgroundDensity::BackgroundDensity(const cv::Mat& yuv, const cv::Mat& mask,
+                                     double uniform_weight) {
+  if (yuv.type() != CV_8UC3 || mask.type() != CV_8UC1 || mask.size() != yuv.size())
+    throw std::invalid_argument(
+        "BackgroundDensity: needs a YUV image (CV_8UC3) and a mask "
+        "(CV_8UC1) of one size");
+  if (!(uniform_weight > 0.0 && uniform_weight <= 1.0))
+    throw std::invalid_argument("BackgroundDensity: uniform_weight must be in (0, 1]");
+  constexpr int kBins = 256 / kBinLevels;
+  std::vector<double> count(kBins * kBins * kBins, 0.0);
+  double total = 0.0;
+  for (int r = 0; r < yuv.rows; ++r) {
+    const cv::Vec3b* p = yuv.ptr<cv::Vec3b>(r);
+    const std::uint8_t* m = mask.ptr<std::uint8_t>(r);
+    for (int c = 0; c < yuv.cols; ++c) {
+      if (!m[c]) continue;
+      count[(p[c][0] / kBinLevels * kBins + p[c][1] / kBinLevels) * kBins + p[c][2] / kBinLevels] +=
+          1.0;
+      total += 1.0;
+    }
+  }
+  if (total < kMinPixels) return;
+  const double uniform = std::exp(kLogUniformYuv);
+  const double bin_volume = static_cast<double>(kBinLevels) * kBinLevels * kBinLevels;
+  log_density_.resize(count.size());
+  for (std::size_t b = 0; b < count.size(); ++b)
+    log_density_[b] = static_cast<float>(std::log(
+        uniform_weight * uniform + (1.0 - uniform_weight) * count[b] / (total * bin_volume)));
+}
+
+double BackgroundDensity::logDensity(const Eigen::Vector3d& yuv) const {
+  if (log_density_.empty()) return kLogUniformYuv;
+  constexpr int kBins = 256 / kBinLevels;
+  const auto bin = [](double v) {
+    return std::clamp(static_cast<int>(v) / kBinLevels, 0, kBins - 1);
+  };
+  return log_density_[(bin(yuv[0]) * kBins + bin(yuv[1])) * kBins + bin(yuv[2])];
+}
+
+void ImageLikelihood::setColours(const cv::Mat& yuv, SampledImage* image,
+                                 const BackgroundDensity* background) const {
   const world::PinholeCamera& cam = camera();
   if (yuv.type() != CV_8UC3 || yuv.cols != cam.width_px || yuv.rows != cam.height_px)
     throw std::invalid_argument("image likelihood: expected a " + std::to_string(cam.width_px) +
@@ -97,6 +137,12 @@ void ImageLikelihood::setColours(const cv::Mat& yuv, SampledImage* image) const 
     const cv::Vec3b c = yuv.at<cv::Vec3b>(image->pixels[j].v, image->pixels[j].u);
     image->values[j] = Eigen::Vector3d(c[0], c[1], c[2]);
   }
+  image->background_log_density.clear();
+  if (background) {
+    image->background_log_density.resize(image->values.size());
+    for (size_t j = 0; j < image->values.size(); ++j)
+      image->background_log_density[j] = background->logDensity(image->values[j]);
+  }
 }
 
 void ImageLikelihood::setOffsets(const Eigen::Isometry3d& base_to_optical,
@@ -106,9 +152,10 @@ void ImageLikelihood::setOffsets(const Eigen::Isometry3d& base_to_optical,
 }
 
 SampledImage ImageLikelihood::sample(const cv::Mat& yuv, int stride,
-                                     const Eigen::Isometry3d& base_to_optical) const {
+                                     const Eigen::Isometry3d& base_to_optical,
+                                     const BackgroundDensity* background) const {
   SampledImage image = grid(stride);
-  setColours(yuv, &image);
+  setColours(yuv, &image, background);
   setOffsets(base_to_optical, &image);
   return image;
 }
@@ -151,6 +198,7 @@ double ImageLikelihood::logLikelihood(const SampledImage& image, const math::SE2
   // tolerance); its likelihood is the mixture over them, background scoring the uniform density.
   // Being a proper mixture it does not favour poses that predict busier views.
   std::vector<double> pixel_ll(lighting.numModes());
+  const bool own_background = !image.background_log_density.empty();
   for (size_t j = 0; j < pixels.size(); ++j) {
     std::uint8_t cand[5];
     double share[5];
@@ -177,10 +225,11 @@ double ImageLikelihood::logLikelihood(const SampledImage& image, const math::SE2
     for (int m = 0; m < lighting.numModes(); ++m) {
       double v[5], top = -std::numeric_limits<double>::infinity();
       for (int c = 0; c < nc; ++c) {
-        // Background (or an unmodelled colour): the uniform density. Every pixel must contribute,
-        // or poses that see more background would score higher for having fewer terms.
+        // Background (or an unmodelled colour): the uniform density, or the image's own
+        // background's. Every pixel must contribute, or poses that see more background would
+        // score higher for having fewer terms.
         const int k = slot[cand[c]];
-        v[c] = kLogUniformYuv;
+        v[c] = own_background ? image.background_log_density[j] : kLogUniformYuv;
         if (k >= 0) {
           const double a = log_in + cls[m].logLikelihood(pixel_yuv[j], k);
           v[c] = std::max(a, log_out) + std::log1p(std::exp(-std::fabs(a - log_out)));

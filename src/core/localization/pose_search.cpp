@@ -26,7 +26,7 @@ math::SE2 PoseSearch::uniformPose(math::Rng& rng) const {
 
 SampledImage PoseSearch::coarseImage(const cv::Mat& yuv,
                                      const Eigen::Isometry3d& base_to_optical) const {
-  return likelihood_->sample(yuv, config_.pixel_stride, base_to_optical);
+  return likelihood_->sample(yuv, config_.pixel_stride, base_to_optical, background_.get());
 }
 
 void PoseSearch::fillUniform(std::vector<math::SE2>* pool, std::size_t n,

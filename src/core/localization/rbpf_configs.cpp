@@ -55,7 +55,10 @@ const config::Fields<ImageLikelihoodConfig>& ImageLikelihoodConfig::fields() {
           .add("max_neighbourhood_cells", &C::max_neighbourhood_cells, config::closed(0, 16),
                "at most this many grid steps of blur")
           .add("reference_width_px", &C::reference_width_px, config::closed(16, 10000),
-               "the strides are in pixels of an image this wide; other cameras are scaled");
+               "the strides are in pixels of an image this wide; other cameras are scaled")
+          .add("background_from_image", &C::background_from_image,
+               "a pixel the map shows as background scores the density of the image's own "
+               "colours above the field's boundary (pose-free segmentation), not the uniform one");
   return f;
 }
 

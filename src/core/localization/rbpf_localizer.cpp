@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "adaptive_perception/color/field_segmentation.h"
 #include "adaptive_perception/math/gaussian.h"
 #include "adaptive_perception/math/parallel_for.h"
 #include "adaptive_perception/math/particle_set.h"
@@ -128,7 +129,17 @@ void RbpfLocalizer::weighParticle(size_t i, const math::SE2& odom_delta, double 
   p.lighting.update(obs);
 }
 
-void RbpfLocalizer::setImage(const cv::Mat& yuv) { likelihood_->setColours(yuv, &image_); }
+void RbpfLocalizer::setImage(const cv::Mat& yuv) {
+  std::shared_ptr<const BackgroundDensity> background;
+  if (config_.likelihood.background_from_image) {
+    const color::FieldSegmentation seg =
+        color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
+    background = std::make_shared<const BackgroundDensity>(yuv, seg.labels == world::kBackground,
+                                                           config_.likelihood.outlier_probability);
+  }
+  search_.setBackground(background);
+  likelihood_->setColours(yuv, &image_, background.get());
+}
 
 void RbpfLocalizer::resample(StepResult* r) {
   const auto idx =

@@ -51,7 +51,8 @@ Eigen::Isometry3d HeadChain::panTilt(double tilt) const {
 
 Eigen::Isometry3d HeadChain::tiltCamera() const {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translate(tilt_to_camera_m);
+  t.translate(tilt_to_camera_m)
+      .rotate(Eigen::AngleAxisd(camera_pitch_rad, Eigen::Vector3d::UnitY()));
   return t;
 }
 

@@ -1,0 +1,50 @@
+#pragma once
+// head_tf_publisher: a robot's head chain from a camera file (world/robot_camera.h,
+// config/cameras/), so that a bag or a robot with joint_states but no URDF gives the nodes the
+// camera's pose: for each joint_states message that holds the file's pan and tilt joints (a NAO's
+// HeadYaw and HeadPitch), base_link -> head_pan_link (pan about z) and head_pan_link ->
+// head_tilt_link (tilt about y) at the message's stamp; once, latched on tf_static, head_tilt_link
+// -> camera_link (the lens's offset and pitch) and camera_link -> camera_optical_frame.
+//
+// A message without either joint, with a non-finite angle or one outside the file's joint range,
+// or with more positions than names is skipped with a throttled error naming what was wrong; the
+// node keeps running. Its interface is documented once, in docs/nodes/head_tf_publisher.md; the
+// parameter table there is made from parameters().
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <string>
+#include <vector>
+
+#include "adaptive_perception/config/fields.h"
+#include "adaptive_perception/ros/node_diagnostics.h"
+#include "adaptive_perception/world/robot_camera.h"
+
+namespace adaptive_perception {
+
+class HeadTfNode {
+ public:
+  HeadTfNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Every private parameter the node reads (its doc page's table).
+  static std::vector<config::ParameterDoc> parameters();
+
+ private:
+  void callback(const sensor_msgs::JointStateConstPtr& msg);
+  void check(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  world::RobotCamera camera_;
+  std::string camera_file_;
+  std::string base_frame_, pan_frame_, tilt_frame_, camera_frame_, optical_frame_;
+  long published_ = 0, skipped_ = 0;
+  std::string last_problem_;
+  ros::Subscriber sub_;
+  tf2_ros::TransformBroadcaster broadcaster_;
+  tf2_ros::StaticTransformBroadcaster static_broadcaster_;
+  ros_conv::NodeDiagnostics
+      diagnostics_;  // last: its heartbeat stops before the state it reads goes
+};
+
+}  // namespace adaptive_perception

@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""Writes evaluate_field_localization's --list for the NAO field development set (or a session of
+the same layout): one line per point folder with its top (or bottom) camera image, the head angles
+the robot recorded at the picture, and the motion-capture position (median of the take's last two
+seconds, when the robot was no longer touched; field frame x = X, y = -Z).
+
+usage: nao_field_list.py SESSION_DIR OUTPUT.csv [top|bottom]
+SESSION_DIR holds puntN/ folders with imagetop.jpg, imagebottom.jpg, record.csv and pointN.csv
+(../shared/data/field/README.md). Image paths are written absolute. OUTPUT.csv is not replaced if it
+exists.
+"""
+import csv
+import os
+import statistics
+import sys
+
+
+def mocap_xy(path):
+    with open(path, newline="") as f:
+        rows = [r for r in csv.reader(f)][7:]
+    rows = [r for r in rows if len(r) >= 8 and r[1] and r[5] and r[7]]
+    if not rows:
+        raise SystemExit(f"{path}: no motion-capture rows with a position")
+    end = float(rows[-1][1])
+    last = [r for r in rows if float(r[1]) >= end - 2.0]
+    return (statistics.median(float(r[5]) for r in last),
+            -statistics.median(float(r[7]) for r in last))
+
+
+def head_angles(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows or "headpitchsens" not in rows[-1] or "headyawsens" not in rows[-1]:
+        raise SystemExit(f"{path}: expected columns headpitchsens and headyawsens")
+    return float(rows[-1]["headpitchsens"]), float(rows[-1]["headyawsens"])
+
+
+def main():
+    if len(sys.argv) not in (3, 4) or (len(sys.argv) == 4 and sys.argv[3] not in ("top", "bottom")):
+        raise SystemExit(__doc__)
+    session, output = sys.argv[1], sys.argv[2]
+    camera = sys.argv[3] if len(sys.argv) == 4 else "top"
+    if os.path.exists(output):
+        raise SystemExit(f"{output} exists; remove it first")
+    points = sorted((d for d in os.listdir(session) if d.startswith("punt")),
+                    key=lambda d: int("".join(ch for ch in d if ch.isdigit()) or 0))
+    if not points:
+        raise SystemExit(f"{session}: no puntN folders")
+    lines = ["image,head_pitch_rad,head_yaw_rad,x_m,y_m"]
+    for p in points:
+        folder = os.path.join(session, p)
+        number = "".join(ch for ch in p if ch.isdigit())
+        x, y = mocap_xy(os.path.join(folder, f"point{number}.csv"))
+        pitch, yaw = head_angles(os.path.join(folder, "record.csv"))
+        image = os.path.abspath(os.path.join(folder, f"image{camera}.jpg"))
+        lines.append(f"{image},{pitch:.6f},{yaw:.6f},{x:.4f},{y:.4f}")
+    with open(output, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print(f"nao_field_list: points={len(points)} output={output}")
+
+
+if __name__ == "__main__":
+    main()

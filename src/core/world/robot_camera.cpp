@@ -1,0 +1,108 @@
+#include "adaptive_perception/world/robot_camera.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace adaptive_perception::world {
+
+namespace {
+
+std::string at(const std::string& source, const YAML::Node& node) {
+  return source + ":" + std::to_string(node.Mark().line + 1) + ": ";
+}
+
+}  // namespace
+
+RobotCamera RobotCamera::loadYaml(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open the camera file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parseYaml(ss.str(), path);
+}
+
+RobotCamera RobotCamera::parseYaml(const std::string& text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error(source + ":" + std::to_string(e.mark.line + 1) +
+                             ": YAML syntax error: " + e.msg);
+  }
+  if (!root || root.IsNull()) throw std::runtime_error(source + ": no camera in the file (empty?)");
+  if (!root.IsMap()) throw std::runtime_error(source + ": expected a map of camera keys");
+  RobotCamera c;
+  std::map<std::string, int*> ints = {{"width_px", &c.camera.width_px},
+                                      {"height_px", &c.camera.height_px}};
+  std::map<std::string, double*> numbers = {
+      {"fx_px", &c.camera.fx_px},
+      {"fy_px", &c.camera.fy_px},
+      {"cx_px", &c.camera.cx_px},
+      {"cy_px", &c.camera.cy_px},
+      {"camera_pitch_rad", &c.head.camera_pitch_rad},
+      {"min_pan_rad", &c.head.min_pan_rad},
+      {"max_pan_rad", &c.head.max_pan_rad},
+      {"min_tilt_rad", &c.head.min_tilt_rad},
+      {"max_tilt_rad", &c.head.max_tilt_rad},
+  };
+  std::map<std::string, Eigen::Vector3d*> vectors = {
+      {"base_to_pan_m", &c.head.base_to_pan_m},
+      {"pan_to_tilt_m", &c.head.pan_to_tilt_m},
+      {"tilt_to_camera_m", &c.head.tilt_to_camera_m},
+  };
+  std::map<std::string, std::string*> strings = {
+      {"name", &c.name}, {"pan_joint", &c.pan_joint}, {"tilt_joint", &c.tilt_joint}};
+  bool intrinsics_given = false, size_given = false;
+  for (const auto& kv : root) {
+    const std::string key = kv.first.as<std::string>();
+    const std::string where = at(source, kv.first);
+    try {
+      if (auto i = ints.find(key); i != ints.end()) {
+        *i->second = kv.second.as<int>();
+        size_given = true;
+      } else if (auto n = numbers.find(key); n != numbers.end()) {
+        const double v = kv.second.as<double>();
+        if (!std::isfinite(v)) throw std::runtime_error(where + "'" + key + "' must be finite");
+        *n->second = v;
+        if (key.size() == 5 && key.substr(2) == "_px") intrinsics_given = true;
+      } else if (auto v = vectors.find(key); v != vectors.end()) {
+        const auto xyz = kv.second.as<std::vector<double>>();
+        if (xyz.size() != 3 || !std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) ||
+            !std::isfinite(xyz[2]))
+          throw std::runtime_error(where + "'" + key + "' needs three finite numbers [x, y, z]");
+        *v->second = {xyz[0], xyz[1], xyz[2]};
+      } else if (auto s = strings.find(key); s != strings.end()) {
+        *s->second = kv.second.as<std::string>();
+        if (s->second->empty()) throw std::runtime_error(where + "'" + key + "' is empty");
+      } else {
+        throw std::runtime_error(where + "unknown key '" + key +
+                                 "' (name, width_px, height_px, fx_px, fy_px, cx_px, cy_px, "
+                                 "pan_joint, tilt_joint, base_to_pan_m, pan_to_tilt_m, "
+                                 "tilt_to_camera_m, camera_pitch_rad, min_pan_rad, max_pan_rad, "
+                                 "min_tilt_rad, max_tilt_rad)");
+      }
+    } catch (const YAML::Exception& e) {
+      throw std::runtime_error(where + "bad value for '" + key + "': " + e.msg);
+    }
+  }
+  // A new image size with the AIBO's focal lengths would be a camera nobody has.
+  if (size_given && !intrinsics_given)
+    throw std::runtime_error(source +
+                             ": width_px/height_px given without fx_px, fy_px, cx_px, "
+                             "cy_px");
+  if (c.head.min_pan_rad > c.head.max_pan_rad || c.head.min_tilt_rad > c.head.max_tilt_rad)
+    throw std::runtime_error(source + ": a joint's min_*_rad is above its max_*_rad");
+  try {
+    c.camera.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(source + ": " + e.what());
+  }
+  return c;
+}
+
+}  // namespace adaptive_perception::world

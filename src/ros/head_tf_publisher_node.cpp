@@ -1,0 +1,109 @@
+#include "adaptive_perception/ros/head_tf_publisher_node.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/ros/topics.h"
+
+namespace adaptive_perception {
+
+namespace {
+constexpr char kDefaultCamera[] = "config/cameras/nao_v6_top.yaml";
+}  // namespace
+
+std::vector<config::ParameterDoc> HeadTfNode::parameters() {
+  return {
+      {"camera_file", "string", kDefaultCamera, "a camera file",
+       "the camera and head chain (world/robot_camera.h; relative: from the package); its "
+       "pan_joint and tilt_joint name the joints read from joint_states"},
+      ros_params::frameParameter("base"),
+      {"pan_frame", "string", ros_topics::kHeadPanFrame, "", "the frame the pan joint turns"},
+      {"tilt_frame", "string", ros_topics::kHeadTiltFrame, "", "the frame the tilt joint turns"},
+      {"camera_frame", "string", ros_topics::kCameraFrame, "", "the lens, x forward"},
+      {"optical_frame", "string", ros_topics::kCameraOpticalFrame, "",
+       "the camera's optical frame (z forward, x right, y down): the images' frame_id"}};
+}
+
+HeadTfNode::HeadTfNode(ros::NodeHandle nh, ros::NodeHandle pnh)
+    : diagnostics_(nh, "head_tf", 1.0, 1000.0) {
+  camera_file_ = ros_params::getName(pnh, "camera_file", kDefaultCamera);
+  camera_ = world::RobotCamera::loadYaml(ros_params::resolvePackagePath(camera_file_));
+  base_frame_ = ros_params::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
+  pan_frame_ = ros_params::getFrameId(pnh, "pan_frame", ros_topics::kHeadPanFrame);
+  tilt_frame_ = ros_params::getFrameId(pnh, "tilt_frame", ros_topics::kHeadTiltFrame);
+  camera_frame_ = ros_params::getFrameId(pnh, "camera_frame", ros_topics::kCameraFrame);
+  optical_frame_ = ros_params::getFrameId(pnh, "optical_frame", ros_topics::kCameraOpticalFrame);
+  const ros::Time now = ros::Time::now();
+  static_broadcaster_.sendTransform(std::vector<geometry_msgs::TransformStamped>{
+      ros_conv::toTransform(camera_.head.tiltCamera(), tilt_frame_, camera_frame_, now),
+      ros_conv::toTransform(world::HeadChain::cameraOptical(), camera_frame_, optical_frame_,
+                            now)});
+  sub_ = nh.subscribe(ros_topics::kJointStates, 100, &HeadTfNode::callback, this);
+  diagnostics_.add("head chain", this, &HeadTfNode::check);
+  ROS_INFO("head_tf_publisher: camera %s (%s): %s -> %s from joint_states %s and %s",
+           camera_.name.c_str(), camera_file_.c_str(), base_frame_.c_str(), optical_frame_.c_str(),
+           camera_.pan_joint.c_str(), camera_.tilt_joint.c_str());
+}
+
+void HeadTfNode::callback(const sensor_msgs::JointStateConstPtr& msg) {
+  const auto skip = [&](const std::string& why) {
+    ++skipped_;
+    last_problem_ = why;
+    ROS_ERROR_THROTTLE(5.0, "head_tf_publisher: joint_states skipped: %s", why.c_str());
+  };
+  if (msg->position.size() != msg->name.size()) {
+    // A message of other joints only (no positions for them) is normal on a robot: only an
+    // inconsistent one is an error.
+    std::ostringstream s;
+    s << msg->name.size() << " names but " << msg->position.size() << " positions";
+    return skip(s.str());
+  }
+  int pan = -1, tilt = -1;
+  for (std::size_t i = 0; i < msg->name.size(); ++i) {
+    if (msg->name[i] == camera_.pan_joint) pan = static_cast<int>(i);
+    if (msg->name[i] == camera_.tilt_joint) tilt = static_cast<int>(i);
+  }
+  if (pan < 0 && tilt < 0) return;  // a message about other joints
+  if (pan < 0 || tilt < 0)
+    return skip("'" + (pan < 0 ? camera_.pan_joint : camera_.tilt_joint) +
+                "' is missing (the camera file " + camera_file_ + " names '" + camera_.pan_joint +
+                "' and '" + camera_.tilt_joint + "')");
+  const double pan_rad = msg->position[pan], tilt_rad = msg->position[tilt];
+  const auto outside = [](double v, double lo, double hi) {
+    return !std::isfinite(v) || v < lo - 1e-3 || v > hi + 1e-3;  // a sensor may read a hair over
+  };
+  if (outside(pan_rad, camera_.head.min_pan_rad, camera_.head.max_pan_rad) ||
+      outside(tilt_rad, camera_.head.min_tilt_rad, camera_.head.max_tilt_rad)) {
+    std::ostringstream s;
+    s << camera_.pan_joint << " = " << pan_rad << " rad (range [" << camera_.head.min_pan_rad
+      << ", " << camera_.head.max_pan_rad << "]), " << camera_.tilt_joint << " = " << tilt_rad
+      << " rad (range [" << camera_.head.min_tilt_rad << ", " << camera_.head.max_tilt_rad
+      << "]): outside the camera file's joint range or not finite";
+    return skip(s.str());
+  }
+  const ros::Time stamp = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+  broadcaster_.sendTransform(std::vector<geometry_msgs::TransformStamped>{
+      ros_conv::toTransform(camera_.head.basePan(pan_rad), base_frame_, pan_frame_, stamp),
+      ros_conv::toTransform(camera_.head.panTilt(tilt_rad), pan_frame_, tilt_frame_, stamp)});
+  ++published_;
+  diagnostics_.tick();
+  diagnostics_.update();
+}
+
+void HeadTfNode::check(diagnostic_updater::DiagnosticStatusWrapper& stat) {
+  if (skipped_ > 0 && published_ == 0)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR,
+                 "every joint_states skipped: " + last_problem_);
+  else if (skipped_ > 0)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                 "some joint_states skipped: " + last_problem_);
+  else
+    stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "publishing the head chain");
+  stat.add("camera", camera_.name);
+  stat.add("head transforms published", published_);
+  stat.add("joint_states skipped", skipped_);
+}
+
+}  // namespace adaptive_perception

@@ -1,0 +1,171 @@
+// evaluate_field_localization: global localization of a robot from single real camera images: for
+// each image of a list, rbpf_localizer's filter starts from nothing (uniform over the field, the
+// lighting at its priors adapted to the image without a pose: color/image_adapted_prior.h) and is
+// given the same image again and again, as a robot standing still would see it; the estimate after
+// --frames images is compared with the true position, if the list has one.
+//
+//   evaluate_field_localization --field FILE --camera FILE --list FILE [--output DIR]
+//   evaluate_field_localization --help   (every option with its default, unit and range)
+//
+// --camera: a camera file (world/robot_camera.h, config/cameras/): the intrinsics, and the head
+// chain that turns each line's head_pitch_rad / head_yaw_rad into the camera's pose on the robot.
+// --list: CSV `image,head_pitch_rad,head_yaw_rad,x_m,y_m` (io/head_image_list.h; the position
+// columns optional; scripts/nao_field_list.py writes one for the NAO development set). Every
+// parameter of rbpf_localizer's table that comes from localization::RbpfConfig is an option of the
+// same name, range and default. Writes OUTPUT/images.csv (one line per image, also printed) and
+// OUTPUT/NAME.png (the image with the field's lines and landmarks drawn from the estimate). Last
+// line:
+//   evaluate_field_localization: images=.. median_position_error_m=.. within_0_5m=..
+//       ms_per_image=..
+// (the error and the count over the images with a true position; -1 when none has one).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/color/image_adapted_prior.h"
+#include "adaptive_perception/io/head_image_list.h"
+#include "adaptive_perception/localization/rbpf_localizer.h"
+#include "adaptive_perception/ros/params.h"
+#include "adaptive_perception/world/label_renderer.h"
+#include "adaptive_perception/world/robot_camera.h"
+#include "command_line.h"
+
+using namespace adaptive_perception;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+// The image with the map's colours drawn where the estimate says they are (background left as is).
+cv::Mat drawEstimate(const cv::Mat& bgr, const world::FieldMap& map,
+                     const world::PinholeCamera& camera, const Eigen::Isometry3d& map_to_optical) {
+  const world::LabelRenderer renderer(map, camera);
+  cv::Mat labels(camera.height_px, camera.width_px, CV_8UC1);
+  renderer.renderImage(map_to_optical, labels.data);
+  cv::Mat colours = color::colorizeLabels(labels), out = bgr.clone();
+  const cv::Mat drawn = (labels != world::kBackground) & (labels != world::kGreen);
+  cv::addWeighted(bgr, 0.4, colours, 0.6, 0.0, colours);
+  colours.copyTo(out, drawn);
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  localization::RbpfConfig cfg;
+  tools::CommandLine cli("evaluate_field_localization",
+                         "Global localization from single real camera images: the localizer "
+                         "starts from nothing on each image, given it again and again as a robot "
+                         "standing still sees it, and its estimate is compared with the true "
+                         "position.");
+  std::string field, camera_file, list_file;
+  cli.option("field", &field, "the field (YAML, docs/fields.md; relative: from the package)")
+      ->required();
+  cli.option("camera", &camera_file,
+             "the camera file (config/cameras/; relative: from the package)")
+      ->required();
+  cli.option("list", &list_file, "CSV image,head_pitch_rad,head_yaw_rad[,x_m,y_m]")->required();
+  int frames = 30;
+  cli.option("frames", &frames, config::closed(1, 1000),
+             "times each image is given to the filter (one second of a 30 Hz camera)");
+  std::string priors_dir = "config/color_priors";
+  cli.option("priors_dir", &priors_dir, "folder of the lighting priors");
+  bool no_adaptation = false;
+  cli.flag(
+      "no_adaptation", &no_adaptation,
+      "start from the priors as they are, not adapted to the image (color/image_adapted_prior.h)");
+  cli.option("threads", &cfg.threads, "threads (the result is the same for any count)");
+  cli.seed(&cfg.seed);
+  const std::string& output = cli.resultsFolder("images.csv and one drawing per image");
+  cli.fields(localization::RbpfConfig::fields(), &cfg);
+  cli.parse(argc, argv);
+  try {
+    const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));
+    const world::RobotCamera camera =
+        world::RobotCamera::loadYaml(ros_params::resolvePackagePath(camera_file));
+    std::vector<color::LightingPrior> priors;
+    const std::string dir = ros_params::resolvePackagePath(priors_dir);
+    for (const std::string& m : ros_params::kDefaultSwitchingPriors)
+      priors.push_back(color::LightingPrior::loadYaml((fs::path(dir) / (m + ".yaml")).string()));
+    const std::vector<io::HeadImage> list = io::readHeadImageList(list_file);
+    if (list.empty()) throw std::runtime_error(list_file + ": no images");
+    fs::create_directories(output);
+    std::ofstream csv(fs::path(output) / "images.csv");
+    const std::string header =
+        "image,x_m,y_m,heading_deg,spread_m,cluster_weight,true_x_m,true_y_m,position_error_m,ms";
+    csv << header << "\n";
+    std::cout << header << "\n";
+    std::vector<double> errors;
+    double ms_total = 0.0;
+    for (const io::HeadImage& item : list) {
+      const std::string where = list_file + ":" + std::to_string(item.line) + ": ";
+      const cv::Mat bgr = cv::imread(item.path, cv::IMREAD_COLOR);
+      if (bgr.empty()) throw std::runtime_error(where + item.path + ": cannot read the image");
+      if (bgr.cols != camera.camera.width_px || bgr.rows != camera.camera.height_px)
+        throw std::runtime_error(where + item.path + " is " + std::to_string(bgr.cols) + "x" +
+                                 std::to_string(bgr.rows) + " but the camera (" + camera.name +
+                                 ") is " + std::to_string(camera.camera.width_px) + "x" +
+                                 std::to_string(camera.camera.height_px));
+      const cv::Mat yuv = color::bgrToYuv(bgr);
+      const Eigen::Isometry3d base_to_optical =
+          camera.baseToOptical(item.head_yaw_rad, item.head_pitch_rad);
+      const auto t0 = Clock::now();
+      const std::vector<color::LightingPrior> start =
+          no_adaptation
+              ? priors
+              : color::adaptPriorsToImage(
+                    priors, yuv, color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()),
+                    cfg.model);
+      localization::RbpfLocalizer rbpf(map, camera.camera, start, cfg);
+      rbpf.initUniform();
+      for (int k = 0; k < frames; ++k)
+        rbpf.step(math::SE2(), k == 0 ? 0.0 : 1.0 / 30.0, yuv, base_to_optical);
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      ms_total += ms;
+      const localization::PoseEstimate est = rbpf.estimate();
+      double error = -1.0;
+      if (item.truth_xy_m) {
+        error =
+            std::hypot(est.pose.x_m - item.truth_xy_m->x(), est.pose.y_m - item.truth_xy_m->y());
+        errors.push_back(error);
+      }
+      const std::string name = fs::path(item.path).parent_path().filename().string() + "_" +
+                               fs::path(item.path).stem().string();
+      char line[512];
+      std::snprintf(line, sizeof line, "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f",
+                    item.path.c_str(), est.pose.x_m, est.pose.y_m, math::radToDeg(est.pose.yaw_rad),
+                    est.spread_m, est.cluster_weight,
+                    item.truth_xy_m ? std::to_string(item.truth_xy_m->x()).c_str() : "",
+                    item.truth_xy_m ? std::to_string(item.truth_xy_m->y()).c_str() : "", error, ms);
+      std::cout << line << std::endl;
+      csv << line << "\n";
+      cv::imwrite((fs::path(output) / (name + ".png")).string(),
+                  drawEstimate(bgr, map, camera.camera,
+                               world::planarToIsometry(est.pose) * base_to_optical));
+    }
+    double median = -1.0;
+    int within = 0;
+    if (!errors.empty()) {
+      std::vector<double> e = errors;
+      std::sort(e.begin(), e.end());
+      median = e.size() % 2 ? e[e.size() / 2] : 0.5 * (e[e.size() / 2 - 1] + e[e.size() / 2]);
+      within =
+          static_cast<int>(std::count_if(e.begin(), e.end(), [](double v) { return v <= 0.5; }));
+    }
+    std::printf(
+        "evaluate_field_localization: images=%zu median_position_error_m=%.3f within_0_5m=%d "
+        "ms_per_image=%.0f\n",
+        list.size(), median, errors.empty() ? -1 : within, ms_total / list.size());
+  } catch (const std::exception& e) {
+    std::cerr << "evaluate_field_localization: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

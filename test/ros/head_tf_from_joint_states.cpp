@@ -1,0 +1,97 @@
+// head_tf_publisher against the camera file's own chain: base_link -> camera_optical_frame from tf
+// at a joint_states stamp equals RobotCamera::baseToOptical at those angles; bad messages are
+// skipped (no transform at their stamps) and a good one after them still gets through.
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <cmath>
+#include <limits>
+
+#include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/world/robot_camera.h"
+
+using namespace adaptive_perception;
+
+namespace {
+
+struct Fixture {
+  ros::NodeHandle nh;
+  ros::Publisher pub = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
+  tf2_ros::Buffer buffer{ros::Duration(30.0)};
+  tf2_ros::TransformListener listener{buffer};
+  double t = 100.0;  // stamps far from each other, so tf never interpolates between them
+
+  ros::Time send(const std::vector<std::string>& names, const std::vector<double>& positions) {
+    sensor_msgs::JointState js;
+    t += 1.0;
+    js.header.stamp = ros::Time(t);
+    js.name = names;
+    js.position = positions;
+    pub.publish(js);
+    return js.header.stamp;
+  }
+  // The transform at `stamp`, waiting up to `wait_s` for it (false: none came).
+  bool lookup(const ros::Time& stamp, double wait_s, Eigen::Isometry3d* out) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(wait_s);
+    while (ros::ok() && ros::WallTime::now() < end) {
+      try {
+        *out = ros_conv::toIsometry(
+            buffer.lookupTransform("base_link", "camera_optical_frame", stamp).transform);
+        return true;
+      } catch (const tf2::TransformException&) {
+        ros::WallDuration(0.05).sleep();
+      }
+    }
+    return false;
+  }
+};
+
+}  // namespace
+
+TEST(HeadTfFromJointStates, ChainMatchesTheCameraFileAndBadMessagesAreSkipped) {
+  Fixture f;
+  const world::RobotCamera nao =
+      world::RobotCamera::loadYaml(std::string(AP_SOURCE_DIR) + "/config/cameras/nao_v6_top.yaml");
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (f.pub.getNumSubscribers() == 0 && ros::WallTime::now() < end)
+    ros::WallDuration(0.05).sleep();
+  ASSERT_GT(f.pub.getNumSubscribers(), 0u) << "head_tf_publisher did not subscribe to joint_states";
+
+  // A NAO's message: the head among other joints.
+  const ros::Time good = f.send({"LShoulderPitch", "HeadYaw", "HeadPitch"}, {1.2, 0.3, -0.2});
+  Eigen::Isometry3d got;
+  ASSERT_TRUE(f.lookup(good, 10.0, &got)) << "no base_link -> camera_optical_frame";
+  EXPECT_TRUE(got.isApprox(nao.baseToOptical(0.3, -0.2), 1e-6)) << got.matrix();
+
+  // Skipped: the pitch missing, a NaN, a yaw beyond the joint's range, names without positions.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const ros::Time missing = f.send({"HeadYaw"}, {0.1});
+  const ros::Time not_finite = f.send({"HeadYaw", "HeadPitch"}, {nan, 0.0});
+  const ros::Time out_of_range = f.send({"HeadYaw", "HeadPitch"}, {3.0, 0.0});
+  const ros::Time no_positions = f.send({"HeadYaw", "HeadPitch"}, {});
+  const ros::Time after = f.send({"HeadPitch", "HeadYaw"}, {0.25, -0.5});
+  ASSERT_TRUE(f.lookup(after, 10.0, &got)) << "the node stopped after bad messages";
+  EXPECT_TRUE(got.isApprox(nao.baseToOptical(-0.5, 0.25), 1e-6)) << got.matrix();
+  for (const ros::Time& bad : {missing, not_finite, out_of_range, no_positions}) {
+    // tf holds transforms at `good` and `after` only: a lookup at a skipped stamp interpolates
+    // each joint's rotation about its fixed axis, which is the chain at the interpolated angles.
+    Eigen::Isometry3d at;
+    ASSERT_TRUE(f.lookup(bad, 1.0, &at));
+    const double s = (bad - good).toSec() / (after - good).toSec();
+    const Eigen::Isometry3d expected =
+        nao.baseToOptical((1 - s) * 0.3 + s * -0.5, (1 - s) * -0.2 + s * 0.25);
+    EXPECT_TRUE(at.isApprox(expected, 1e-6))
+        << "a transform was published for a skipped message at t=" << bad.toSec();
+  }
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "head_tf_from_joint_states");
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
