@@ -49,6 +49,10 @@ struct ImageLikelihoodConfig {
   // lines. Tolerance 0: the pixel alone (the paper).
   double position_tolerance_m = 0.05;
   double heading_tolerance_rad = 0.02;
+  // The same for an error of the camera's pitch, which moves the whole view up or down by about
+  // fy * pitch_tolerance_rad pixels: 0 for a camera whose pitch is known (the simulator); a NAO's
+  // stance changes it by about 0.01 rad from one stand to the next (docs/cameras.md).
+  double pitch_tolerance_rad = 0.0;
   int max_neighbourhood_cells = 4;
   // The strides (pixel_stride, PoseSearchConfig::pixel_stride) are in pixels of an image this
   // wide (the ERS-7's). A camera of another width samples the same directions: its strides are

@@ -33,11 +33,14 @@ std::vector<NeighbourOffset> neighbourOffsets(const world::PinholeCamera& camera
                                               const ImageLikelihoodConfig& config) {
   std::vector<NeighbourOffset> out(pixels.size());
   const double tol = config.position_tolerance_m;
-  if (tol <= 0.0 && config.heading_tolerance_rad <= 0.0) return out;
+  if (tol <= 0.0 && config.heading_tolerance_rad <= 0.0 && config.pitch_tolerance_rad <= 0.0)
+    return out;
   const Eigen::Vector3d origin = base_to_optical.translation();
   const Eigen::Isometry3d optical_from_base = base_to_optical.inverse();
   // A heading error turns the whole view: about fx * heading_tolerance pixels sideways.
   const double heading_px = camera.fx_px * config.heading_tolerance_rad;
+  // A pitch error of the camera (a legged robot's body sways) moves the whole view up or down.
+  const double pitch_px = camera.fy_px * config.pitch_tolerance_rad;
   auto cells = [&](double px) {
     return static_cast<std::uint8_t>(
         std::min<double>(config.max_neighbourhood_cells, std::floor(px / stride + 0.5)));
@@ -66,7 +69,7 @@ std::vector<NeighbourOffset> neighbourOffsets(const world::PinholeCamera& camera
       du = camera.fx_px * tol / 2.0;
     }
     out[j].du = cells(du + heading_px);
-    out[j].dv = cells(dv);
+    out[j].dv = cells(dv + pitch_px);
   }
   return out;
 }

@@ -52,6 +52,8 @@ const config::Fields<ImageLikelihoodConfig>& ImageLikelihoodConfig::fields() {
                "(m)")
           .add("heading_tolerance_rad", &C::heading_tolerance_rad, config::closed(0, 0.5),
                "the same for a heading error (rad)")
+          .add("pitch_tolerance_rad", &C::pitch_tolerance_rad, config::closed(0, 0.2),
+               "the same for an error of the camera's pitch (rad; 0: the pitch is known)")
           .add("max_neighbourhood_cells", &C::max_neighbourhood_cells, config::closed(0, 16),
                "at most this many grid steps of blur")
           .add("reference_width_px", &C::reference_width_px, config::closed(16, 10000),
