@@ -5,7 +5,11 @@
 // PoseGraph2D: nodes are SE(2) poses, edges relative poses z_ij = x_i^-1 x_j with an information
 // matrix; the residual of an edge is sqrt(info) [R_i^T (t_j - t_i) - t_z; wrap(th_j - th_i -
 // th_z)]; loop edges go through a Cauchy loss (a wrong loop closure is down-weighted rather than
-// bending the whole map). Node 0 is held fixed.
+// bending the whole map), chain edges through a Huber loss when robust_chain (a wrong chain edge,
+// where the local estimator jumped and the gate let it through, is then undone by the loops that
+// span it; Huber and not Cauchy, because Huber is convex: a loop's correction is still spread
+// along the chain as least squares spreads it, never concentrated into one broken edge). Node 0
+// is held fixed.
 //
 // LoopClosingMapper: takes every scan with its pose from the local estimator (the EKF over line
 // landmarks driven by laser odometry); a scan becomes a graph node once the local pose moved
@@ -41,6 +45,10 @@ class PoseGraph2D {
   /// twice, whose residual before the optimisation may be hundreds of its stds).
   void addEdge(int i, int j, const math::SE2& z_ij, const Eigen::Matrix3d& information,
                bool loop = false, bool robust = true);
+  /// A chain edge (not a loop) under the Huber loss with threshold huber_scale (in its standard
+  /// deviations: the whitened residual's norm beyond which it counts linearly).
+  void addRobustChainEdge(int i, int j, const math::SE2& z_ij, const Eigen::Matrix3d& information,
+                          double huber_scale);
   /// Levenberg-Marquardt with a sparse Cholesky solver; returns the final cost.
   double optimize(int max_iterations = 30);
   int numNodes() const { return static_cast<int>(x_.size()); }
@@ -55,15 +63,16 @@ class PoseGraph2D {
     Eigen::Matrix3d sqrt_info;
     bool loop;
     bool robust;
+    double huber_scale = 0.0;  // > 0: a chain edge under the Huber loss
   };
   std::vector<std::array<double, 3>> x_;
   std::vector<Edge> edges_;
 };
 
 struct LoopClosingConfig {
-  double node_translation_m = 0.5;   // a new graph node after this much motion
-  double node_rotation_rad = 0.5;    // or this much turning
-  double odometry_std_m = 0.02;      // per node edge: the local estimator's relative-pose std
+  double node_translation_m = 0.5;  // a new graph node after this much motion
+  double node_rotation_rad = 0.5;   // or this much turning
+  double odometry_std_m = 0.02;     // per node edge: the local estimator's relative-pose std
   double odometry_std_rad = 0.01;
   // The chain edge's gate: the local estimator's and the front end's relative poses between two
   // nodes, their difference d scored as (dx^2 + dy^2) / chain_gate_std_m^2 + dyaw^2 /
@@ -73,16 +82,25 @@ struct LoopClosingConfig {
   double chain_gate_std_m = 0.03;
   double chain_gate_std_rad = 0.02;
   double chain_gate_chi2 = 16.27;
-  int min_node_gap = 20;             // nodes back along the chain before a node is a candidate
-  double search_radius_m = 4.0;      // candidate nodes within this of the current estimate
+  // A chain edge the gate let through can still be wrong (a jump of the local estimator that the
+  // front end shared): with robust_chain, chain edges go through a Huber loss whose threshold is
+  // chain_huber_scale of their standard deviations (odometry_std_*), so that loops that span a
+  // wrong one and are trusted as much as it (confirmed wide loops, which enter without the Cauchy
+  // loss) pull it back. 1.345 is Huber's constant: 95% of least squares' efficiency when every
+  // edge is sound. A loop under its Cauchy loss cannot undo a chain edge: each is discounted
+  // alone (pose_graph_test's planted 3.6 m jump).
+  bool robust_chain = true;
+  double chain_huber_scale = 1.345;
+  int min_node_gap = 20;         // nodes back along the chain before a node is a candidate
+  double search_radius_m = 4.0;  // candidate nodes within this of the current estimate
   int max_candidates_per_node = 2;
   int submap_half_nodes = 4;         // a candidate's submap: its scan and this many either side
   double coarse_resolution_m = 0.1;  // the wide search
   double coarse_search_xy_m = 1.5;
   double coarse_search_yaw_rad = 0.5;
   double coarse_yaw_step_rad = 0.02;
-  ScanMatcherConfig fine;            // then the fine match (its own window) at fine.resolution_m
-  double min_loop_score = 0.55;      // of the fine match, 0..1
+  ScanMatcherConfig fine;        // then the fine match (its own window) at fine.resolution_m
+  double min_loop_score = 0.55;  // of the fine match, 0..1
   // A match is also checked for free space: between the new scan at the matched pose and each
   // scan of the candidate's submap, a point of either more than free_space_tolerance_m (plus 5%
   // of the range) short of the other's return at its bearing is one the other saw through; a
@@ -91,10 +109,10 @@ struct LoopClosingConfig {
   // walking by make a few).
   double free_space_tolerance_m = 0.3;
   double max_free_space_violations = 0.1;
-  double loop_std_m = 0.05;          // a loop edge's std in its best-seen direction (the others
-                                     // from the match's information, matchInformation)
-  double max_range_m = 25.0;         // scan points farther than this are left out
-  double connect_gap_m = 0.3;        // consecutive returns closer than this make one wall
+  double loop_std_m = 0.05;    // a loop edge's std in its best-seen direction (the others
+                               // from the match's information, matchInformation)
+  double max_range_m = 25.0;   // scan points farther than this are left out
+  double connect_gap_m = 0.3;  // consecutive returns closer than this make one wall
   // The wide search, for a loop the estimate has drifted too far from for the window above (after
   // a kilometre of corridor the drift is tens of metres and degrees). When a node closes no loop
   // locally, at most every wide_every_nodes nodes, its scan is matched by branch and bound
@@ -116,14 +134,14 @@ struct LoopClosingConfig {
   // over the chain between them). Both edges then enter the graph without the robust loss, which
   // would otherwise discount a correction of hundreds of stds.
   bool wide_search = true;
-  int wide_every_nodes = 8;           // every 4 nodes cost mit-csail 16% of its speed (28 -> 24x)
-  double wide_drift_per_m = 0.05;     // fr-clinic's estimate was 40 m off after 1.3 km (3%)
+  int wide_every_nodes = 8;        // every 4 nodes cost mit-csail 16% of its speed (28 -> 24x)
+  double wide_drift_per_m = 0.05;  // fr-clinic's estimate was 40 m off after 1.3 km (3%)
   double wide_drift_rad_per_m = 0.001;
   double wide_max_xy_m = 60.0;
   double wide_max_yaw_rad = 0.6;
   double wide_min_score = 0.5;
-  double wide_min_loop_m = 50.0;      // nearer nodes along the chain are left out: the scan sees
-                                      // them still (2 max_range_m), and would match them best
+  double wide_min_loop_m = 50.0;  // nearer nodes along the chain are left out: the scan sees
+                                  // them still (2 max_range_m), and would match them best
   double wide_max_free_space_violations = 0.3;
   int wide_confirm_nodes = 20;
   double wide_confirm_m = 1.0;
@@ -207,8 +225,8 @@ class LoopClosingMapper {
   LoopClosingConfig config_;
   PoseGraph2D graph_;
   struct NodeData {
-    math::SE2 local;  // the local estimator's pose at the node
-    int scan = 0;     // the scan the node was made from (index in the order added)
+    math::SE2 local;      // the local estimator's pose at the node
+    int scan = 0;         // the scan the node was made from (index in the order added)
     math::SE2 reference;  // the reference pose at the node (when given)
     bool has_reference = false;
     std::vector<Eigen::Vector2d> points;

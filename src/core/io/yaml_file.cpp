@@ -14,6 +14,15 @@ YAML::Node loadYamlFile(const std::string& path, const std::string& what) {
   }
 }
 
+YAML::Node parseYamlText(const std::string& text, const std::string& source) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error(source + ":" + std::to_string(e.mark.line + 1) +
+                             ": YAML syntax error: " + e.msg);
+  }
+}
+
 std::string yamlWhere(const std::string& path, const YAML::Node& node) {
   return path + ":" + std::to_string(node.Mark().line + 1);
 }

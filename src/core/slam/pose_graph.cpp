@@ -57,6 +57,14 @@ void PoseGraph2D::addEdge(int i, int j, const math::SE2& z, const Eigen::Matrix3
   edges_.push_back({i, j, z, Eigen::Matrix3d(llt.matrixU()), loop, robust});
 }
 
+void PoseGraph2D::addRobustChainEdge(int i, int j, const math::SE2& z, const Eigen::Matrix3d& info,
+                                     double huber_scale) {
+  if (!(huber_scale > 0.0) || !std::isfinite(huber_scale))
+    throw std::invalid_argument("PoseGraph2D::addRobustChainEdge: huber_scale must be > 0");
+  addEdge(i, j, z, info, false, false);
+  edges_.back().huber_scale = huber_scale;
+}
+
 int PoseGraph2D::numLoopEdges() const {
   return static_cast<int>(
       std::count_if(edges_.begin(), edges_.end(), [](const Edge& e) { return e.loop; }));
@@ -67,10 +75,16 @@ math::SE2 PoseGraph2D::node(int i) const { return math::SE2(x_.at(i)[0], x_[i][1
 double PoseGraph2D::optimize(int max_iterations) {
   if (x_.empty()) return 0.0;
   ceres::Problem problem;
-  for (const Edge& e : edges_)
+  for (const Edge& e : edges_) {
+    ceres::LossFunction* loss = nullptr;
+    if (e.loop && e.robust)
+      loss = new ceres::CauchyLoss(1.0);
+    else if (e.huber_scale > 0.0)
+      loss = new ceres::HuberLoss(e.huber_scale);
     problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<EdgeCost, 3, 3, 3>(new EdgeCost(e.z, e.sqrt_info)),
-        e.loop && e.robust ? new ceres::CauchyLoss(1.0) : nullptr, x_[e.i].data(), x_[e.j].data());
+        new ceres::AutoDiffCostFunction<EdgeCost, 3, 3, 3>(new EdgeCost(e.z, e.sqrt_info)), loss,
+        x_[e.i].data(), x_[e.j].data());
+  }
   if (!problem.HasParameterBlock(x_[0].data())) return 0.0;
   problem.SetParameterBlockConstant(x_[0].data());
   ceres::Solver::Options options;
@@ -105,6 +119,8 @@ void LoopClosingConfig::validate() const {
        {odometry_std_m, odometry_std_rad, loop_std_m, chain_gate_std_m, chain_gate_std_rad})
     need(std::isfinite(v) && v > 0.0, "the *_std_* fields must be > 0");
   need(std::isfinite(chain_gate_chi2) && chain_gate_chi2 > 0.0, "chain_gate_chi2 must be > 0");
+  need(std::isfinite(chain_huber_scale) && chain_huber_scale > 0.0,
+       "chain_huber_scale must be > 0");
   need(std::isfinite(free_space_tolerance_m) && free_space_tolerance_m >= 0.0,
        "free_space_tolerance_m must be >= 0");
   need(std::isfinite(max_free_space_violations) && max_free_space_violations >= 0.0 &&
@@ -218,7 +234,10 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
       Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
       info(0, 0) = info(1, 1) = 1.0 / (config_.odometry_std_m * config_.odometry_std_m);
       info(2, 2) = 1.0 / (config_.odometry_std_rad * config_.odometry_std_rad);
-      graph_.addEdge(prev, prev + 1, z, info);
+      if (config_.robust_chain)
+        graph_.addRobustChainEdge(prev, prev + 1, z, info, config_.chain_huber_scale);
+      else
+        graph_.addEdge(prev, prev + 1, z, info);
     }
     const double path_m = nodes_.empty() ? 0.0
                                          : nodes_.back().path_m +

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "adaptive_perception/io/yaml_file.h"
+
 namespace adaptive_perception::world {
 
 std::vector<Landmark> fourLeggedBeacons() {
@@ -274,13 +276,7 @@ Landmark landmarkValue(const YAML::Node& node, const std::string& source) {
 }  // namespace
 
 FieldDimensions FieldMap::parseYaml(const std::string& text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error(source + ":" + std::to_string(e.mark.line + 1) +
-                             ": YAML syntax error: " + e.msg);
-  }
+  const YAML::Node root = io::parseYamlText(text, source);
   FieldDimensions d;
   // Keys left out keep their defaults, but a file without any (empty, or only comments) is a mistake.
   if (!root || root.IsNull())

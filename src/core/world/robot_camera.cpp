@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "adaptive_perception/io/yaml_file.h"
+
 namespace adaptive_perception::world {
 
 namespace {
@@ -27,13 +29,7 @@ RobotCamera RobotCamera::loadYaml(const std::string& path) {
 }
 
 RobotCamera RobotCamera::parseYaml(const std::string& text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error(source + ":" + std::to_string(e.mark.line + 1) +
-                             ": YAML syntax error: " + e.msg);
-  }
+  const YAML::Node root = io::parseYamlText(text, source);
   if (!root || root.IsNull()) throw std::runtime_error(source + ": no camera in the file (empty?)");
   if (!root.IsMap()) throw std::runtime_error(source + ": expected a map of camera keys");
   RobotCamera c;
