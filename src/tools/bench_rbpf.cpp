@@ -1,5 +1,8 @@
-// bench_rbpf: frames per second of the Rao-Blackwellised localizer at 208x160 on a simulated
-// sequence (the field simulator, seed 1, bright lighting), tracking from the true start pose.
+// bench_rbpf: frames per second of the Rao-Blackwellised localizer on a simulated sequence (the
+// field simulator, seed 1, bright lighting), tracking from the true start pose. The camera is the
+// AIBO ERS-7's field of view at --width x --height pixels (default its own 208x160; 640x480 is a
+// NAO's image size): the same views with more pixels, the likelihood's strides scaled with the
+// width (RbpfConfig::forCamera).
 //
 //   bench_rbpf --help   (every option with its default, unit and range)
 //
@@ -27,14 +30,18 @@ using namespace adaptive_perception;
 
 int main(int argc, char** argv) {
   tools::CommandLine cli("bench_rbpf",
-                         "Frames per second of the Rao-Blackwellised localizer at 208x160 on a "
-                         "simulated sequence; without --particles and --threads it sweeps 100, "
+                         "Frames per second of the Rao-Blackwellised localizer on a simulated "
+                         "sequence (208x160 unless --width/--height); without --particles and "
+                         "--threads it sweeps 100, "
                          "300 and 1000 particles on one thread and on all cores.");
   long particles = 0;
   cli.option("particles", &particles, config::closed(0, 100000), "particles (0: the sweep)");
   long threads = 0;
   cli.option("threads", &threads, config::closed(0, 256), "threads (0: the sweep)");
   int frames = 40;
+  int width = 208, height = 160;
+  cli.option("width", &width, config::closed(16, 4096), "image width, px");
+  cli.option("height", &height, config::closed(16, 4096), "image height, px");
   cli.option("frames", &frames, config::closed(1, 100000), "frames of the 10 Hz sequence");
   localization::RbpfConfig base;  // these fields as rbpf_localizer's parameters, the rest default
   cli.fields(localization::RbpfConfig::fields(), &base,
@@ -50,7 +57,11 @@ int main(int argc, char** argv) {
       for (int t : {1, cores}) configs.push_back({n, t});
   }
   const world::FieldMap map;
-  const world::PinholeCamera cam = world::PinholeCamera::aiboErs7();
+  constexpr double kDeg = M_PI / 180.0;
+  const world::PinholeCamera cam =
+      width == 208 && height == 160
+          ? world::PinholeCamera::aiboErs7()
+          : world::PinholeCamera::fromFieldOfView(width, height, 56.9 * kDeg, 45.2 * kDeg);
   const world::HeadChain head;
   const std::string dir = ros_params::resolvePackagePath("config/color_priors");
   const std::vector<color::LightingPrior> priors = {
@@ -91,11 +102,11 @@ int main(int argc, char** argv) {
     const double fps = frames / s;
     const math::SE2 e = rbpf.estimate().pose;
     std::printf(
-        "%5d particles, %d thread(s), stride %d (%zu pixels), relocalization check every %.1f "
-        "s over %d poses: %.1f frames/s (final position error %.3f m, mirror flips %d, "
+        "%5d particles, %d thread(s), %dx%d, stride %d (%zu pixels), relocalization check every "
+        "%.1f s over %d poses: %.1f frames/s (final position error %.3f m, mirror flips %d, "
         "relocalizations %d)\n",
-        n, t, cfg.likelihood.pixel_stride, rbpf.pixels().size(), cfg.relocalization.interval_s,
-        cfg.relocalization.pool_size, fps,
+        n, t, width, height, rbpf.config().likelihood.pixel_stride, rbpf.pixels().size(),
+        cfg.relocalization.interval_s, cfg.relocalization.pool_size, fps,
         std::hypot(e.x_m - end_truth.x_m, e.y_m - end_truth.y_m), flips, relocalizations);
     char buf[96];
     if (first) {
