@@ -1,5 +1,6 @@
-// simulate_field: a legged robot on a RoboCup field (--field; default the four-legged one),
-// written to a bag.
+// simulate_field: a legged robot on a RoboCup field (--field; default the four-legged one), seen
+// through a camera (--camera, a camera file of config/cameras/; default the AIBO ERS-7's built-in
+// camera and head), written to a bag.
 //
 //   simulate_field --help   (every option with its default, unit and range)
 //
@@ -27,6 +28,7 @@
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/sim/field_simulator.h"
+#include "adaptive_perception/world/robot_camera.h"
 #include "command_line.h"
 #include "tick_schedule.h"
 
@@ -38,9 +40,10 @@ std::string slash(const char* topic) { return std::string("/") + topic; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  tools::CommandLine cli("simulate_field",
-                         "A legged robot on a RoboCup field (default the four-legged one), written to a bag "
-                         "(deterministic for the seeds).");
+  tools::CommandLine cli(
+      "simulate_field",
+      "A legged robot on a RoboCup field (default the four-legged one), written to a bag "
+      "(deterministic for the seeds).");
   const std::string& output = cli.outputFile("the bag to write", "the bag");
   sim::FieldSimConfig cfg;
   cli.word("script", &cfg.script, sim::lightingScripts(), "the lighting script");
@@ -48,9 +51,14 @@ int main(int argc, char** argv) {
   cli.option("environment_seed", &cfg.environment_seed, "the venue (0: the nominal lab)");
   cli.fields(sim::FieldSimConfig::fields(), &cfg);
   std::string field = "config/field_4legged.yaml";
-  cli.option("field", &field, "field description (YAML, docs/fields.md; relative: from the package)");
+  cli.option("field", &field,
+             "field description (YAML, docs/fields.md; relative: from the package)");
   double start_time_s = 1.6e9;
   cli.option("start_time_s", &start_time_s, config::closed(1, 4e9), "the bag's first stamp, s");
+  std::string camera_file;
+  cli.option("camera", &camera_file,
+             "camera file (world/robot_camera.h, config/cameras/; relative: from the package; "
+             "empty: the AIBO ERS-7's built-in camera); its joint names go into joint_states");
   bool no_compression = false;
   cli.flag("no_compression", &no_compression, "writes the bag uncompressed");
   cli.parse(argc, argv);
@@ -59,8 +67,12 @@ int main(int argc, char** argv) {
   try {
     cfg.validate();
     const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));
-    const world::PinholeCamera camera = world::PinholeCamera::aiboErs7();
-    const world::HeadChain head;
+    const world::RobotCamera robot =
+        camera_file.empty()
+            ? world::RobotCamera()
+            : world::RobotCamera::loadYaml(ros_params::resolvePackagePath(camera_file));
+    const world::PinholeCamera& camera = robot.camera;
+    const world::HeadChain& head = robot.head;
     sim::FieldSimulator simulator(map, camera, head, cfg);
 
     ros_bag::BagWriter bag(output, cli.overwriteGiven(), compress);
@@ -131,7 +143,7 @@ int main(int argc, char** argv) {
       sensor_msgs::JointState joints;
       joints.header.stamp = stamp;
       joints.header.seq = seq;
-      joints.name = {T::kHeadPanJoint, T::kHeadTiltJoint};
+      joints.name = {robot.pan_joint, robot.tilt_joint};
       joints.position = {s.pan_rad, s.tilt_rad};
       bag.write(slash(T::kJointStates), stamp, joints);
       ++seq;
