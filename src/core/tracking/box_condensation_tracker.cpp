@@ -246,6 +246,8 @@ void BoxCondensationTracker::init(const cv::Mat& image, const cv::Rect2d& box) {
   samples_.assign(config_.samples, estimate_);
   weights_.assign(config_.samples, 1.0 / config_.samples);
   lost_frames_ = 0;
+  mean_peak_ = mean_apce_ = mean_colour_ = 0.0;
+  response_frames_ = 0;
   initialized_ = true;
 }
 
@@ -289,6 +291,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   // best peak.
   cv::Mat grey_image;
   FilterMaps filter_maps;
+  double peak_now = 0.0, apce_now = 0.0;
   const bool use_filter = config_.filter_gain > 0.0 && filter_.initialized();
   if (use_filter) {
     if (image.channels() == 1)
@@ -299,6 +302,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
                           estimate_.y + config_.velocity_gain * vy_};
     filter_maps.log_scale = estimate_.log_scale;
     double best_value = -1e300;
+    int best_map = 0;
     cv::Point2d best_at = filter_maps.centre;
     double best_log = estimate_.log_scale;
     for (int k = -config_.filter_scales; k <= config_.filter_scales; ++k) {
@@ -311,10 +315,21 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
       if (value > best_value) {
         const cv::Size2d cell = filter_.cellPx(std::exp(log_scale));
         best_value = value;
+        best_map = static_cast<int>(filter_maps.maps.size()) - 1;
         best_log = log_scale;
         best_at = {filter_maps.centre.x + (at.x - filter_.cols() / 2) * cell.width,
                    filter_maps.centre.y + (at.y - filter_.rows() / 2) * cell.height};
       }
+    }
+    // The best map's peak and sharpness (APCE).
+    {
+      const cv::Mat& map = filter_maps.maps[best_map];
+      double lo = 0.0, hi = 0.0;
+      cv::minMaxLoc(map, &lo, &hi);
+      cv::Mat d = map - lo;
+      const double energy = cv::mean(d.mul(d))[0];
+      peak_now = hi;
+      apce_now = energy > 0.0 ? (hi - lo) * (hi - lo) / energy : 0.0;
     }
     const int drawn = static_cast<int>(config_.peak_fraction * n);
     const cv::Size2d cell = filter_.cellPx(std::exp(best_log));
@@ -439,8 +454,23 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
       score(mean_box) +
       (use_template ? config_.template_gain / config_.score_gain * ncc(mean_box) : 0.0) +
       config_.filter_gain / config_.score_gain * filter_score(mean);
-  out.lost = confidence < config_.lost_score;
-  if (out.lost) {
+  const bool colour_lost = confidence < config_.lost_score;
+  // The filter's response and the colour score against their means over the frames so far.
+  out.response_peak = peak_now;
+  out.response_apce = apce_now;
+  const double colour_now = score(mean_box);
+  out.unreliable = use_filter && response_frames_ > 0 &&
+                   (peak_now < config_.reliable_peak_ratio * mean_peak_ ||
+                    apce_now < config_.reliable_apce_ratio * mean_apce_) &&
+                   colour_now < config_.reliable_peak_ratio * mean_colour_;
+  if (use_filter) {
+    ++response_frames_;
+    mean_peak_ += (peak_now - mean_peak_) / response_frames_;
+    mean_apce_ += (apce_now - mean_apce_) / response_frames_;
+    mean_colour_ += (colour_now - mean_colour_) / response_frames_;
+  }
+  out.lost = colour_lost || out.unreliable;
+  if (colour_lost) {
     // Doubtful: the estimate stays where the target was last seen with confidence; the samples
     // spread further each frame until one scores again.
     ++lost_frames_;
@@ -454,8 +484,11 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   out.box = boxOf(estimate_);
   out.confidence = confidence;
 
-  // 4. Model update (eq. 29), gated by the confidence.
-  if (!out.lost && confidence >= config_.update_min_score && config_.learning_rate > 0.0) {
+  // 4. Model update (eq. 29), gated by the confidence (and by the response's reliability when
+  // unreliable_stops_learning).
+  const bool learn = !colour_lost && !(config_.unreliable_stops_learning && out.unreliable) &&
+                     confidence >= config_.update_min_score;
+  if (learn && config_.learning_rate > 0.0) {
     std::vector<float> o, s;
     histograms(image, out.box, &o, &s);
     const float a = static_cast<float>(config_.learning_rate);

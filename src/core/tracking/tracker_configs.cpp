@@ -18,7 +18,14 @@ const config::Fields<BoxTrackerConfig>& BoxTrackerConfig::fields() {
           .add("box_peak_fraction", &C::peak_fraction, closed(0, 0.99),
                "mode box: share of the samples drawn about the filter's peak")
           .add("box_lost_score", &C::lost_score, closed(-1, 1),
-               "mode box: confidence below this is lost (searched for)");
+               "mode box: confidence below this is lost (searched for)")
+          .add("box_reliable_peak_ratio", &C::reliable_peak_ratio, closed(0, 1),
+               "mode box: a frame whose response peak (or APCE) and colour score fall below "
+               "this share of their means is unreliable, reported lost (0: off)")
+          .add("box_reliable_apce_ratio", &C::reliable_apce_ratio, closed(0, 1),
+               "mode box: the same for the response's APCE (0: off)")
+          .add("box_unreliable_stops_learning", &C::unreliable_stops_learning,
+               "mode box: the models do not learn from an unreliable frame");
   return f;
 }
 
