@@ -29,7 +29,20 @@ struct BranchAndBoundWindow {
   double search_xy_m = 10.0;    // translation window half-width around the prior
   double search_yaw_rad = 0.5;  // rotation window half-width
   double yaw_step_rad = 0.01;
+  // The time bound: once this many bounds have been computed (the top level's, one per top block
+  // and yaw, always are), the search descends no further and returns the best pose found so far
+  // (best bound first, so the likeliest blocks were tried first); 0: no bound, the lattice's best.
+  long max_bounds = 0;
   void validate() const;  // throws std::invalid_argument naming the bad field
+};
+
+/// Whether a match is ambiguous in rotation: some lattice pose turned more than half_width_rad
+/// from the best scores at least ratio times the best's score (a square corridor seen turned by a
+/// right angle). Answered by a second descent from the same top level, with the poses within the
+/// band left out and the bar at ratio times the best: it stops at the first such pose.
+struct RotationAmbiguity {
+  double half_width_rad = 0.3;
+  double ratio = 0.9;
 };
 
 class BranchAndBoundMatcher {
@@ -40,10 +53,16 @@ class BranchAndBoundMatcher {
   BranchAndBoundMatcher(const LikelihoodField& field, int depth);
 
   /// The best lattice pose of `points_robot` within the window around `prior` whose score is
-  /// above min_score; nullopt when none is. `nodes_visited` (optional) counts the bounds computed.
+  /// above min_score (within window.max_bounds: the best found before the budget ran out); nullopt
+  /// when none is. `nodes_visited` (optional) counts the bounds computed.
+  /// With `ambiguity` and a match found, *ambiguous says whether it is ambiguous in rotation
+  /// (RotationAmbiguity; within the same max_bounds budget: a check the budget cut short counts
+  /// as ambiguous).
   std::optional<ScanMatch> match(const std::vector<Eigen::Vector2d>& points_robot,
                                  const math::SE2& prior, const BranchAndBoundWindow& window,
-                                 double min_score, long* nodes_visited = nullptr) const;
+                                 double min_score, long* nodes_visited = nullptr,
+                                 const RotationAmbiguity* ambiguity = nullptr,
+                                 bool* ambiguous = nullptr) const;
 
   int depth() const { return static_cast<int>(levels_.size()) - 1; }
 

@@ -7,7 +7,9 @@
 //      end's own noise (front_end_motion), and updates with the scan's lines: the local map;
 //   3. the loop closer (pose_graph.h, LoopClosingMapper) keeps a pose graph over the EKF's
 //      keyframes, the front end's relative pose standing in where the EKF jumped, with loop edges
-//      from scan matching; every scan's final pose is the optimised graph's.
+//      from scan matching; every scan's final pose is the optimised graph's. Its wide search's
+//      window follows the chain's uncertainty: the EKF's prediction noise per scan, or the front
+//      end's step covariance where larger (along what its scan match cannot see).
 // With front_end off the EKF predicts from the wheel odometry with LineEkfSlamConfig::motion (the
 // paper's filter, as the simulator's consistency checks run it); with loop_closing off the EKF's
 // pose is the answer.
@@ -81,6 +83,9 @@ class LaserSlam {
 
  private:
   static LineEkfSlamConfig ekfConfig(const LaserSlamConfig& c);
+  /// c.loop with chain_noise the EKF's own prediction noise (the chain's uncertainty is the local
+  /// estimator's).
+  static LoopClosingConfig loopConfig(const LaserSlamConfig& c);
 
   LaserSlamConfig config_;
   LaserOdometry front_end_;

@@ -32,6 +32,7 @@
 #include <optional>
 #include <vector>
 
+#include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/math/se2.h"
 #include "adaptive_perception/slam/scan_matcher.h"
 
@@ -113,32 +114,58 @@ struct LoopClosingConfig {
                                // from the match's information, matchInformation)
   double max_range_m = 25.0;   // scan points farther than this are left out
   double connect_gap_m = 0.3;  // consecutive returns closer than this make one wall
-  // The wide search, for a loop the estimate has drifted too far from for the window above (after
-  // a kilometre of corridor the drift is tens of metres and degrees). When a node closes no loop
-  // locally, at most every wide_every_nodes nodes, its scan is matched by branch and bound
-  // (branch_and_bound_matcher.h, at coarse_resolution_m) against the scans of every older node
-  // that could hold it: node k, at least wide_min_loop_m back along the chain, is taken when it
-  // lies within r_k + max_range_m of the estimate, r_k = search_radius_m + wide_drift_per_m *
-  // (the chain's length from k to the new node), at most wide_max_xy_m; the window is the largest
-  // r_k taken, and in yaw coarse_search_yaw_rad + wide_drift_rad_per_m * the longest such length,
-  // at most wide_max_yaw_rad. A pose scoring at least wide_min_score is then matched and checked
-  // as a local candidate is (min_loop_score), against the stretch of the chain within max_range_m
-  // (along it) of the member nearest that pose: one traversal, consistent in itself, which sees
-  // what the new scan sees even where the nearest node looked the other way along a corridor. Its
-  // free-space check is against that node's own submap and allows
-  // wide_max_free_space_violations: on fr-clinic, right matches (their walls drawn on the old
-  // ones and looked at) had 0.06-0.53 of their points in front of some old return (people, doors,
+  // The wide search, for a loop the estimate has drifted too far from for the window above (after a
+  // kilometre of corridor the drift is tens of metres and degrees; a round hall, where the front
+  // end keeps the odometry's heading, can turn the rest of the map by more than half a radian).
+  // When a node closes no loop locally, at most every wide_every_nodes nodes, its scan is matched
+  // by branch and bound (branch_and_bound_matcher.h, at coarse_resolution_m) against the scans of
+  // every older node that could hold it. The window comes from the chain's accumulated uncertainty
+  // since the candidate (see chain_noise): node k, at least wide_min_loop_m back along the chain,
+  // with sigma_yaw(k) and sigma_xy(k) the accumulated heading and position stds of the new node
+  // relative to k, is taken when it lies within r_k + max_range_m of the estimate, r_k =
+  // search_radius_m + wide_drift_per_m * (the chain's length from k) + wide_sigmas * sigma_xy(k),
+  // at most wide_max_xy_m; the window is the largest r_k taken, and in yaw coarse_search_yaw_rad +
+  // wide_sigmas * the largest sigma_yaw(k), at most a full turn (pi either way); a match ambiguous
+  // in rotation is dropped (wide_ambiguity_ratio). A pose scoring at least wide_min_score is then
+  // matched and checked as a local candidate is (min_loop_score), against the stretch of the chain
+  // within max_range_m (along it) of the member nearest that pose: one traversal, consistent in
+  // itself, which sees what the new scan sees even where the nearest node looked the other way
+  // along a corridor. Its free-space check is against that node's own submap and allows
+  // wide_max_free_space_violations: on fr-clinic, right matches (their walls drawn on the old ones
+  // and looked at) had 0.06-0.53 of their points in front of some old return (people, doors,
   // halls), the wrong ones 0.09-1, most above 0.5: the check alone cannot tell them apart. So a
-  // wide loop is believed only once a second one, found within wide_confirm_nodes nodes, moves
-  // the estimate the same way (within wide_confirm_m and wide_confirm_rad, plus the drift allowed
-  // over the chain between them). Both edges then enter the graph without the robust loss, which
-  // would otherwise discount a correction of hundreds of stds.
+  // wide loop is believed only once a second one, found within wide_confirm_nodes nodes, moves the
+  // estimate the same way (within wide_confirm_m and wide_confirm_rad, plus the drift and
+  // wide_sigmas of the chain's accumulated uncertainty between the two nodes): evidence whose
+  // strength does not depend on the window's size. Both edges then enter the graph without the
+  // robust loss, which would otherwise discount a correction of hundreds of stds.
   bool wide_search = true;
-  int wide_every_nodes = 8;        // every 4 nodes cost mit-csail 16% of its speed (28 -> 24x)
-  double wide_drift_per_m = 0.05;  // fr-clinic's estimate was 40 m off after 1.3 km (3%)
-  double wide_drift_rad_per_m = 0.001;
-  double wide_max_xy_m = 60.0;
-  double wide_max_yaw_rad = 0.6;
+  int wide_every_nodes = 8;  // every 4 nodes cost mit-csail 16% of its speed (28 -> 24x)
+  // The accumulated uncertainty: each scan's motion since the one before adds the local
+  // estimator's own prediction noise for it (chain_noise, in MotionModelConfig's terms; LaserSlam
+  // sets it to the noise its EKF predicts with, measured on the benchmark relations), or the
+  // step covariance given to add() where that is larger (the front end's, which along a
+  // direction its scan match cannot see is the wheel odometry's). A node's heading variance
+  // turns into position variance at every later node by its lever arm (the distance between
+  // them), so sigma_xy grows with the building's size, not only with the path's length. The
+  // default here is the generic wheel-odometry model (MotionModelConfig's own defaults).
+  localization::MotionModelConfig chain_noise;
+  double wide_sigmas = 3.0;      // the window's half-width in accumulated stds
+  // Plus, in translation, a drift that grows with the chain's length rather than its square root:
+  // a laser odometry's scale and heading biases are not a random walk (fr-clinic's estimate was
+  // 40 m off after 1.3 km, 3%; its accumulated std there is about 7 m).
+  double wide_drift_per_m = 0.05;
+  double wide_max_xy_m = 60.0;   // the largest translation window: the cost bound (the
+                                 // matched map's extent and the top level's size)
+  long wide_max_bounds = 2000000;  // bounds computed per search beyond its top level: the time
+                                   // bound (BranchAndBoundWindow::max_bounds)
+  // A wide match is dropped when a pose turned at least wide_ambiguity_yaw_rad from it (in the
+  // same window) scores at least wide_ambiguity_ratio of its score: a window of a full turn holds
+  // the right angles of a square corridor and the half turn of a symmetric room, and two scans a
+  // few metres apart agree on the same wrong turn, so agreement alone cannot keep it out. 0: no
+  // such check.
+  double wide_ambiguity_yaw_rad = 0.3;
+  double wide_ambiguity_ratio = 0.9;
   double wide_min_score = 0.5;
   double wide_min_loop_m = 50.0;  // nearer nodes along the chain are left out: the scan sees
                                   // them still (2 max_range_m), and would match them best
@@ -169,8 +196,12 @@ class LoopClosingMapper {
   /// One scan (points in the robot frame) with the local estimator's pose, and optionally a
   /// second estimate of the same motion in its own frame (the front end's pose), which stands in
   /// for the local estimator on a chain edge where the two disagree (chain_gate_chi2).
+  /// `step_covariance` (optional): the covariance of the motion since the previous scan (x, y in
+  /// any frame, yaw), as the estimator that made it knows it; it widens the wide search's window
+  /// where it is larger than chain_noise's (LoopClosingConfig::chain_noise).
   void add(const std::vector<Eigen::Vector2d>& points_robot, const math::SE2& local_pose,
-           const math::SE2* reference_pose = nullptr);
+           const math::SE2* reference_pose = nullptr,
+           const Eigen::Matrix3d* step_covariance = nullptr);
   /// The final pose of every scan added, in order.
   std::vector<math::SE2> trajectory() const;
   /// The last scan's final pose (trajectory().back()); the origin before the first scan.
@@ -197,11 +228,16 @@ class LoopClosingMapper {
   long wideAttempts() const { return wide_attempts_; }
   long wideMatches() const { return wide_matches_; }
   long wideConfirmed() const { return wide_confirmed_; }
+  /// Wide matches dropped as ambiguous in rotation (wide_ambiguity_ratio).
+  long wideAmbiguous() const { return wide_ambiguous_; }
   /// Wall-clock seconds spent in the wide search (its cost, for the tools' summaries).
   double wideSeconds() const { return wide_seconds_; }
 
  private:
   bool tryLoop(int node);
+  /// The accumulated stds (heading, position) of node n's pose relative to node k < n: sigma_yaw^2
+  /// = sum v_i, sigma_xy^2 = sum t_i + sum v_i |p_n - p_i|^2 over the nodes i in (k, n].
+  std::pair<double, double> accumulatedStd(int k, int n) const;
   /// The wide search of node n (see LoopClosingConfig::wide_search); true when it closed a loop.
   bool tryWide(int n);
   /// The candidate k for node n with n's pose in k's frame `prior`: the coarse (unless
@@ -231,6 +267,12 @@ class LoopClosingMapper {
     bool has_reference = false;
     std::vector<Eigen::Vector2d> points;
     double path_m = 0.0;  // the chain's length from the first node
+    // Prefix sums over the nodes up to this one of the variance each added since the node
+    // before (v_i heading, t_i position) and of v_i's lever-arm moments at the local position
+    // p_i: yaw_var = sum v_i, yaw_var_p = sum v_i p_i, yaw_var_pp = sum v_i |p_i|^2, xy_var =
+    // sum t_i. See accumulatedStd.
+    double yaw_var = 0.0, yaw_var_pp = 0.0, xy_var = 0.0;
+    Eigen::Vector2d yaw_var_p = Eigen::Vector2d::Zero();
   };
   std::vector<NodeData> nodes_;
   struct WideHypothesis {
@@ -240,13 +282,16 @@ class LoopClosingMapper {
   };
   std::optional<WideHypothesis> wide_pending_;
   int last_wide_node_ = -1000000;
-  long wide_attempts_ = 0, wide_matches_ = 0, wide_confirmed_ = 0;
+  long wide_attempts_ = 0, wide_matches_ = 0, wide_confirmed_ = 0, wide_ambiguous_ = 0;
   double wide_seconds_ = 0.0;
   struct ScanRef {
     int node;
     math::SE2 offset;  // local motion since the node
   };
   std::vector<ScanRef> scans_;
+  // The variance added since the last node (heading, position), and the last scan's local pose.
+  double pending_yaw_var_ = 0.0, pending_xy_var_ = 0.0;
+  math::SE2 last_local_;
   long attempts_ = 0;
   int chain_replaced_ = 0;
   long free_space_rejected_ = 0;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+
 namespace adaptive_perception::slam {
 
 void BranchAndBoundWindow::validate() const {
@@ -18,6 +19,7 @@ void BranchAndBoundWindow::validate() const {
        "search_yaw_rad must be in [0, pi]");
   need(std::isfinite(yaw_step_rad) && yaw_step_rad >= 1e-4 && yaw_step_rad <= 0.5,
        "yaw_step_rad must be in [1e-4, 0.5]");
+  need(max_bounds >= 0, "max_bounds must be >= 0");
 }
 
 BranchAndBoundMatcher::BranchAndBoundMatcher(const LikelihoodField& field, int depth)
@@ -63,8 +65,14 @@ struct Candidate {
 
 std::optional<ScanMatch> BranchAndBoundMatcher::match(
     const std::vector<Eigen::Vector2d>& points_robot, const math::SE2& prior,
-    const BranchAndBoundWindow& window, double min_score, long* nodes_visited) const {
+    const BranchAndBoundWindow& window, double min_score, long* nodes_visited,
+    const RotationAmbiguity* ambiguity, bool* ambiguous) const {
   window.validate();
+  if (ambiguity && !(std::isfinite(ambiguity->half_width_rad) && ambiguity->half_width_rad >= 0.0 &&
+                     std::isfinite(ambiguity->ratio) && ambiguity->ratio >= 0.0))
+    throw std::invalid_argument(
+        "BranchAndBoundMatcher: RotationAmbiguity's half_width_rad and ratio must be >= 0");
+  if (ambiguous) *ambiguous = false;
   if (points_robot.empty()) return std::nullopt;
   const int k = static_cast<int>(std::floor(window.search_xy_m / resolution_m_ + 1e-9));
   const int yaw_steps = static_cast<int>(std::floor(window.search_yaw_rad / window.yaw_step_rad + 1e-9));
@@ -100,28 +108,36 @@ std::optional<ScanMatch> BranchAndBoundMatcher::match(
   const int top = depth();
   const int w_top = 1 << top;
   std::vector<Candidate> candidates;
-  for (int j = 0; j < n_yaw; ++j)
+  for (int j = 0; j < n_yaw; ++j) {
     for (int oy = -k; oy <= k; oy += w_top)
       for (int ox = -k; ox <= k; ox += w_top) {
         Candidate c{j, ox, oy, 0.0f};
         c.score = bound(c, top);
         candidates.push_back(c);
       }
+  }
   auto by_score = [](const Candidate& a, const Candidate& b) { return a.score > b.score; };
   std::sort(candidates.begin(), candidates.end(), by_score);
 
   float best_score = static_cast<float>(min_score);
   std::optional<Candidate> best;
+  bool stop_at_first = false, stopped = false;  // the ambiguity descent stops at its first leaf
+  bool out_of_budget = false;
   // Depth first, best bound first; a candidate whose bound is no better than the best leaf found
   // so far cannot hold a better one.
   std::function<void(const std::vector<Candidate>&, int)> search =
       [&](const std::vector<Candidate>& list, int d) {
         for (const Candidate& c : list) {
-          if (c.score <= best_score) return;  // sorted: no later one is better
+          if (stopped || c.score <= best_score) return;  // sorted: no later one is better
           if (d == 0) {
             best_score = c.score;
             best = c;
+            stopped = stop_at_first;
             continue;
+          }
+          if (window.max_bounds > 0 && visited >= window.max_bounds) {
+            out_of_budget = true;
+            return;
           }
           const int h = 1 << (d - 1);
           std::vector<Candidate> children;
@@ -137,12 +153,31 @@ std::optional<ScanMatch> BranchAndBoundMatcher::match(
         }
       };
   search(candidates, top);
-  if (nodes_visited) *nodes_visited = visited;
-  if (!best) return std::nullopt;
+  if (!best) {
+    if (nodes_visited) *nodes_visited = visited;
+    return std::nullopt;
+  }
   ScanMatch m;
   m.pose = math::SE2(prior.x_m + best->ox * resolution_m_, prior.y_m + best->oy * resolution_m_,
                      prior.yaw_rad + (best->yaw_index - yaw_steps) * window.yaw_step_rad);
   m.score = best->score;
+  if (ambiguity) {
+    // The same top level without the yaws within the band about the best's.
+    std::vector<Candidate> others;
+    for (const Candidate& c : candidates)
+      if (std::fabs(math::wrapAngle((c.yaw_index - best->yaw_index) * window.yaw_step_rad)) >
+          ambiguity->half_width_rad)
+        others.push_back(c);
+    const Candidate first = *best;
+    best.reset();
+    best_score = static_cast<float>(ambiguity->ratio * m.score);
+    stop_at_first = true;
+    out_of_budget = false;
+    search(others, top);
+    if (ambiguous) *ambiguous = best.has_value() || out_of_budget;  // undecided counts as ambiguous
+    best = first;
+  }
+  if (nodes_visited) *nodes_visited = visited;
   return m;
 }
 

@@ -1,5 +1,6 @@
 #include "adaptive_perception/slam/laser_slam.h"
 
+#include <Eigen/LU>
 #include <stdexcept>
 #include <string>
 
@@ -23,12 +24,18 @@ LineEkfSlamConfig LaserSlam::ekfConfig(const LaserSlamConfig& c) {
   return e;
 }
 
+LoopClosingConfig LaserSlam::loopConfig(const LaserSlamConfig& c) {
+  LoopClosingConfig l = c.loop;
+  l.chain_noise = ekfConfig(c).motion;
+  return l;
+}
+
 LaserSlam::LaserSlam(const LaserSlamConfig& config, const math::SE2& start,
                      const Eigen::Matrix3d& start_cov)
     : config_(config),
       front_end_(config.laser_odometry),
       ekf_(ekfConfig(config), start, start_cov),
-      loop_(config.loop) {}
+      loop_(loopConfig(config)) {}
 
 LaserSlam::Step LaserSlam::add(const std::vector<Eigen::Vector2d>& points_robot,
                                const std::vector<LineObservation>& lines, const math::SE2& odom,
@@ -38,10 +45,21 @@ LaserSlam::Step LaserSlam::add(const std::vector<Eigen::Vector2d>& points_robot,
   ekf_.predictFromOdometry(step.prediction);
   step.ekf = ekf_.update(lines);
   if (external) ekf_.updateExternalPosition(external->xy_m, external->cov);
-  if (config_.loop_closing)
-    loop_.add(points_robot, ekf_.pose(), config_.front_end ? &step.prediction : nullptr);
-  else
+  if (config_.loop_closing) {
+    // The front end's step covariance where its match left a direction to the odometry (its
+    // information is zero before its second scan). A step that followed the odometry because the
+    // match was not believed keeps the EKF's own noise: the odometry's per-step floor
+    // (odom_std_rad) is a weight for the fusion, not a drift rate.
+    Eigen::Matrix3d step_cov;
+    const Eigen::Matrix3d& info = front_end_.lastInformation();
+    const bool has_cov = config_.front_end && front_end_.lastMatched() &&
+                         front_end_.lastDegenerateDirections() > 0 && info.trace() > 0.0;
+    if (has_cov) step_cov = info.inverse();
+    loop_.add(points_robot, ekf_.pose(), config_.front_end ? &step.prediction : nullptr,
+              has_cov ? &step_cov : nullptr);
+  } else {
     ekf_poses_.push_back(ekf_.pose());
+  }
   ++scans_;
   return step;
 }

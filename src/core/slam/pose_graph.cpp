@@ -136,12 +136,23 @@ void LoopClosingConfig::validate() const {
        "min_loop_score must be in [0, 1]");
   need(std::isfinite(max_range_m) && max_range_m > 0.1, "max_range_m must be > 0.1");
   need(wide_every_nodes >= 1, "wide_every_nodes must be >= 1");
-  for (double v : {wide_drift_per_m, wide_drift_rad_per_m, wide_confirm_m, wide_confirm_rad})
-    need(std::isfinite(v) && v >= 0.0, "the wide_drift_* and wide_confirm_* fields must be >= 0");
+  for (double v : {wide_sigmas, wide_drift_per_m, wide_confirm_m, wide_confirm_rad})
+    need(std::isfinite(v) && v >= 0.0,
+         "wide_sigmas, wide_drift_per_m and the wide_confirm_* fields must be >= 0");
+  try {
+    chain_noise.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("chain_noise: ") + e.what());
+  }
   need(std::isfinite(wide_max_xy_m) && wide_max_xy_m >= 0.0 && wide_max_xy_m <= 200.0,
        "wide_max_xy_m must be in [0, 200]");
-  need(std::isfinite(wide_max_yaw_rad) && wide_max_yaw_rad >= 0.0 && wide_max_yaw_rad <= M_PI,
-       "wide_max_yaw_rad must be in [0, pi]");
+  need(wide_max_bounds >= 0, "wide_max_bounds must be >= 0");
+  need(std::isfinite(wide_ambiguity_yaw_rad) && wide_ambiguity_yaw_rad >= 0.0 &&
+           wide_ambiguity_yaw_rad <= M_PI,
+       "wide_ambiguity_yaw_rad must be in [0, pi]");
+  need(std::isfinite(wide_ambiguity_ratio) && wide_ambiguity_ratio >= 0.0 &&
+           wide_ambiguity_ratio <= 1.0,
+       "wide_ambiguity_ratio must be in [0, 1]");
   need(std::isfinite(wide_max_free_space_violations) && wide_max_free_space_violations >= 0.0 &&
            wide_max_free_space_violations <= 1.0,
        "wide_max_free_space_violations must be in [0, 1]");
@@ -201,7 +212,22 @@ LoopClosingMapper::LoopClosingMapper(LoopClosingConfig config) : config_(config)
 }
 
 void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
-                            const math::SE2& local_pose, const math::SE2* reference_pose) {
+                            const math::SE2& local_pose, const math::SE2* reference_pose,
+                            const Eigen::Matrix3d* step_covariance) {
+  if (!scans_.empty()) {
+    // The step's variance: the local estimator's noise model, or the given covariance where that
+    // is larger (a non-finite one is ignored).
+    const math::SE2 step = math::between(last_local_, local_pose);
+    const Eigen::Vector2d sd = localization::motionNoiseStd(step, config_.chain_noise);
+    double yaw_var = sd.y() * sd.y(), xy_var = 2.0 * sd.x() * sd.x();
+    if (step_covariance && step_covariance->allFinite()) {
+      yaw_var = std::max(yaw_var, (*step_covariance)(2, 2));
+      xy_var = std::max(xy_var, (*step_covariance)(0, 0) + (*step_covariance)(1, 1));
+    }
+    pending_yaw_var_ += yaw_var;
+    pending_xy_var_ += xy_var;
+  }
+  last_local_ = local_pose;
   bool new_node = nodes_.empty();
   if (!new_node) {
     const math::SE2 d = math::between(nodes_.back().local, local_pose);
@@ -243,9 +269,19 @@ void LoopClosingMapper::add(const std::vector<Eigen::Vector2d>& points_robot,
                                          : nodes_.back().path_m +
                                                std::hypot(local_pose.x_m - nodes_.back().local.x_m,
                                                           local_pose.y_m - nodes_.back().local.y_m);
-    nodes_.push_back({local_pose, static_cast<int>(scans_.size()),
-                      reference_pose ? *reference_pose : math::SE2(), reference_pose != nullptr,
-                      std::move(pts), path_m});
+    NodeData node{local_pose, static_cast<int>(scans_.size()),
+                  reference_pose ? *reference_pose : math::SE2(), reference_pose != nullptr,
+                  std::move(pts), path_m};
+    const Eigen::Vector2d p(local_pose.x_m, local_pose.y_m);
+    if (!nodes_.empty()) {
+      const NodeData& prev = nodes_.back();
+      node.yaw_var = prev.yaw_var + pending_yaw_var_;
+      node.yaw_var_p = prev.yaw_var_p + pending_yaw_var_ * p;
+      node.yaw_var_pp = prev.yaw_var_pp + pending_yaw_var_ * p.squaredNorm();
+      node.xy_var = prev.xy_var + pending_xy_var_;
+    }
+    pending_yaw_var_ = pending_xy_var_ = 0.0;
+    nodes_.push_back(std::move(node));
     const int n = graph_.numNodes() - 1;
     if (tryLoop(n)) {
       graph_.optimize();
@@ -366,24 +402,35 @@ bool LoopClosingMapper::tryLoop(int n) {
   return closed;
 }
 
+std::pair<double, double> LoopClosingMapper::accumulatedStd(int k, int n) const {
+  const NodeData &a = nodes_[k], &b = nodes_[n];
+  const Eigen::Vector2d pn(b.local.x_m, b.local.y_m);
+  const double s0 = b.yaw_var - a.yaw_var;
+  const double xy = (b.xy_var - a.xy_var) + s0 * pn.squaredNorm() -
+                    2.0 * pn.dot(b.yaw_var_p - a.yaw_var_p) + (b.yaw_var_pp - a.yaw_var_pp);
+  return {std::sqrt(std::max(0.0, s0)), std::sqrt(std::max(0.0, xy))};
+}
+
 bool LoopClosingMapper::tryWide(int n) {
   if (nodes_[n].points.size() < 20) return false;
   last_wide_node_ = n;
   if (wide_pending_ && n - wide_pending_->n > config_.wide_confirm_nodes) wide_pending_.reset();
   const math::SE2 xn = graph_.node(n);
   // The older nodes that could hold the scan, and the window.
-  double window_m = 0.0, length_m = 0.0;
+  double window_m = 0.0, sigma_yaw = 0.0;
   std::vector<int> members;
   for (int k = 0; k + config_.min_node_gap <= n; ++k) {
     const double along = nodes_[n].path_m - nodes_[k].path_m;
     if (along < config_.wide_min_loop_m) continue;
-    const double r =
-        std::min(config_.wide_max_xy_m, config_.search_radius_m + config_.wide_drift_per_m * along);
+    const auto [s_yaw, s_xy] = accumulatedStd(k, n);
+    const double r = std::min(config_.wide_max_xy_m, config_.search_radius_m +
+                                                         config_.wide_drift_per_m * along +
+                                                         config_.wide_sigmas * s_xy);
     const math::SE2 xk = graph_.node(k);
     if (std::hypot(xk.x_m - xn.x_m, xk.y_m - xn.y_m) > r + config_.max_range_m) continue;
     members.push_back(k);
     window_m = std::max(window_m, r);
-    length_m = std::max(length_m, along);
+    sigma_yaw = std::max(sigma_yaw, s_yaw);
   }
   if (members.size() < 2 || window_m <= config_.coarse_search_xy_m) return false;
   ++wide_attempts_;
@@ -395,9 +442,9 @@ bool LoopClosingMapper::tryWide(int n) {
   BranchAndBoundWindow window;
   window.search_xy_m = window_m;
   window.search_yaw_rad =
-      std::min(config_.wide_max_yaw_rad,
-               config_.coarse_search_yaw_rad + config_.wide_drift_rad_per_m * length_m);
+      std::min(M_PI, config_.coarse_search_yaw_rad + config_.wide_sigmas * sigma_yaw);
   window.yaw_step_rad = config_.coarse_yaw_step_rad;
+  window.max_bounds = config_.wide_max_bounds;
   std::optional<ScanMatch> wide;
   try {
     const ScanMatcherConfig coarse = config_.coarseMatcher();
@@ -415,7 +462,19 @@ bool LoopClosingMapper::tryWide(int n) {
     std::vector<Eigen::Vector2d> sparse;
     const size_t stride = (scan.size() + kWidePoints - 1) / kWidePoints;
     for (size_t i = 0; i < scan.size(); i += stride) sparse.push_back(scan[i]);
-    wide = BranchAndBoundMatcher(field, depth).match(sparse, xn, window, config_.wide_min_score);
+    const BranchAndBoundMatcher bnb(field, depth);
+    // Ambiguous in rotation (a square corridor seen turned by a right angle, a symmetric room):
+    // some pose turned at least wide_ambiguity_yaw_rad from the best scores nearly as well.
+    const RotationAmbiguity check{config_.wide_ambiguity_yaw_rad, config_.wide_ambiguity_ratio};
+    const bool check_it = config_.wide_ambiguity_ratio > 0.0 &&
+                          window.search_yaw_rad > config_.wide_ambiguity_yaw_rad;
+    bool ambiguous = false;
+    wide = bnb.match(sparse, xn, window, config_.wide_min_score, nullptr,
+                     check_it ? &check : nullptr, &ambiguous);
+    if (wide && ambiguous) {
+      ++wide_ambiguous_;
+      return false;
+    }
   } catch (const std::invalid_argument&) {
     return false;  // the map is larger than a field may be
   }
@@ -449,12 +508,15 @@ bool LoopClosingMapper::tryWide(int n) {
   ++wide_matches_;
   const WideHypothesis h{n, k, *v, (xk * v->n_in_k) * xn.inverse()};
   if (wide_pending_) {
-    // The two corrections agree within the tolerance plus the drift allowed between them.
+    // The two corrections agree within the tolerance plus the uncertainty accumulated between
+    // the two nodes.
     const math::SE2 d = wide_pending_->correction.inverse() * h.correction;
+    const auto [s_yaw, s_xy] = accumulatedStd(wide_pending_->n, n);
     const double between_m = nodes_[n].path_m - nodes_[wide_pending_->n].path_m;
-    if (std::hypot(d.x_m, d.y_m) <= config_.wide_confirm_m + config_.wide_drift_per_m * between_m &&
+    if (std::hypot(d.x_m, d.y_m) <= config_.wide_confirm_m + config_.wide_drift_per_m * between_m +
+                                        config_.wide_sigmas * s_xy &&
         std::fabs(math::wrapAngle(d.yaw_rad)) <=
-            config_.wide_confirm_rad + config_.wide_drift_rad_per_m * between_m) {
+            config_.wide_confirm_rad + config_.wide_sigmas * s_yaw) {
       const WideHypothesis first = *wide_pending_;
       for (const WideHypothesis* e : {&first, &h}) {
         graph_.addEdge(e->k, e->n, e->match.n_in_k, e->match.information, true, false);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <stdexcept>
 
@@ -24,8 +25,10 @@ struct Exhaustive {
   math::SE2 pose;
 };
 
+// The best lattice pose; with band_rad > 0, among the yaws more than band_rad from band_yaw.
 Exhaustive exhaustive(const slam::LikelihoodField& f, const std::vector<Eigen::Vector2d>& pts,
-                      const math::SE2& prior, const slam::BranchAndBoundWindow& w) {
+                      const math::SE2& prior, const slam::BranchAndBoundWindow& w,
+                      double band_yaw = 0.0, double band_rad = 0.0) {
   Exhaustive best;
   const double res = f.resolution();
   const int k = static_cast<int>(std::floor(w.search_xy_m / res + 1e-9));
@@ -33,6 +36,7 @@ Exhaustive exhaustive(const slam::LikelihoodField& f, const std::vector<Eigen::V
   const cv::Mat& v = f.values();
   for (int j = -J; j <= J; ++j) {
     const double yaw = prior.yaw_rad + j * w.yaw_step_rad;
+    if (band_rad > 0.0 && std::fabs(math::angleDiff(yaw, band_yaw)) <= band_rad) continue;
     for (int oy = -k; oy <= k; ++oy)
       for (int ox = -k; ox <= k; ++ox) {
         double s = 0.0;
@@ -109,6 +113,57 @@ TEST(BranchAndBoundMatcher, RecoversAPoseFarOutsideTheLocalWindow) {
   EXPECT_LT(std::fabs(math::angleDiff(m->pose.yaw_rad, truth.yaw_rad)), 0.011);
   EXPECT_GT(m->score, 0.7);
   EXPECT_LT(visited, 161L * 161 * 121 / 20);
+}
+
+TEST(BranchAndBoundMatcher, SearchesAFullTurnWithinItsBudget) {
+  // A prior 2.6 rad off, a window of a full turn (pi either way): the same best as every lattice
+  // pose. With max_bounds the search stops descending once it has computed that many bounds: at
+  // least as many as it needed, the same answer; fewer than its top level, no descent at all.
+  const slam::LikelihoodField f(roomPoints(), 0.1, 0.15, 1.0);
+  const slam::BranchAndBoundMatcher bnb(f, 3);
+  std::mt19937 rng(7);
+  const math::SE2 truth(3.0, 2.0, 2.9);
+  const auto scan = scanFrom(truth, &rng, 0.02);
+  const math::SE2 prior(3.5, 2.4, 0.3);
+  slam::BranchAndBoundWindow w{1.0, M_PI, 0.04};
+  const Exhaustive ref = exhaustive(f, scan, prior, w);
+  long visited = 0;
+  const auto m = bnb.match(scan, prior, w, 0.0, &visited);
+  ASSERT_TRUE(m.has_value());
+  EXPECT_NEAR(m->score, ref.score, 1e-5);
+  EXPECT_NEAR(math::angleDiff(m->pose.yaw_rad, ref.pose.yaw_rad), 0.0, 1e-9);
+  EXPECT_LT(std::hypot(m->pose.x_m - truth.x_m, m->pose.y_m - truth.y_m), 0.15);
+  EXPECT_LT(std::fabs(math::angleDiff(m->pose.yaw_rad, truth.yaw_rad)), 0.041);
+  w.max_bounds = visited;
+  long visited_budget = 0;
+  const auto same = bnb.match(scan, prior, w, 0.0, &visited_budget);
+  ASSERT_TRUE(same.has_value());
+  EXPECT_EQ(same->score, m->score);
+  EXPECT_LE(visited_budget, visited);
+  // The top level: 157 yaws x 3 x 3 blocks of 8 cells over the 21 x 21 offsets.
+  // Ambiguity in rotation against the exhaustive best of the yaws more than 0.3 rad from the
+  // best's: ambiguous for a ratio below their scores' ratio, not above it (no budget: the second
+  // descent shares the first's).
+  w.max_bounds = 0;
+  const Exhaustive rest = exhaustive(f, scan, prior, w, m->pose.yaw_rad, 0.3);
+  ASSERT_GT(rest.score, 0.0);
+  const double r = rest.score / m->score;
+  std::printf("best %.3f, best turned more than 0.3 rad %.3f (ratio %.3f)\n", m->score, rest.score,
+              r);
+  for (const double ratio : {0.98 * r, 1.02 * r}) {
+    const slam::RotationAmbiguity check{0.3, ratio};
+    bool ambiguous = !(ratio < r);
+    const auto again = bnb.match(scan, prior, w, 0.0, nullptr, &check, &ambiguous);
+    ASSERT_TRUE(again.has_value());
+    EXPECT_EQ(again->score, m->score);
+    EXPECT_EQ(ambiguous, ratio < r) << ratio;
+  }
+  w.max_bounds = 1;
+  long visited_top = 0;
+  EXPECT_FALSE(bnb.match(scan, prior, w, 0.0, &visited_top).has_value());
+  EXPECT_EQ(visited_top, 157L * 3 * 3);
+  w.max_bounds = -1;
+  EXPECT_THROW(bnb.match(scan, prior, w, 0.0), std::invalid_argument);
 }
 
 TEST(BranchAndBoundMatcher, RefusesBadArguments) {

@@ -222,7 +222,9 @@ TEST(LoopClosingMapper, ClosesADriftingLoopInASyntheticRoom) {
 
 // The same room driven round three times with a local estimator that turns 0.5 degrees too much
 // per metre: when the first lap ends (20.4 m) it is 10 degrees and 2 m off, beyond the local
-// window (coarse_search_xy_m). The local search is switched off (in this small room it would close
+// window (coarse_search_xy_m). Its noise is the generic wheel-odometry model's
+// (LoopClosingConfig::chain_noise's default: 0.2 rad a metre), so the window after a lap is about
+// a radian and 9 m. The local search is switched off (in this small room it would close
 // the loop bit by bit before the drift grew), so only the wide search can close it: each loop
 // edge it adds holds the true relative pose (within what the drift bends the stretch of chain it
 // is matched against: 0.5 degrees a metre over +-max_range_m), they come in agreeing pairs, and
@@ -235,8 +237,6 @@ TEST(LoopClosingMapper, TheWideSearchClosesALoopBeyondTheLocalWindow) {
     c.max_candidates_per_node = 0;  // no local loop closing
     c.wide_search = wide;
     c.wide_min_loop_m = 15.0;  // the room's laps are 20.4 m
-    c.wide_drift_per_m = 0.2;  // this estimator drifts far faster than a laser odometry
-    c.wide_drift_rad_per_m = 0.01;
     c.max_range_m = 12.0;
     slam::LoopClosingMapper mapper(c);
     const std::vector<math::SE2> locals = driveWithTurnBias(truth, 0.5, 8, &mapper);
@@ -275,6 +275,71 @@ TEST(LoopClosingMapper, TheWideSearchClosesALoopBeyondTheLocalWindow) {
   EXPECT_LT(with_wide, 0.25 * without_wide);
   EXPECT_EQ(without_mapper.loopClosures(), 0);
   EXPECT_GT(without_wide, 1.5);
+}
+
+// The room driven round three times by an estimator that is exact but for one slip: over ten
+// scans at the first lap's third corner it turns 0.12 rad a scan too much (1.2 rad in all, as a
+// front end that keeps the wheel odometry's heading in a round hall may), and says so: those
+// steps come with a heading std of 0.15 rad (the step covariance a front end reports along a
+// direction its scan match cannot see). The rest of the run is turned by 1.2 rad, twice the
+// wide search's former fixed cap (0.6 rad). With the step covariances the window grows to what
+// the chain may have turned (0.5 + 3 sqrt(10) 0.15 = 1.92 rad), the loop is closed by agreeing
+// pairs whose edges hold the true relative pose, and the last lap comes back. The room's right
+// angles make an alias nearer the estimate than the truth (turned 1.57 - 1.2 rad): in the wide
+// window it scores nearly as well as the truth and is dropped as ambiguous
+// (wide_ambiguity_ratio); without the step covariances the window is the estimator's own noise
+// model's (its corners' turns: about 0.75 rad), holds the alias but not the truth, and the laps
+// stay turned (two alias matches even agree).
+TEST(LoopClosingMapper, TheWideSearchTurnsAsFarAsTheChainIsUncertain) {
+  const std::vector<math::SE2> truth = rectangleLaps(3);
+  const size_t slip_from = 100, slip_scans = 10;  // the third corner is at scan 102
+  const double slip_rad = 0.12;
+  auto run = [&](bool report_uncertainty, slam::LoopClosingMapper* out_mapper) {
+    slam::LoopClosingConfig c;
+    c.max_candidates_per_node = 0;  // the wide search alone
+    c.wide_min_loop_m = 15.0;
+    c.max_range_m = 12.0;
+    c.wide_drift_per_m = 0.0;  // exact but for the slip: no drift with the chain's length
+    // The front end's noise model (LaserSlamConfig::front_end_motion).
+    c.chain_noise = adaptive_perception::localization::MotionModelConfig{0.025,  0.0125,  0.02,
+                                                                         0.0025, 0.00025, 0.00025};
+    slam::LoopClosingMapper mapper(c);
+    std::mt19937 rng(5);
+    math::SE2 local = truth.front();
+    Eigen::Matrix3d slip_cov = Eigen::Matrix3d::Zero();
+    slip_cov(2, 2) = 0.15 * 0.15;
+    for (size_t i = 0; i < truth.size(); ++i) {
+      bool slipping = false;
+      if (i > 0) {
+        const math::SE2 d = math::between(truth[i - 1], truth[i]);
+        slipping = i >= slip_from && i < slip_from + slip_scans;
+        local = local * math::SE2(d.x_m, d.y_m, d.yaw_rad + (slipping ? slip_rad : 0.0));
+      }
+      mapper.add(adaptive_perception::test::scanFrom(truth[i], &rng, 0.01), local, nullptr,
+                 slipping && report_uncertainty ? &slip_cov : nullptr);
+    }
+    const std::vector<math::SE2> traj = mapper.trajectory();
+    double worst = 0.0;
+    for (size_t i = 2 * truth.size() / 3; i < truth.size(); ++i)
+      worst = std::max(worst, std::hypot(traj[i].x_m - truth[i].x_m, traj[i].y_m - truth[i].y_m));
+    *out_mapper = mapper;
+    return worst;
+  };
+  slam::LoopClosingMapper with_mapper, without_mapper;
+  const double with_cov = run(true, &with_mapper), without_cov = run(false, &without_mapper);
+  std::printf(
+      "a 1.2 rad slip: last lap worst error %.3f m with the step covariances (%ld attempts, %ld "
+      "matches, %ld confirmed), %.3f m without (%ld confirmed)\n",
+      with_cov, with_mapper.wideAttempts(), with_mapper.wideMatches(), with_mapper.wideConfirmed(),
+      without_cov, without_mapper.wideConfirmed());
+  EXPECT_GE(with_mapper.wideConfirmed(), 1);
+  for (const auto& e : with_mapper.loopEdges()) {
+    const math::SE2 t = math::between(truth[e.scan_from], truth[e.scan_to]);
+    EXPECT_LT(std::hypot(e.relative.x_m - t.x_m, e.relative.y_m - t.y_m), 0.05) << e.scan_to;
+    EXPECT_LT(std::fabs(math::angleDiff(e.relative.yaw_rad, t.yaw_rad)), 0.03) << e.scan_to;
+  }
+  EXPECT_GT(without_cov, 3.0);  // the slip turned the laps by 1.2 rad
+  EXPECT_LT(with_cov, 0.3);
 }
 
 // One lap of the rectangle; the local estimator (the EKF) is exact but for one jump of 0.2 rad
