@@ -107,6 +107,18 @@ struct BoxTrackerConfig {
   // it is hidden or lost. Development sequences: docs/tracking_real_video.md. 0 turns it off.
   double reliable_peak_ratio = 0.7;   // [0, 1]
   double reliable_apce_ratio = 0.45;  // [0, 1]
+  // Distractors of the target's colours (Possegger et al., "In defense of color-based model-free
+  // tracking", CVPR 2015): at each model update, boxes of the estimate's size around it (on a grid
+  // of half its sides, within distractor_scale times its size, at least a side away) whose mean
+  // P(O | c) reaches distractor_ratio of the estimate's are distractors (at most three, a side
+  // apart); their colours make a histogram H_D, learnt at learning_rate (fading while none is
+  // seen), and P(O | c) becomes the mean of H_O / (H_O + H_S) and H_O / (H_O + H_D), so that the
+  // colours a look-alike shares with the target count for less. Off (0) by default: on the
+  // development sequences (one seed) 0.5 gave mean success 0.796 and AUC 0.619, 0.7 gave 0.742 /
+  // 0.576, against 0.806 / 0.621 without (docs/tracking_real_video.md); they hold no player
+  // among players in the same kit, which is what it is for.
+  double distractor_ratio = 0.0;  // [0, 1]
+  double distractor_scale = 3.0;  // > 1
   // Whether the models (colours, template, filter) stop learning on an unreliable frame. Off: on
   // the development sequences it lost the turning toy and the jumping deer (mean success 0.806
   // -> 0.782; docs/tracking_real_video.md).
@@ -123,6 +135,7 @@ struct BoxTrackResult {
   bool lost = false;        // the colours lost the target, or the filter's response is unreliable
   bool unreliable = false;  // response and colours both weak (reliable_peak_ratio, ..._apce_ratio)
   double response_peak = 0.0, response_apce = 0.0;  // the filter's F_max and APCE (0 when off)
+  std::vector<cv::Rect2d> distractors;  // found at this frame's model update (distractor_ratio)
   cv::Rect search;  // region the samples spanned (clipped to the image)
   cv::Mat likelihood;  // P(O | c) over `search` (CV_32F, 0..1): the target's colours against the surroundings
   std::vector<cv::Rect2d> samples;
@@ -147,6 +160,11 @@ class BoxCondensationTracker {
   void histograms(const cv::Mat& bins, const cv::Rect2d& box, std::vector<float>* object,
                   std::vector<float>* surround) const;
   void binImage(const cv::Mat& image, const cv::Rect& region, cv::Mat* bins) const;
+  /// P(O | c) per bin from H_O, H_S and, once distractors were seen, H_D.
+  std::vector<float> objectLikelihood() const;
+  /// Finds the distractors around `box` under `lut` and updates H_D (distractor_ratio).
+  void learnDistractors(const cv::Mat& image, const cv::Rect2d& box,
+                        const std::vector<float>& lut);
 
   BoxTrackerConfig config_;
   math::Rng rng_;
@@ -157,6 +175,8 @@ class BoxCondensationTracker {
   std::vector<Sample> samples_;
   std::vector<double> weights_;
   std::vector<float> h_object_, h_surround_;
+  std::vector<float> h_distractor_;        // empty until a distractor is seen
+  std::vector<cv::Rect2d> out_distractors_;  // the last update's
   std::vector<float> template_;  // zero mean, unit norm; empty when off
   CorrelationFilter filter_;
   /// The filter's response maps about `centre` at the estimate's scale times

@@ -89,6 +89,23 @@ cv::Rect covering(const cv::Rect2d& r, const cv::Rect& bounds) {
   return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & bounds;
 }
 
+/// The colour score of `box` (image coordinates) over a likelihood map whose summed-area table is
+/// `sat` and whose top-left lies at `origin`: the mean inside minus the mean in the ring (the box
+/// grown by ring_scale, minus the box); -1 for a box off the map.
+double ringScore(const cv::Mat& sat, const cv::Point& origin, const cv::Rect2d& box,
+                 double ring_scale) {
+  const cv::Rect local(0, 0, sat.cols - 1, sat.rows - 1);
+  const cv::Rect2d shifted(box.x - origin.x, box.y - origin.y, box.width, box.height);
+  const cv::Rect in = covering(shifted, local);
+  const cv::Rect ring = covering(grown(shifted, ring_scale), local);
+  if (in.area() <= 0) return -1.0;
+  const double s_in = areaSum(sat, in.x, in.y, in.x + in.width, in.y + in.height);
+  const double s_ring =
+      areaSum(sat, ring.x, ring.y, ring.x + ring.width, ring.y + ring.height) - s_in;
+  const double a_ring = static_cast<double>(ring.area() - in.area());
+  return s_in / in.area() - (a_ring >= 1.0 ? s_ring / a_ring : 0.0);
+}
+
 void normalize(std::vector<float>* h) {
   double sum = 0.0;
   for (float v : *h) sum += v;
@@ -222,6 +239,94 @@ std::vector<float> BoxCondensationTracker::patch(const cv::Mat& grey, const cv::
   return p;
 }
 
+std::vector<float> BoxCondensationTracker::objectLikelihood() const {
+  const int nb = static_cast<int>(h_object_.size());
+  std::vector<float> lut(nb);
+  for (int b = 0; b < nb; ++b) {
+    const float o = h_object_[b], s = h_surround_[b];
+    lut[b] = o + s > 0.0f ? o / (o + s) : 0.5f;  // a colour seen in neither: no evidence
+    if (!h_distractor_.empty()) {
+      const float d = h_distractor_[b];
+      lut[b] = 0.5f * (lut[b] + (o + d > 0.0f ? o / (o + d) : 0.5f));
+    }
+  }
+  return lut;
+}
+
+void BoxCondensationTracker::learnDistractors(const cv::Mat& image, const cv::Rect2d& box,
+                                              const std::vector<float>& lut) {
+  out_distractors_.clear();
+  const cv::Rect bounds(0, 0, image.cols, image.rows);
+  const cv::Rect region =
+      covering(grown(box, config_.distractor_scale + config_.ring_scale - 1.0), bounds);
+  if (region.width < 2 || region.height < 2) return;
+  cv::Mat bins;
+  binImage(image, region, &bins);
+  cv::Mat likelihood(region.size(), CV_32F);
+  for (int y = 0; y < bins.rows; ++y) {
+    const std::uint16_t* in = bins.ptr<std::uint16_t>(y);
+    float* o = likelihood.ptr<float>(y);
+    for (int x = 0; x < bins.cols; ++x) o[x] = lut[in[x]];
+  }
+  cv::Mat sat;
+  cv::integral(likelihood, sat, CV_64F);
+  // A box's mean P(O | c) inside it (no ring: a look-alike beside the target has the target in
+  // its ring).
+  const cv::Rect local(0, 0, region.width, region.height);
+  auto inside = [&](const cv::Rect2d& b) {
+    const cv::Rect in = covering(cv::Rect2d(b.x - region.x, b.y - region.y, b.width, b.height),
+                                 local);
+    return in.area() > 0 ? areaSum(sat, in.x, in.y, in.x + in.width, in.y + in.height) / in.area()
+                         : 0.0;
+  };
+  const double own = inside(box);
+  // Boxes of the estimate's size on a grid of half its sides within distractor_scale of it, at
+  // least a side away from it, their mean at least distractor_ratio of its; the best first, each at
+  // least a side from those taken, at most kMaxDistractors.
+  constexpr int kMaxDistractors = 3;
+  std::vector<std::pair<double, cv::Rect2d>> found;
+  if (own > 0.0) {
+    const double reach_x = 0.5 * (config_.distractor_scale - 1.0) * box.width;
+    const double reach_y = 0.5 * (config_.distractor_scale - 1.0) * box.height;
+    for (double dy = -reach_y; dy <= reach_y + 1e-9; dy += 0.5 * box.height)
+      for (double dx = -reach_x; dx <= reach_x + 1e-9; dx += 0.5 * box.width) {
+        if (std::fabs(dx) < box.width && std::fabs(dy) < box.height) continue;
+        const cv::Rect2d b(box.x + dx, box.y + dy, box.width, box.height);
+        if ((b & cv::Rect2d(region)).area() < 0.5 * b.area()) continue;
+        const double sc = inside(b);
+        if (sc >= config_.distractor_ratio * own) found.emplace_back(sc, b);
+      }
+  }
+  std::sort(found.begin(), found.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<float> d(h_object_.size(), 0.0f);
+  for (const auto& [sc, b] : found) {
+    if (static_cast<int>(out_distractors_.size()) >= kMaxDistractors) break;
+    bool apart = true;
+    for (const cv::Rect2d& t : out_distractors_)
+      apart = apart && (std::fabs(t.x - b.x) >= b.width || std::fabs(t.y - b.y) >= b.height);
+    if (!apart) continue;
+    out_distractors_.push_back(b);
+    const cv::Rect in = covering(b, region) - region.tl();
+    for (int y = in.y; y < in.y + in.height; ++y) {
+      const std::uint16_t* row = bins.ptr<std::uint16_t>(y);
+      for (int x = in.x; x < in.x + in.width; ++x) d[row[x]] += 1.0f;
+    }
+  }
+  const float a = static_cast<float>(config_.learning_rate);
+  if (out_distractors_.empty()) {
+    for (float& v : h_distractor_) v *= 1.0f - a;  // fades while none is seen
+    return;
+  }
+  normalize(&d);
+  if (h_distractor_.empty()) {
+    h_distractor_ = d;
+    return;
+  }
+  for (std::size_t k = 0; k < d.size(); ++k)
+    h_distractor_[k] = (1.0f - a) * h_distractor_[k] + a * d[k];
+}
+
 void BoxCondensationTracker::init(const cv::Mat& image, const cv::Rect2d& box) {
   if (image.empty() || (image.type() != CV_8UC3 && image.type() != CV_8UC1))
     throw std::invalid_argument("BoxCondensationTracker::init: expected a bgr8 or mono8 image");
@@ -235,6 +340,8 @@ void BoxCondensationTracker::init(const cv::Mat& image, const cv::Rect2d& box) {
   estimate_ = {box.x + box.width / 2, box.y + box.height / 2, 0.0, 0.0};
   vx_ = vy_ = 0.0;
   histograms(image, box, &h_object_, &h_surround_);
+  h_distractor_.clear();
+  out_distractors_.clear();
   template_.clear();
   if (config_.template_cells > 0) {
     const cv::Rect region = covering(grown(box, 1.2), cv::Rect(0, 0, image.cols, image.rows));
@@ -257,6 +364,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
     throw std::invalid_argument("BoxCondensationTracker::track: expected a bgr8 or mono8 image");
   const cv::Rect bounds(0, 0, image.cols, image.rows);
   const int n = config_.samples;
+  out_distractors_.clear();
 
   // 1. Resample, then move and spread (wider while lost: re-detection).
   const std::vector<std::size_t> parents =
@@ -355,11 +463,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   out.search = covering(span, bounds);
   if (out.search.empty()) out.search = bounds;
   const int nb = static_cast<int>(h_object_.size());
-  std::vector<float> lut(nb);
-  for (int b = 0; b < nb; ++b) {
-    const float o = h_object_[b], s = h_surround_[b];
-    lut[b] = o + s > 0.0f ? o / (o + s) : 0.5f;  // a colour seen in neither: no evidence
-  }
+  const std::vector<float> lut = objectLikelihood();
   cv::Mat bins;
   binImage(image, out.search, &bins);
   cv::Mat likelihood(out.search.size(), CV_32F);
@@ -371,17 +475,8 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   cv::Mat sat;
   cv::integral(likelihood, sat, CV_64F);
   out.likelihood = likelihood;
-  const cv::Rect local(0, 0, out.search.width, out.search.height);
   auto score = [&](const cv::Rect2d& box) {
-    const cv::Rect2d shifted(box.x - out.search.x, box.y - out.search.y, box.width, box.height);
-    const cv::Rect in = covering(shifted, local);
-    const cv::Rect ring = covering(grown(shifted, config_.ring_scale), local);
-    if (in.area() <= 0) return -1.0;
-    const double s_in = areaSum(sat, in.x, in.y, in.x + in.width, in.y + in.height);
-    const double s_ring =
-        areaSum(sat, ring.x, ring.y, ring.x + ring.width, ring.y + ring.height) - s_in;
-    const double a_ring = static_cast<double>(ring.area() - in.area());
-    return s_in / in.area() - (a_ring >= 1.0 ? s_ring / a_ring : 0.0);
+    return ringScore(sat, out.search.tl(), box, config_.ring_scale);
   };
 
   // The appearance cue: normalised cross-correlation of the grey template.
@@ -496,6 +591,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
       h_object_[k] = (1.0f - a) * h_object_[k] + a * o[k];
       h_surround_[k] = (1.0f - a) * h_surround_[k] + a * s[k];
     }
+    if (config_.distractor_ratio > 0.0) learnDistractors(image, out.box, lut);
     if (use_filter)
       filter_.update(grey_image, {estimate_.x, estimate_.y}, std::exp(estimate_.log_scale));
     if (use_template && config_.template_rate > 0.0) {
@@ -512,6 +608,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
       }
     }
   }
+  out.distractors = out_distractors_;
   out.samples.reserve(n);
   for (const Sample& s : samples_) out.samples.push_back(boxOf(s));
   out.weights = weights_;

@@ -25,7 +25,12 @@ const config::Fields<BoxTrackerConfig>& BoxTrackerConfig::fields() {
           .add("box_reliable_apce_ratio", &C::reliable_apce_ratio, closed(0, 1),
                "mode box: the same for the response's APCE (0: off)")
           .add("box_unreliable_stops_learning", &C::unreliable_stops_learning,
-               "mode box: the models do not learn from an unreliable frame");
+               "mode box: the models do not learn from an unreliable frame")
+          .add("box_distractor_ratio", &C::distractor_ratio, closed(0, 1),
+               "mode box: boxes around the target scoring this share of its colour score are "
+               "distractors, whose colours count against the target's (0: off)")
+          .add("box_distractor_scale", &C::distractor_scale, closed(1.5, 10),
+               "mode box: how far distractors are looked for, in target sizes");
   return f;
 }
 

@@ -165,3 +165,46 @@ TEST(BoxCondensationTracker, ReportsAHiddenTargetLost) {
   EXPECT_LE(lost_visible, 1);
   EXPECT_GE(lost_hidden, hidden / 2);
 }
+
+// A target red above and blue below stands still next to an all-red block of its size, a gap of
+// a fifth of its width away. The block is found as a distractor, and the red the two share comes
+// to count for less than the blue only the target has; without distractors (distractor_ratio 0)
+// both colours of the target count alike.
+TEST(BoxCondensationTracker, ColoursALookAlikeSharesCountForLess) {
+  cv::Mat image(200, 240, CV_8UC3);
+  cv::theRNG().state = 777;
+  cv::randu(image, cv::Scalar::all(90), cv::Scalar::all(150));
+  const cv::Rect target(90, 80, 20, 40), block(114, 80, 20, 40);
+  image(cv::Rect(target.x, target.y, 20, 20)).setTo(cv::Scalar(30, 30, 210));
+  image(cv::Rect(target.x, target.y + 20, 20, 20)).setTo(cv::Scalar(210, 40, 30));
+  image(block).setTo(cv::Scalar(30, 30, 210));
+  auto run = [&](double ratio, tr::BoxTrackResult* last) {
+    tr::BoxTrackerConfig c;
+    c.distractor_ratio = ratio;
+    tr::BoxCondensationTracker tracker(c, 5);
+    tracker.init(image, target);
+    int with_distractor = 0;
+    for (int t = 0; t < 30; ++t) {
+      *last = tracker.track(image);
+      for (const cv::Rect2d& d : last->distractors)
+        with_distractor += (d & cv::Rect2d(block)).area() >= 0.5 * d.area();
+    }
+    // P(O | c) at the centre of the red half and of the blue half.
+    auto p = [&](int x, int y) {
+      return last->likelihood.at<float>(y - last->search.y, x - last->search.x);
+    };
+    return std::make_tuple(p(target.x + 10, target.y + 10), p(target.x + 10, target.y + 30),
+                           with_distractor);
+  };
+  tr::BoxTrackResult last;
+  const auto [red_on, blue_on, frames_on] = run(0.5, &last);
+  EXPECT_GT(tr::boxIou(last.box, target), 0.5);
+  const auto [red_off, blue_off, frames_off] = run(0.0, &last);
+  std::printf("P(O | red) %.3f, P(O | blue) %.3f with distractors (%d frames with the block), "
+              "%.3f / %.3f without\n",
+              red_on, blue_on, frames_on, red_off, blue_off);
+  EXPECT_GE(frames_on, 20);
+  EXPECT_EQ(frames_off, 0);
+  EXPECT_LT(red_on, blue_on - 0.1);
+  EXPECT_LT(red_on, red_off - 0.05);
+}
