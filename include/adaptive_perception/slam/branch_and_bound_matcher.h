@@ -37,7 +37,7 @@ struct BranchAndBoundWindow {
 };
 
 /// Whether a match is ambiguous in rotation: some lattice pose turned more than half_width_rad
-/// from the best scores at least ratio times the best's score (a square corridor seen turned by a
+/// from the best scores more than ratio times the best's score (a square corridor seen turned by a
 /// right angle). Answered by a second descent from the same top level, with the poses within the
 /// band left out and the bar at ratio times the best: it stops at the first such pose.
 struct RotationAmbiguity {

@@ -148,6 +148,8 @@ struct LoopClosingConfig {
   // direction its scan match cannot see is the wheel odometry's). A node's heading variance
   // turns into position variance at every later node by its lever arm (the distance between
   // them), so sigma_xy grows with the building's size, not only with the path's length. The
+  // model's per-step floors (min_*_std) add variance per scan even standing still, so the
+  // uncertainty grows with the scan rate; with LaserSlam's noise that is 6e-8 rad^2 a scan. The
   // default here is the generic wheel-odometry model (MotionModelConfig's own defaults).
   localization::MotionModelConfig chain_noise;
   double wide_sigmas = 3.0;      // the window's half-width in accumulated stds
@@ -157,10 +159,12 @@ struct LoopClosingConfig {
   double wide_drift_per_m = 0.05;
   double wide_max_xy_m = 60.0;   // the largest translation window: the cost bound (the
                                  // matched map's extent and the top level's size)
-  long wide_max_bounds = 2000000;  // bounds computed per search beyond its top level: the time
-                                   // bound (BranchAndBoundWindow::max_bounds)
-  // A wide match is dropped when a pose turned at least wide_ambiguity_yaw_rad from it (in the
-  // same window) scores at least wide_ambiguity_ratio of its score: a window of a full turn holds
+  // The time bound of one search (BranchAndBoundWindow::max_bounds): bounds computed, its top
+  // level included (always computed), and the ambiguity check's descent after it; a check the
+  // budget cuts short counts the match as ambiguous.
+  long wide_max_bounds = 2000000;
+  // A wide match is dropped when a pose turned more than wide_ambiguity_yaw_rad from it (in the
+  // same window) scores more than wide_ambiguity_ratio of its score: a window of a full turn holds
   // the right angles of a square corridor and the half turn of a symmetric room, and two scans a
   // few metres apart agree on the same wrong turn, so agreement alone cannot keep it out. 0: no
   // such check.

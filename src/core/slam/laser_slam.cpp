@@ -47,9 +47,10 @@ LaserSlam::Step LaserSlam::add(const std::vector<Eigen::Vector2d>& points_robot,
   if (external) ekf_.updateExternalPosition(external->xy_m, external->cov);
   if (config_.loop_closing) {
     // The front end's step covariance where its match left a direction to the odometry (its
-    // information is zero before its second scan). A step that followed the odometry because the
-    // match was not believed keeps the EKF's own noise: the odometry's per-step floor
-    // (odom_std_rad) is a weight for the fusion, not a drift rate.
+    // information is zero before its second scan); along that direction it is the odometry's,
+    // per-step floor (odom_std_*) included, which is pessimistic for a robot standing still there.
+    // A step that followed the odometry because the match was not believed keeps the EKF's own
+    // noise.
     Eigen::Matrix3d step_cov;
     const Eigen::Matrix3d& info = front_end_.lastInformation();
     const bool has_cov = config_.front_end && front_end_.lastMatched() &&
