@@ -232,8 +232,10 @@ class LoopClosingMapper {
   long wideAttempts() const { return wide_attempts_; }
   long wideMatches() const { return wide_matches_; }
   long wideConfirmed() const { return wide_confirmed_; }
-  /// Wide matches dropped as ambiguous in rotation (wide_ambiguity_ratio).
+  /// Wide matches dropped as ambiguous in rotation (wide_ambiguity_ratio), and wide searches the
+  /// budget cut short (wide_max_bounds; such a search's match counts as ambiguous).
   long wideAmbiguous() const { return wide_ambiguous_; }
+  long wideBudgetCut() const { return wide_budget_cut_; }
   /// Wall-clock seconds spent in the wide search (its cost, for the tools' summaries).
   double wideSeconds() const { return wide_seconds_; }
 
@@ -287,6 +289,7 @@ class LoopClosingMapper {
   std::optional<WideHypothesis> wide_pending_;
   int last_wide_node_ = -1000000;
   long wide_attempts_ = 0, wide_matches_ = 0, wide_confirmed_ = 0, wide_ambiguous_ = 0;
+  long wide_budget_cut_ = 0;
   double wide_seconds_ = 0.0;
   struct ScanRef {
     int node;

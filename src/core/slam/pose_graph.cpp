@@ -469,8 +469,10 @@ bool LoopClosingMapper::tryWide(int n) {
     const bool check_it = config_.wide_ambiguity_ratio > 0.0 &&
                           window.search_yaw_rad > config_.wide_ambiguity_yaw_rad;
     bool ambiguous = false;
-    wide = bnb.match(sparse, xn, window, config_.wide_min_score, nullptr,
+    long visited = 0;
+    wide = bnb.match(sparse, xn, window, config_.wide_min_score, &visited,
                      check_it ? &check : nullptr, &ambiguous);
+    if (config_.wide_max_bounds > 0 && visited >= config_.wide_max_bounds) ++wide_budget_cut_;
     if (wide && ambiguous) {
       ++wide_ambiguous_;
       return false;
