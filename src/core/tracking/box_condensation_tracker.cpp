@@ -106,6 +106,17 @@ double ringScore(const cv::Mat& sat, const cv::Point& origin, const cv::Rect2d& 
   return s_in / in.area() - (a_ring >= 1.0 ? s_ring / a_ring : 0.0);
 }
 
+/// P(O | c) at every pixel of `bins` (the bin indices of a region) through `lut`, CV_32F.
+cv::Mat lookUp(const cv::Mat& bins, const std::vector<float>& lut) {
+  cv::Mat likelihood(bins.size(), CV_32F);
+  for (int y = 0; y < bins.rows; ++y) {
+    const std::uint16_t* in = bins.ptr<std::uint16_t>(y);
+    float* o = likelihood.ptr<float>(y);
+    for (int x = 0; x < bins.cols; ++x) o[x] = lut[in[x]];
+  }
+  return likelihood;
+}
+
 void normalize(std::vector<float>* h) {
   double sum = 0.0;
   for (float v : *h) sum += v;
@@ -262,14 +273,8 @@ void BoxCondensationTracker::learnDistractors(const cv::Mat& image, const cv::Re
   if (region.width < 2 || region.height < 2) return;
   cv::Mat bins;
   binImage(image, region, &bins);
-  cv::Mat likelihood(region.size(), CV_32F);
-  for (int y = 0; y < bins.rows; ++y) {
-    const std::uint16_t* in = bins.ptr<std::uint16_t>(y);
-    float* o = likelihood.ptr<float>(y);
-    for (int x = 0; x < bins.cols; ++x) o[x] = lut[in[x]];
-  }
   cv::Mat sat;
-  cv::integral(likelihood, sat, CV_64F);
+  cv::integral(lookUp(bins, lut), sat, CV_64F);
   // A box's mean P(O | c) inside it (no ring: a look-alike beside the target has the target in
   // its ring).
   const cv::Rect local(0, 0, region.width, region.height);
@@ -466,12 +471,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   const std::vector<float> lut = objectLikelihood();
   cv::Mat bins;
   binImage(image, out.search, &bins);
-  cv::Mat likelihood(out.search.size(), CV_32F);
-  for (int y = 0; y < bins.rows; ++y) {
-    const std::uint16_t* in = bins.ptr<std::uint16_t>(y);
-    float* o = likelihood.ptr<float>(y);
-    for (int x = 0; x < bins.cols; ++x) o[x] = lut[in[x]];
-  }
+  const cv::Mat likelihood = lookUp(bins, lut);
   cv::Mat sat;
   cv::integral(likelihood, sat, CV_64F);
   out.likelihood = likelihood;
