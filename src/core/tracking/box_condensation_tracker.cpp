@@ -8,6 +8,7 @@
 #include <string>
 
 #include "adaptive_perception/math/particle_set.h"
+#include "box_regions.h"
 
 namespace adaptive_perception::tracking {
 
@@ -67,64 +68,7 @@ void BoxTrackerConfig::validate() const {
   }
 }
 
-namespace {
-
-/// Sum of a CV_64F summed-area table over [x0, x1) x [y0, y1) (table coordinates).
-double areaSum(const cv::Mat& sat, int x0, int y0, int x1, int y1) {
-  return sat.at<double>(y1, x1) - sat.at<double>(y0, x1) - sat.at<double>(y1, x0) +
-         sat.at<double>(y0, x0);
-}
-
-/// `box` grown about its centre by `factor` (side).
-cv::Rect2d grown(const cv::Rect2d& box, double factor) {
-  const double w = box.width * factor, h = box.height * factor;
-  return {box.x + box.width / 2 - w / 2, box.y + box.height / 2 - h / 2, w, h};
-}
-
-/// Integer rectangle covering `r`, clipped to `bounds`.
-cv::Rect covering(const cv::Rect2d& r, const cv::Rect& bounds) {
-  const int x0 = static_cast<int>(std::floor(r.x)), y0 = static_cast<int>(std::floor(r.y));
-  const int x1 = static_cast<int>(std::ceil(r.x + r.width));
-  const int y1 = static_cast<int>(std::ceil(r.y + r.height));
-  return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & bounds;
-}
-
-/// The colour score of `box` (image coordinates) over a likelihood map whose summed-area table is
-/// `sat` and whose top-left lies at `origin`: the mean inside minus the mean in the ring (the box
-/// grown by ring_scale, minus the box); -1 for a box off the map.
-double ringScore(const cv::Mat& sat, const cv::Point& origin, const cv::Rect2d& box,
-                 double ring_scale) {
-  const cv::Rect local(0, 0, sat.cols - 1, sat.rows - 1);
-  const cv::Rect2d shifted(box.x - origin.x, box.y - origin.y, box.width, box.height);
-  const cv::Rect in = covering(shifted, local);
-  const cv::Rect ring = covering(grown(shifted, ring_scale), local);
-  if (in.area() <= 0) return -1.0;
-  const double s_in = areaSum(sat, in.x, in.y, in.x + in.width, in.y + in.height);
-  const double s_ring =
-      areaSum(sat, ring.x, ring.y, ring.x + ring.width, ring.y + ring.height) - s_in;
-  const double a_ring = static_cast<double>(ring.area() - in.area());
-  return s_in / in.area() - (a_ring >= 1.0 ? s_ring / a_ring : 0.0);
-}
-
-/// P(O | c) at every pixel of `bins` (the bin indices of a region) through `lut`, CV_32F.
-cv::Mat lookUp(const cv::Mat& bins, const std::vector<float>& lut) {
-  cv::Mat likelihood(bins.size(), CV_32F);
-  for (int y = 0; y < bins.rows; ++y) {
-    const std::uint16_t* in = bins.ptr<std::uint16_t>(y);
-    float* o = likelihood.ptr<float>(y);
-    for (int x = 0; x < bins.cols; ++x) o[x] = lut[in[x]];
-  }
-  return likelihood;
-}
-
-void normalize(std::vector<float>* h) {
-  double sum = 0.0;
-  for (float v : *h) sum += v;
-  if (sum > 0)
-    for (float& v : *h) v = static_cast<float>(v / sum);
-}
-
-}  // namespace
+using namespace box_regions;
 
 BoxCondensationTracker::BoxCondensationTracker(BoxTrackerConfig config, std::uint64_t seed)
     : config_(config), rng_(seed), filter_((config.validate(), config.filter)) {}
@@ -142,66 +86,6 @@ cv::Rect2d BoxCondensationTracker::boxOf(const Sample& s) const {
   const double w = w0_ * std::exp(s.log_scale + 0.5 * s.log_aspect);
   const double h = h0_ * std::exp(s.log_scale - 0.5 * s.log_aspect);
   return {s.x - w / 2, s.y - h / 2, w, h};
-}
-
-void BoxCondensationTracker::binImage(const cv::Mat& image, const cv::Rect& region,
-                                      cv::Mat* bins) const {
-  int shift = 0;
-  while ((256 >> shift) > config_.bins_per_channel) ++shift;
-  const int b = config_.bins_per_channel;
-  bins->create(region.height, region.width, CV_16U);
-  for (int y = 0; y < region.height; ++y) {
-    std::uint16_t* out = bins->ptr<std::uint16_t>(y);
-    if (image.channels() == 1) {
-      const std::uint8_t* in = image.ptr<std::uint8_t>(region.y + y) + region.x;
-      for (int x = 0; x < region.width; ++x) {
-        if (config_.chroma) {  // as a colour pixel (v, v, v)
-          const int s = 3 * in[x], c = in[x] * b / (s + 1);
-          out[x] = static_cast<std::uint16_t>((c * b + c) * 4 + s * 4 / 766);
-        } else {
-          const int v = in[x] >> shift;
-          out[x] = static_cast<std::uint16_t>((v * b + v) * b + v);
-        }
-      }
-    } else if (config_.chroma) {
-      // Normalised chromaticity (r, g) on b x b bins and 4 brightness levels.
-      const cv::Vec3b* in = image.ptr<cv::Vec3b>(region.y + y) + region.x;
-      for (int x = 0; x < region.width; ++x) {
-        const int s = in[x][0] + in[x][1] + in[x][2];
-        const int r = in[x][2] * b / (s + 1), g = in[x][1] * b / (s + 1);
-        out[x] = static_cast<std::uint16_t>((r * b + g) * 4 + s * 4 / 766);
-      }
-    } else {
-      const cv::Vec3b* in = image.ptr<cv::Vec3b>(region.y + y) + region.x;
-      for (int x = 0; x < region.width; ++x)
-        out[x] = static_cast<std::uint16_t>(((in[x][0] >> shift) * b + (in[x][1] >> shift)) * b +
-                                            (in[x][2] >> shift));
-    }
-  }
-}
-
-void BoxCondensationTracker::histograms(const cv::Mat& image, const cv::Rect2d& box,
-                                        std::vector<float>* object,
-                                        std::vector<float>* surround) const {
-  const cv::Rect bounds(0, 0, image.cols, image.rows);
-  const cv::Rect outer = covering(grown(box, config_.surround_scale), bounds);
-  const cv::Rect inner = covering(box, bounds);
-  const int n = config_.bins_per_channel * config_.bins_per_channel *
-                (config_.chroma ? 4 : config_.bins_per_channel);
-  object->assign(n, 0.0f);
-  surround->assign(n, 0.0f);
-  if (outer.empty()) return;
-  cv::Mat bins;
-  binImage(image, outer, &bins);
-  for (int y = 0; y < outer.height; ++y) {
-    const std::uint16_t* row = bins.ptr<std::uint16_t>(y);
-    for (int x = 0; x < outer.width; ++x) {
-      const bool in = inner.contains(cv::Point(outer.x + x, outer.y + y));
-      ((in ? *object : *surround)[row[x]]) += 1.0f;
-    }
-  }
-  normalize(object);
-  normalize(surround);
 }
 
 void BoxCondensationTracker::smoothedGrey(const cv::Mat& image, const cv::Rect& region,
@@ -248,88 +132,6 @@ std::vector<float> BoxCondensationTracker::patch(const cv::Mat& grey, const cv::
   const float k = static_cast<float>(1.0 / std::sqrt(norm));
   for (float& v : p) v *= k;
   return p;
-}
-
-std::vector<float> BoxCondensationTracker::objectLikelihood() const {
-  const int nb = static_cast<int>(h_object_.size());
-  std::vector<float> lut(nb);
-  for (int b = 0; b < nb; ++b) {
-    const float o = h_object_[b], s = h_surround_[b];
-    lut[b] = o + s > 0.0f ? o / (o + s) : 0.5f;  // a colour seen in neither: no evidence
-    if (!h_distractor_.empty()) {
-      const float d = h_distractor_[b];
-      lut[b] = 0.5f * (lut[b] + (o + d > 0.0f ? o / (o + d) : 0.5f));
-    }
-  }
-  return lut;
-}
-
-void BoxCondensationTracker::learnDistractors(const cv::Mat& image, const cv::Rect2d& box,
-                                              const std::vector<float>& lut) {
-  out_distractors_.clear();
-  const cv::Rect bounds(0, 0, image.cols, image.rows);
-  const cv::Rect region =
-      covering(grown(box, config_.distractor_scale + config_.ring_scale - 1.0), bounds);
-  if (region.width < 2 || region.height < 2) return;
-  cv::Mat bins;
-  binImage(image, region, &bins);
-  cv::Mat sat;
-  cv::integral(lookUp(bins, lut), sat, CV_64F);
-  // A box's mean P(O | c) inside it (no ring: a look-alike beside the target has the target in
-  // its ring).
-  const cv::Rect local(0, 0, region.width, region.height);
-  auto inside = [&](const cv::Rect2d& b) {
-    const cv::Rect in = covering(cv::Rect2d(b.x - region.x, b.y - region.y, b.width, b.height),
-                                 local);
-    return in.area() > 0 ? areaSum(sat, in.x, in.y, in.x + in.width, in.y + in.height) / in.area()
-                         : 0.0;
-  };
-  const double own = inside(box);
-  // Boxes of the estimate's size on a grid of half its sides within distractor_scale of it, at
-  // least a side away from it, their mean at least distractor_ratio of its; the best first, each at
-  // least a side from those taken, at most kMaxDistractors.
-  constexpr int kMaxDistractors = 3;
-  std::vector<std::pair<double, cv::Rect2d>> found;
-  if (own > 0.0) {
-    const double reach_x = 0.5 * (config_.distractor_scale - 1.0) * box.width;
-    const double reach_y = 0.5 * (config_.distractor_scale - 1.0) * box.height;
-    for (double dy = -reach_y; dy <= reach_y + 1e-9; dy += 0.5 * box.height)
-      for (double dx = -reach_x; dx <= reach_x + 1e-9; dx += 0.5 * box.width) {
-        if (std::fabs(dx) < box.width && std::fabs(dy) < box.height) continue;
-        const cv::Rect2d b(box.x + dx, box.y + dy, box.width, box.height);
-        if ((b & cv::Rect2d(region)).area() < 0.5 * b.area()) continue;
-        const double sc = inside(b);
-        if (sc >= config_.distractor_ratio * own) found.emplace_back(sc, b);
-      }
-  }
-  std::sort(found.begin(), found.end(),
-            [](const auto& a, const auto& b) { return a.first > b.first; });
-  std::vector<float> d(h_object_.size(), 0.0f);
-  for (const auto& [sc, b] : found) {
-    if (static_cast<int>(out_distractors_.size()) >= kMaxDistractors) break;
-    bool apart = true;
-    for (const cv::Rect2d& t : out_distractors_)
-      apart = apart && (std::fabs(t.x - b.x) >= b.width || std::fabs(t.y - b.y) >= b.height);
-    if (!apart) continue;
-    out_distractors_.push_back(b);
-    const cv::Rect in = covering(b, region) - region.tl();
-    for (int y = in.y; y < in.y + in.height; ++y) {
-      const std::uint16_t* row = bins.ptr<std::uint16_t>(y);
-      for (int x = in.x; x < in.x + in.width; ++x) d[row[x]] += 1.0f;
-    }
-  }
-  const float a = static_cast<float>(config_.learning_rate);
-  if (out_distractors_.empty()) {
-    for (float& v : h_distractor_) v *= 1.0f - a;  // fades while none is seen
-    return;
-  }
-  normalize(&d);
-  if (h_distractor_.empty()) {
-    h_distractor_ = d;
-    return;
-  }
-  for (std::size_t k = 0; k < d.size(); ++k)
-    h_distractor_[k] = (1.0f - a) * h_distractor_[k] + a * d[k];
 }
 
 void BoxCondensationTracker::init(const cv::Mat& image, const cv::Rect2d& box) {
