@@ -107,8 +107,13 @@ class PixelClassifier {
 
   int numColors() const { return static_cast<int>(means_.size()); }
   /// log N(c; mu|m, Sigma|m + nu) of the k-th modelled colour.
-  double logLikelihood(const Eigen::Vector3d& yuv, int k) const;
-  double mahalanobisSq(const Eigen::Vector3d& yuv, int k) const;
+  double logLikelihood(const Eigen::Vector3d& yuv, int k) const {
+    return log_norms_[k] - 0.5 * mahalanobisSq(yuv, k);
+  }
+  double mahalanobisSq(const Eigen::Vector3d& yuv, int k) const {
+    const Eigen::Vector3d d = yuv - means_[k];
+    return d.dot(inv_covs_[k] * d);
+  }
   /// Maximum-likelihood class id, or 255 (unknown) when the pixel is farther than the threshold
   /// from all.
   std::uint8_t classify(const Eigen::Vector3d& yuv) const;

@@ -226,15 +226,6 @@ PixelClassifier::PixelClassifier(const std::vector<Eigen::Vector3d>& means,
   }
 }
 
-double PixelClassifier::mahalanobisSq(const Eigen::Vector3d& yuv, int k) const {
-  const Eigen::Vector3d d = yuv - means_[k];
-  return d.dot(inv_covs_[k] * d);
-}
-
-double PixelClassifier::logLikelihood(const Eigen::Vector3d& yuv, int k) const {
-  return log_norms_[k] - 0.5 * mahalanobisSq(yuv, k);
-}
-
 std::uint8_t PixelClassifier::classify(const Eigen::Vector3d& yuv) const {
   double best = -std::numeric_limits<double>::infinity();
   int best_k = -1;

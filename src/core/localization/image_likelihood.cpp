@@ -1,10 +1,13 @@
 #include "adaptive_perception/localization/image_likelihood.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "adaptive_perception/math/log_add.h"
 
 namespace adaptive_perception::localization {
 
@@ -200,17 +203,23 @@ double ImageLikelihood::logLikelihood(const SampledImage& image, const math::SE2
   // the colours at the grid pixels its offsets away (a prediction blurred by the pose
   // tolerance); its likelihood is the mixture over them, background scoring the uniform density.
   // Being a proper mixture it does not favour poses that predict busier views.
+  // log of a candidate's share, in eighths (1/2 + n/8).
+  static const std::array<double, 9> kLogEighths = [] {
+    std::array<double, 9> t{};
+    for (int e = 1; e <= 8; ++e) t[e] = std::log(e / 8.0);
+    return t;
+  }();
   std::vector<double> pixel_ll(lighting.numModes());
   const bool own_background = !image.background_log_density.empty();
   for (size_t j = 0; j < pixels.size(); ++j) {
     std::uint8_t cand[5];
-    double share[5];
+    int eighths[5];
     int nc = 0;
     cand[nc] = labels[j];
-    share[nc++] = 1.0;
+    eighths[nc++] = 8;
     const NeighbourOffset d = offsets[j];
     if (d.du > 0 || d.dv > 0) {
-      share[0] = 0.5;
+      eighths[0] = 4;
       const int r = static_cast<int>(j) / cols, c = static_cast<int>(j) % cols;
       const int around[4] = {
           r * cols + std::max(c - d.du, 0), r * cols + std::min(c + d.du, cols - 1),
@@ -219,34 +228,25 @@ double ImageLikelihood::logLikelihood(const SampledImage& image, const math::SE2
         const int at = static_cast<int>(std::find(cand, cand + nc, labels[n]) - cand);
         if (at == nc) {
           cand[nc] = labels[n];
-          share[nc++] = 0.125;
+          eighths[nc++] = 1;
         } else {
-          share[at] += 0.125;
+          ++eighths[at];
         }
       }
     }
     for (int m = 0; m < lighting.numModes(); ++m) {
-      double v[5], top = -std::numeric_limits<double>::infinity();
+      double ll = -std::numeric_limits<double>::infinity();
       for (int c = 0; c < nc; ++c) {
         // Background (or an unmodelled colour): the uniform density, or the image's own
         // background's. Every pixel must contribute, or poses that see more background would
         // score higher for having fewer terms.
         const int k = slot[cand[c]];
-        v[c] = own_background ? image.background_log_density[j] : kLogUniformYuv;
-        if (k >= 0) {
-          const double a = log_in + cls[m].logLikelihood(pixel_yuv[j], k);
-          v[c] = std::max(a, log_out) + std::log1p(std::exp(-std::fabs(a - log_out)));
-        }
-        if (nc > 1) v[c] += std::log(share[c]);
-        top = std::max(top, v[c]);
+        double v = own_background ? image.background_log_density[j] : kLogUniformYuv;
+        if (k >= 0) v = math::logAddExp(log_in + cls[m].logLikelihood(pixel_yuv[j], k), log_out);
+        // One colour all around (most pixels): no mixture.
+        ll = nc == 1 ? v : math::logAddExp(ll, v + kLogEighths[eighths[c]]);
       }
-      if (nc == 1) {  // one colour all around (most pixels): no mixture
-        pixel_ll[m] = v[0];
-        continue;
-      }
-      double sum = 0.0;
-      for (int c = 0; c < nc; ++c) sum += std::exp(v[c] - top);
-      pixel_ll[m] = top + std::log(sum);
+      pixel_ll[m] = ll;
     }
     for (int m = 0; m < lighting.numModes(); ++m) mode_ll[m] += pixel_ll[m];
     const int k = slot[labels[j]];
