@@ -30,11 +30,14 @@ summary="$AP_ROOT/results/demo/summary.txt"
 : > "$summary"
 for bag in "$AP_ROOT"/rosbag/field_*.bag "$AP_ROOT"/rosbag/laser_*.bag; do
   name="$(basename "$bag" .bag)"
+  # Field bags play in step with the localizer (field_demo.launch lockstep:=true): it takes every
+  # image on any machine, so the localizer's figures do not depend on the machine's speed.
   launch=field_demo.launch
-  case "$name" in laser_*) launch=laser_demo.launch ;; esac
+  extra=(lockstep:=true)
+  case "$name" in laser_*) launch=laser_demo.launch; extra=() ;; esac
   echo "demo: replaying $name through $launch (rviz=$RVIZ)"
   roslaunch --disable-title adaptive_perception "$launch" bag:="$bag" name:="$name" rviz:="$RVIZ" \
-    rate:="$RATE" > "$AP_ROOT/results/demo/$name.log" 2>&1 || true
+    rate:="$RATE" "${extra[@]}" > "$AP_ROOT/results/demo/$name.log" 2>&1 || true
   line="$(grep -h '^demo_monitor:' "$AP_ROOT/results/demo/$name.log" | tail -n 1)"
   if [ -z "$line" ]; then
     echo "demo: $name produced no summary; see results/demo/$name.log"; tail -n 20 "$AP_ROOT/results/demo/$name.log"; exit 1

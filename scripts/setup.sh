@@ -16,6 +16,8 @@ PACKAGES=(
   # static_transform_publisher (demo.launch places the parts side by side)
   tf2-tools
   librosbag-dev libcv-bridge-dev libimage-transport-dev libtf2-ros-dev libtf2-geometry-msgs-dev
+  # lockstep_player (a bag played in step with the node it feeds: the demo, the rostests)
+  libtopic-tools-dev
   # every node as a nodelet (src/nodelets), and the nodelet manager
   libnodeletlib-dev pluginlib-dev libnodeletlib-tools
   # image_transport's republish (test/ros/compressed_camera.test); image_geometry (rectification)

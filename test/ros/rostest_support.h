@@ -8,6 +8,8 @@
 #include <std_msgs/String.h>
 #include <topic_tools/shape_shifter.h>
 
+#include "adaptive_perception/ros/message_header.h"
+
 #include <sys/wait.h>
 
 #include <array>
@@ -108,28 +110,8 @@ class PhaseListener {
   ros::Subscriber sub_;
 };
 
-/// The bytes of a message as it travels on the wire.
-inline std::vector<uint8_t> serialized(const topic_tools::ShapeShifter& m) {
-  std::vector<uint8_t> buf(m.size());
-  ros::serialization::OStream out(buf.data(), static_cast<uint32_t>(buf.size()));
-  m.write(out);
-  return buf;
-}
-
-/// The header at the start of serialised message bytes and its length in bytes; false when they
-/// are too short to hold one. Valid for every message type whose first field is a Header.
-inline bool leadingHeader(const std::vector<uint8_t>& buf, std_msgs::Header* header,
-                          std::size_t* header_bytes) {
-  try {
-    // IStream only reads, but takes a non-const pointer.
-    ros::serialization::IStream in(const_cast<uint8_t*>(buf.data()),
-                                   static_cast<uint32_t>(buf.size()));
-    ros::serialization::deserialize(in, *header);
-  } catch (const ros::serialization::StreamOverrunException&) {
-    return false;
-  }
-  *header_bytes = ros::serialization::serializationLength(*header);
-  return true;
-}
+// Reading the Header of a message of any type (adaptive_perception/ros/message_header.h).
+using ros_messages::leadingHeader;
+using ros_messages::serialized;
 
 }  // namespace adaptive_perception::rostest_support

@@ -258,9 +258,10 @@ int run(const std::string& command, std::string* output) {
 }
 
 TEST(Tools, EveryToolAnswersHelpAndRefusesAnUnknownOption) {
-  // demo_monitor is a ROS node (its settings are parameters); bench_ekf_slam takes Google
-  // Benchmark's own flags.
-  const std::vector<std::string> not_command_line = {"demo_monitor", "bench_ekf_slam"};
+  // demo_monitor and lockstep_player are ROS nodes (their settings are parameters);
+  // bench_ekf_slam takes Google Benchmark's own flags.
+  const std::vector<std::string> not_command_line = {"demo_monitor", "lockstep_player",
+                                                     "bench_ekf_slam"};
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(AP_SOURCE_DIR) / "src/tools")) {
     if (entry.path().extension() != ".cpp") continue;

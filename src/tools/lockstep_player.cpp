@@ -1,11 +1,17 @@
 // lockstep_player: plays a bag with /clock like `rosbag play --clock`, but after each message on
-// the trigger topic waits until the node under test has answered it: a message on the output
-// topic stamped at or after the trigger's stamp (or ~timeout_s of wall time). The rostests of a
-// node that drops frames it cannot keep up with (rbpf_localizer) then check the algorithm, not
-// the speed of the machine they share with other tests. Speed is measured by the bench_* tools.
+// the trigger topic waits until the node it feeds has answered it: a message on the output topic
+// stamped at or after the trigger's stamp (or ~timeout_s of wall time). A node that drops the
+// frames it cannot keep up with (rbpf_localizer) then gives the same result on any machine: the
+// rostests check the algorithm, not the speed of the machine they share with other tests, and the
+// demo's figures are the filter's (field_demo.launch lockstep:=true). Speed is measured by the
+// bench_* tools.
 //
 //   rosrun adaptive_perception lockstep_player BAG _trigger_topic:=camera/image_raw
-//       _output_topic:=rbpf_localizer/pose [_timeout_s:=10] [_delay_s:=3] [_lookahead_s:=0.1]
+//       _output_topic:=rbpf_localizer/pose [_rate:=0] [_timeout_s:=10] [_delay_s:=3]
+//       [_lookahead_s:=0.1]
+// ~rate: 0 plays as fast as the answers come (the rostests); R > 0 at most R times the bag's own
+// rate, so on a machine fast enough a demo looks as the robot saw it, and slower only where the
+// node needs the time.
 // Messages up to lookahead_s of bag time after a trigger are played before the wait (the tf the
 // node interpolates at the trigger's stamp arrives after it); keep it below the trigger's period.
 //
@@ -17,14 +23,15 @@
 #include <rosgraph_msgs/Clock.h>
 #include <topic_tools/shape_shifter.h>
 
-#include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <map>
 #include <mutex>
 
-#include "rostest_support.h"
+#include "adaptive_perception/ros/message_header.h"
 
-namespace rs = adaptive_perception::rostest_support;
+namespace rm = adaptive_perception::ros_messages;
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "lockstep_player", ros::init_options::AnonymousName);
@@ -38,19 +45,31 @@ int main(int argc, char** argv) {
   const double timeout_s = pnh.param("timeout_s", 10.0);
   const double delay_s = pnh.param("delay_s", 3.0);
   const double lookahead_s = pnh.param("lookahead_s", 0.1);
+  const double rate = pnh.param("rate", 0.0);
   if (trigger.empty() || output.empty()) {
     std::fprintf(stderr, "lockstep_player: set ~trigger_topic and ~output_topic\n");
     return 2;
   }
+  if (!(rate >= 0.0) || !(timeout_s > 0.0) || !(delay_s >= 0.0) || !(lookahead_s >= 0.0)) {
+    std::fprintf(stderr,
+                 "lockstep_player: ~rate, ~delay_s and ~lookahead_s must be >= 0 and ~timeout_s "
+                 "> 0 (got %g, %g, %g, %g)\n",
+                 rate, delay_s, lookahead_s, timeout_s);
+    return 2;
+  }
   std::mutex mutex;
+  std::condition_variable answer;
   ros::Time answered_up_to;
   ros::Subscriber out_sub = nh.subscribe<topic_tools::ShapeShifter>(
       output, 10, [&](const topic_tools::ShapeShifter::ConstPtr& m) {
         std_msgs::Header h;
         std::size_t bytes = 0;
-        if (!rs::leadingHeader(rs::serialized(*m), &h, &bytes)) return;
-        std::lock_guard<std::mutex> l(mutex);
-        if (h.stamp > answered_up_to) answered_up_to = h.stamp;
+        if (!rm::leadingHeader(rm::serialized(*m), &h, &bytes)) return;
+        {
+          std::lock_guard<std::mutex> l(mutex);
+          if (h.stamp > answered_up_to) answered_up_to = h.stamp;
+        }
+        answer.notify_all();
       });
   ros::AsyncSpinner spinner(1);
   spinner.start();
@@ -73,18 +92,30 @@ int main(int argc, char** argv) {
   bool pending = false;
   ros::Time pending_stamp, pending_bag_time;
   auto awaitAnswer = [&] {
-    const bool ok = rs::waitUntil(
-        [&] {
-          std::lock_guard<std::mutex> l(mutex);
-          return answered_up_to >= pending_stamp;
-        },
-        timeout_s, 0.002);
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    std::unique_lock<std::mutex> l(mutex);
+    while (answered_up_to < pending_stamp && ros::ok() &&
+           std::chrono::steady_clock::now() < deadline)
+      answer.wait_for(l, std::chrono::milliseconds(100));  // wakes on an answer; sees a shutdown
+    const bool ok = answered_up_to >= pending_stamp;
     ok ? ++answered : ++timeouts;
     pending = false;
   };
+  // Pacing (rate > 0): each message at most rate times its bag-time gap after the one before.
+  ros::WallTime last_wall = ros::WallTime::now();
+  ros::Time last_bag;
   for (const rosbag::MessageInstance& m : view) {
     if (!ros::ok()) break;
     if (pending && m.getTime() > pending_bag_time + ros::Duration(lookahead_s)) awaitAnswer();
+    if (rate > 0.0) {
+      if (!last_bag.isZero() && m.getTime() > last_bag) {
+        const ros::WallTime due = last_wall + ros::WallDuration((m.getTime() - last_bag).toSec() / rate);
+        if (due > ros::WallTime::now()) (due - ros::WallTime::now()).sleep();
+      }
+      last_wall = ros::WallTime::now();
+      last_bag = m.getTime();
+    }
     rosgraph_msgs::Clock clock;
     clock.clock = m.getTime();
     clock_pub.publish(clock);
@@ -94,7 +125,7 @@ int main(int argc, char** argv) {
     if (topic != trigger && topic != "/" + trigger) continue;
     std_msgs::Header h;
     std::size_t bytes = 0;
-    if (!rs::leadingHeader(rs::serialized(*msg), &h, &bytes)) continue;
+    if (!rm::leadingHeader(rm::serialized(*msg), &h, &bytes)) continue;
     if (pending) awaitAnswer();
     ++triggers;
     pending = true;
