@@ -6,12 +6,12 @@
 //
 //   bench_rbpf --help   (every option with its default, unit and range)
 //
-// The relocalization check runs as configured by default (off: RbpfConfig); with
-// --relocalization_interval_s S a search of relocalization_pool_size uniform poses over 4 images
-// starts every S seconds of the sequence (no kidnap: a check that wins here is a false alarm,
-// counted as `relocalizations`). The sequence runs at --rate_hz (10 by default; a NAO's camera gives
-// 30): the check's cost is spread over the frames of its interval, so a frame rate is only
-// meaningful at the rate the camera gives.
+// The relocalization check runs as rbpf_localizer's defaults have it (every 1 s); with
+// --relocalization_interval_s S (0: off) a search of relocalization_pool_size uniform poses over 4
+// images starts every S seconds of the sequence (no kidnap: a check that wins here is a false
+// alarm, counted as `relocalizations`). The sequence runs at --rate_hz (10 by default; a NAO's
+// camera gives 30): the check's cost is spread over the frames of its interval, so a frame rate is
+// only meaningful at the rate the camera gives.
 //
 // Without --particles/--threads it sweeps 100, 300 and 1000 particles on 1 thread and on all cores.
 // Last line: `bench_rbpf: frames_per_s=... (for the first configuration) ...` with one key per
@@ -108,8 +108,8 @@ int main(int argc, char** argv) {
     const math::SE2 e = rbpf.estimate().pose;
     std::printf(
         "%5d particles, %d thread(s), %dx%d at %.0f Hz, stride %d (%zu pixels), relocalization "
-        "check every %.1f s over %d poses: %.1f frames/s (final position error %.3f m, mirror flips %d, "
-        "relocalizations %d)\n",
+        "check every %.1f s over %d poses: %.1f frames/s (final position error %.3f m, mirror "
+        "flips %d, relocalizations %d)\n",
         n, t, width, height, rate_hz, rbpf.config().likelihood.pixel_stride, rbpf.pixels().size(),
         cfg.relocalization.interval_s, cfg.relocalization.pool_size, fps,
         std::hypot(e.x_m - end_truth.x_m, e.y_m - end_truth.y_m), flips, relocalizations);

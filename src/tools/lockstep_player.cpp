@@ -23,22 +23,37 @@
 #include <rosgraph_msgs/Clock.h>
 #include <topic_tools/shape_shifter.h>
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
 #include <map>
 #include <mutex>
+#include <string>
 
 #include "adaptive_perception/ros/message_header.h"
 
 namespace rm = adaptive_perception::ros_messages;
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "lockstep_player", ros::init_options::AnonymousName);
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: lockstep_player BAG _trigger_topic:=T _output_topic:=O\n");
+  const char* usage =
+      "usage: lockstep_player BAG _trigger_topic:=T _output_topic:=O [_rate:=R] [_timeout_s:=S] "
+      "[_delay_s:=S] [_lookahead_s:=S]\n";
+  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
+      std::string(argv[1]).find(":=") != std::string::npos) {
+    std::fprintf(stderr, "%s", usage);
     return 2;
   }
+  // The bag first: a bad one is reported before the node waits for a master (ros::init sets the
+  // _param:= arguments there).
+  rosbag::Bag bag;
+  try {
+    bag.open(argv[1], rosbag::bagmode::Read);
+  } catch (const rosbag::BagException& e) {
+    std::fprintf(stderr, "lockstep_player: %s: %s\n%s", argv[1], e.what(), usage);
+    return 2;
+  }
+  ros::init(argc, argv, "lockstep_player", ros::init_options::AnonymousName);
   ros::NodeHandle nh, pnh("~");
   const std::string trigger = pnh.param<std::string>("trigger_topic", "");
   const std::string output = pnh.param<std::string>("output_topic", "");
@@ -74,7 +89,6 @@ int main(int argc, char** argv) {
   ros::AsyncSpinner spinner(1);
   spinner.start();
 
-  rosbag::Bag bag(argv[1], rosbag::bagmode::Read);
   rosbag::View view(bag);
   ros::Publisher clock_pub = nh.advertise<rosgraph_msgs::Clock>("/clock", 1);
   std::map<std::string, ros::Publisher> pubs;
@@ -93,11 +107,15 @@ int main(int argc, char** argv) {
   ros::Time pending_stamp, pending_bag_time;
   auto awaitAnswer = [&] {
     const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+        std::chrono::steady_clock::now() +
+        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+            std::chrono::duration<double>(timeout_s));
     std::unique_lock<std::mutex> l(mutex);
+    // Wakes on an answer; looks at ros::ok() every 100 ms.
     while (answered_up_to < pending_stamp && ros::ok() &&
            std::chrono::steady_clock::now() < deadline)
-      answer.wait_for(l, std::chrono::milliseconds(100));  // wakes on an answer; sees a shutdown
+      answer.wait_until(l, std::min(deadline, std::chrono::steady_clock::now() +
+                                                  std::chrono::milliseconds(100)));
     const bool ok = answered_up_to >= pending_stamp;
     ok ? ++answered : ++timeouts;
     pending = false;
@@ -110,7 +128,8 @@ int main(int argc, char** argv) {
     if (pending && m.getTime() > pending_bag_time + ros::Duration(lookahead_s)) awaitAnswer();
     if (rate > 0.0) {
       if (!last_bag.isZero() && m.getTime() > last_bag) {
-        const ros::WallTime due = last_wall + ros::WallDuration((m.getTime() - last_bag).toSec() / rate);
+        const ros::WallTime due =
+            last_wall + ros::WallDuration((m.getTime() - last_bag).toSec() / rate);
         if (due > ros::WallTime::now()) (due - ros::WallTime::now()).sleep();
       }
       last_wall = ros::WallTime::now();

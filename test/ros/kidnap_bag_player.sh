@@ -9,7 +9,7 @@ OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
 rosrun adaptive_perception simulate_field --script kidnap --seed 4 --duration_s 20 --rate_hz 4 \
   --output "$OUT/kidnap.bag" > /dev/null
-# In step with the localizer (test/ros/lockstep_player.cpp): each image waits for the pose of the
+# In step with the localizer (src/tools/lockstep_player.cpp): each image waits for the pose of the
 # one before, so the result does not depend on how many frames a loaded machine lets it keep up
 # with.
 rosrun adaptive_perception lockstep_player "$OUT/kidnap.bag" _trigger_topic:=camera/image_raw \

@@ -25,7 +25,7 @@ rosrun adaptive_perception condensation_tracker __name:=condensation_tracker _mo
 NODE=$!
 sleep 3
 rostopic pub -1 /test_phase std_msgs/String "data: 'test'" > /dev/null
-# In step with the tracker (test/ros/lockstep_player.cpp): each frame waits for the tracked object
+# In step with the tracker (src/tools/lockstep_player.cpp): each frame waits for the tracked object
 # of the one before, so the test checks tracking, not how many frames a loaded machine lets the
 # node keep up with (at half speed it answered 119 of 149 frames beside two other tests).
 rosrun adaptive_perception lockstep_player "$OUT/seq.bag" _trigger_topic:=camera/image_raw \

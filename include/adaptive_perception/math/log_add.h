@@ -4,8 +4,8 @@
 //
 // Contract:
 //  - log1pExpNeg(x) = log(1 + exp(-x)) for x >= 0 within kLogAddMaxError (absolute); 0 beyond
-//    kLogAddTableEnd, where the true value is below 3e-18. A negative x is taken as 0 (its caller
-//    passes |a - b|).
+//    kLogAddTableEnd, where the true value is below 4.3e-18. A negative x is taken as 0 (its caller
+//    passes |a - b|); a NaN gives NaN (and so does logAddExp with a NaN term).
 //  - logAddExp(a, b) = max(a, b) + log1pExpNeg(|a - b|); -inf + x = x.
 //  - The table is built when the library loads (a constant, read-only afterwards: thread-safe).
 #include <array>
@@ -30,7 +30,7 @@ inline const std::array<double, kLogAddTableSize> kLogAddTable = [] {
 }  // namespace detail
 
 inline double log1pExpNeg(double x) {
-  if (!(x < kLogAddTableEnd)) return x >= kLogAddTableEnd ? 0.0 : detail::kLogAddTable[0];
+  if (!(x < kLogAddTableEnd)) return x >= kLogAddTableEnd ? 0.0 : x;  // NaN stays NaN
   if (x <= 0.0) return detail::kLogAddTable[0];
   const double s = x * kLogAddStepsPerUnit;
   const int i = static_cast<int>(s);

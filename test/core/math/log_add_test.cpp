@@ -35,3 +35,10 @@ TEST(LogAdd, MinusInfinityIsZeroProbability) {
   EXPECT_EQ(am::logAddExp(-inf, -inf), -inf);
   EXPECT_DOUBLE_EQ(am::log1pExpNeg(inf), 0.0);
 }
+
+TEST(LogAdd, ANaNIsNotHidden) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(am::log1pExpNeg(nan)));
+  EXPECT_TRUE(std::isnan(am::logAddExp(-1.0, nan)));
+  EXPECT_TRUE(std::isnan(am::logAddExp(nan, -1.0)));
+}
