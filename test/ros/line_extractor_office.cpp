@@ -23,9 +23,11 @@ TEST(LineExtractorOffice, PublishesTheWallsInView) {
   const int expected = p.param("expected_scans", 301);
   const double min_precision = p.param("min_precision", 0.95),
                min_recall = p.param("min_recall", 0.95);
+  // The scans first: the test counts them to know the bag has been played, so its subscription
+  // must be up before the player's first scan (a run under load once heard 300 of 301).
+  rostest_support::TopicRecord<sensor_msgs::LaserScan> scans(nh, "scan", 500);
   rostest_support::TopicRecord<LineSegmentArray> line_record(nh, "lines", 500, true);
   rostest_support::TopicRecord<LineSegmentArray> truth_record(nh, "ground_truth/walls", 500, true);
-  rostest_support::TopicRecord<sensor_msgs::LaserScan> scans(nh, "scan", 500);
   ros::AsyncSpinner spinner(2);
   spinner.start();
   rostest_support::waitUntil([&] { return scans.count() >= expected; }, 60.0, 0.1);
