@@ -71,11 +71,7 @@ void HeadTfNode::callback(const sensor_msgs::JointStateConstPtr& msg) {
                 "' is missing (the camera file " + camera_file_ + " names '" + camera_.pan_joint +
                 "' and '" + camera_.tilt_joint + "')");
   const double pan_rad = msg->position[pan], tilt_rad = msg->position[tilt];
-  const auto outside = [](double v, double lo, double hi) {
-    return !std::isfinite(v) || v < lo - 1e-3 || v > hi + 1e-3;  // a sensor may read a hair over
-  };
-  if (outside(pan_rad, camera_.head.min_pan_rad, camera_.head.max_pan_rad) ||
-      outside(tilt_rad, camera_.head.min_tilt_rad, camera_.head.max_tilt_rad)) {
+  if (!camera_.head.inJointRange(pan_rad, tilt_rad)) {
     std::ostringstream s;
     s << camera_.pan_joint << " = " << pan_rad << " rad (range [" << camera_.head.min_pan_rad
       << ", " << camera_.head.max_pan_rad << "]), " << camera_.tilt_joint << " = " << tilt_rad

@@ -1,8 +1,8 @@
 // evaluate_field_localization: global localization of a robot from single real camera images: for
 // each image of a list, rbpf_localizer's filter starts from nothing (uniform over the field, the
-// lighting at its priors adapted to the image without a pose: color/image_adapted_prior.h) and is
-// given the same image again and again, as a robot standing still would see it; the estimate after
-// --frames images is compared with the true position, if the list has one.
+// lighting at its priors adapted to the image without a pose: adapt_priors_to_image, on here) and
+// is given the same image again and again, as a robot standing still would see it; the estimate
+// after --frames images is compared with the true position, if the list has one.
 //
 //   evaluate_field_localization --field FILE --camera FILE --list FILE [--output DIR]
 //   evaluate_field_localization --help   (every option with its default, unit and range)
@@ -29,7 +29,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "adaptive_perception/color/color_space.h"
-#include "adaptive_perception/color/image_adapted_prior.h"
 #include "adaptive_perception/io/head_image_list.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
 #include "adaptive_perception/ros/params.h"
@@ -77,10 +76,8 @@ int main(int argc, char** argv) {
              "times each image is given to the filter (one second of a 30 Hz camera)");
   std::string priors_dir = "config/color_priors";
   cli.option("priors_dir", &priors_dir, "folder of the lighting priors");
-  bool no_adaptation = false;
-  cli.flag(
-      "no_adaptation", &no_adaptation,
-      "start from the priors as they are, not adapted to the image (color/image_adapted_prior.h)");
+  // Real images: the shipped priors are of simulated venues (RbpfConfig::adapt_priors_to_image).
+  cfg.adapt_priors_to_image = true;
   cli.option("threads", &cfg.threads, "threads (the result is the same for any count)");
   cli.seed(&cfg.seed);
   const std::string& output = cli.resultsFolder("images.csv and one drawing per image");
@@ -117,13 +114,7 @@ int main(int argc, char** argv) {
       const Eigen::Isometry3d base_to_optical =
           camera.baseToOptical(item.head_yaw_rad, item.head_pitch_rad);
       const auto t0 = Clock::now();
-      const std::vector<color::LightingPrior> start =
-          no_adaptation
-              ? priors
-              : color::adaptPriorsToImage(
-                    priors, yuv, color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()),
-                    cfg.model);
-      localization::RbpfLocalizer rbpf(map, camera.camera, start, cfg);
+      localization::RbpfLocalizer rbpf(map, camera.camera, priors, cfg);
       rbpf.initUniform();
       for (int k = 0; k < frames; ++k)
         rbpf.step(math::SE2(), k == 0 ? 0.0 : 1.0 / 30.0, yuv, base_to_optical);

@@ -5,7 +5,8 @@
 // tell the halves apart, and they are in view for a few frames only. After the particles have
 // committed, every image scores the pose estimate and its point mirror side by side under one
 // reference lighting, and sums the log-likelihood ratio (mirror minus estimate, tempered nats) over
-// the images, older images fading with time constant memory_s. The lines score alike for both, so
+// the images (a camera faster than 1 / view_interval_s counting as that rate), older images fading
+// with time constant memory_s. The lines score alike for both, so
 // the sum is the evidence of the goals and beacons alone. When it exceeds margin_nats, the caller
 // moves the particles of the estimate's cluster to their mirrors (with the reference lighting).
 //
@@ -27,6 +28,11 @@ namespace adaptive_perception::localization {
 struct MirrorTestConfig {
   double margin_nats = 3.0;  // 0 turns the test off
   double memory_s = 4.0;     // time constant of the evidence's fading
+  // Images closer in time than this add their ratio times dt / view_interval_s: consecutive frames
+  // of a 30 Hz camera are nearly one view, and counted as one each they summed the same small
+  // preference 7.5 times per 0.25 s (a standing NAO's real images flipped to the wrong half after
+  // 1.5 s). The simulated bags' 4 Hz images (0.25 s apart) count as one view each, as before.
+  double view_interval_s = 0.25;
   /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
   static const config::Fields<MirrorTestConfig>& fields();
   void validate() const { fields().validate(*this); }

@@ -62,6 +62,13 @@ struct RbpfConfig {
   GlobalLocalizationConfig global;      // the global search after initUniform()
   RelocalizationConfig relocalization;  // the check that the particles are not lost
   MirrorTestConfig mirror_test;         // which half of the field
+  // At the first image after initUniform() / initGaussian(), the priors (of the particles, the
+  // searches and the mirror test) are adapted to that image without a pose
+  // (color/image_adapted_prior.h): for a camera at a venue the priors were not learnt from, such
+  // as a real robot's with the simulated venues' priors. Off for a venue of the priors: the
+  // adaptation pulls every mode to the first image's lighting, and a switching filter's other mode
+  // would then no longer be the other lighting.
+  bool adapt_priors_to_image = false;
   int threads = 1;
   std::uint64_t seed = 1;
 
@@ -165,8 +172,12 @@ class RbpfLocalizer {
   /// A lighting filter at the priors (the particles' start, and the searches' lighting).
   const color::SwitchingColorFilter& priorLighting() const { return prior_lighting_; }
 
-  std::vector<color::LightingPrior> priors_;
+  /// Adapts the priors to this image (adapt_priors_to_image) when the particles were just placed.
+  void adaptPriorsIfPending(const cv::Mat& yuv);
+
+  std::vector<color::LightingPrior> priors_;  // as given; adapted copies go into the filters below
   RbpfConfig config_;
+  bool adapt_pending_ = false;
   color::SwitchingColorFilter prior_lighting_;
   std::shared_ptr<const ImageLikelihood> likelihood_;
   PoseSearch search_;

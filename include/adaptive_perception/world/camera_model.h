@@ -6,6 +6,7 @@
 // (tilt, positive = nose down); camera_link is the lens, x forward; camera_optical_frame is z
 // forward, x right, y down.
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "adaptive_perception/math/se2.h"
 
@@ -48,6 +49,15 @@ struct HeadChain {
   static Eigen::Isometry3d cameraOptical();          // camera_link -> camera_optical_frame (fixed)
   /// base_link -> camera_optical_frame.
   Eigen::Isometry3d baseToOptical(double pan_rad, double tilt_rad) const;
+  /// The angles are finite and inside the joints' ranges, up to 1e-3 rad over (a joint sensor may
+  /// read a hair past its limit).
+  bool inJointRange(double pan_rad, double tilt_rad) const {
+    const auto inside = [](double v, double lo, double hi) {
+      return std::isfinite(v) && v >= lo - 1e-3 && v <= hi + 1e-3;
+    };
+    return inside(pan_rad, min_pan_rad, max_pan_rad) &&
+           inside(tilt_rad, min_tilt_rad, max_tilt_rad);
+  }
 };
 
 /// The 3-D pose of a planar base pose (map -> base_link), with optional body height/pitch/roll.

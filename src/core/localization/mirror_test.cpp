@@ -49,7 +49,8 @@ MirrorTest::Result MirrorTest::observe(const math::SE2& pose, const math::SE2& o
       likelihood.logLikelihood(image, pose, lighting_, base_to_optical, &obs, nullptr);
   const double ll_mirror = likelihood.logLikelihood(image, math::pointMirror(pose), lighting_,
                                                     base_to_optical, nullptr, nullptr);
-  evidence_ = evidence_ * std::exp(-dt / config_.memory_s) + ll_mirror - ll_pose;
+  const double view_share = dt > 0.0 ? std::min(1.0, dt / config_.view_interval_s) : 1.0;
+  evidence_ = evidence_ * std::exp(-dt / config_.memory_s) + view_share * (ll_mirror - ll_pose);
   // Only the colours that look alike from both poses teach the reference lighting.
   const auto& classes = model_.classes;
   for (std::size_t k = 0; k < obs.counts.size() && k < classes.size(); ++k)

@@ -28,6 +28,9 @@ const config::Fields<RbpfConfig>& RbpfConfig::fields() {
           .add("mode_stay_probability", &C::switching,
                &color::SwitchingFilterConfig::mode_stay_probability, config::closed(1e-3, 1),
                "probability that the lighting stays in its mode from one image to the next")
+          .add("adapt_priors_to_image", &C::adapt_priors_to_image,
+               "the priors are adapted to the first image after a start, without a pose (a "
+               "camera at a venue the priors were not learnt from, such as a real robot's)")
           .nest(&C::likelihood, ImageLikelihoodConfig::fields())
           .nest(&C::motion, MotionModelConfig::fields())
           .nest(&C::search, PoseSearchConfig::fields())
@@ -146,7 +149,9 @@ const config::Fields<MirrorTestConfig>& MirrorTestConfig::fields() {
           .add("mirror_test_margin_nats", &C::margin_nats, config::closed(0, 1e6),
                "the particles move to their mirrors when the evidence exceeds this (0: off)")
           .add("mirror_test_memory_s", &C::memory_s, config::aboveZero(1e6),
-               "time constant of the evidence's fading (s)");
+               "time constant of the evidence's fading (s)")
+          .add("mirror_test_view_interval_s", &C::view_interval_s, config::aboveZero(60),
+               "images closer in time than this count as a share of one view (s)");
   return f;
 }
 

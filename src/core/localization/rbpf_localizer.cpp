@@ -1,5 +1,7 @@
 #include "adaptive_perception/localization/rbpf_localizer.h"
 
+#include "adaptive_perception/color/image_adapted_prior.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,6 +9,7 @@
 #include <string>
 
 #include "adaptive_perception/color/field_segmentation.h"
+#include "adaptive_perception/color/image_adapted_prior.h"
 #include "adaptive_perception/math/gaussian.h"
 #include "adaptive_perception/math/parallel_for.h"
 #include "adaptive_perception/math/particle_set.h"
@@ -85,6 +88,7 @@ void RbpfLocalizer::resetSearches() {
 }
 
 void RbpfLocalizer::initUniform() {
+  adapt_pending_ = config_.adapt_priors_to_image;
   particles_.clear();
   const color::SwitchingColorFilter lighting = priorLighting();
   for (int i = 0; i < config_.particles; ++i)
@@ -94,6 +98,7 @@ void RbpfLocalizer::initUniform() {
 }
 
 void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& cov) {
+  adapt_pending_ = config_.adapt_priors_to_image;
   particles_.clear();
   const color::SwitchingColorFilter lighting = priorLighting();
   const math::Gaussian g(Eigen::Vector3d(mean.x_m, mean.y_m, mean.yaw_rad), cov);
@@ -139,6 +144,16 @@ void RbpfLocalizer::setImage(const cv::Mat& yuv) {
   }
   search_.setBackground(background);
   likelihood_->setColours(yuv, &image_, background.get());
+}
+
+void RbpfLocalizer::adaptPriorsIfPending(const cv::Mat& yuv) {
+  if (!adapt_pending_) return;
+  adapt_pending_ = false;
+  const std::vector<color::LightingPrior> adapted = color::adaptPriorsToImage(
+      priors_, yuv, color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()), config_.model);
+  prior_lighting_ = color::SwitchingColorFilter(adapted, config_.model, config_.switching);
+  mirror_test_ = MirrorTest(adapted, config_.model, config_.switching, config_.mirror_test);
+  for (Particle& p : particles_) p.lighting = prior_lighting_;
 }
 
 void RbpfLocalizer::resample(StepResult* r) {
@@ -195,6 +210,7 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
                                               const cv::Mat& yuv,
                                               const Eigen::Isometry3d& base_to_optical) {
   setImage(yuv);
+  adaptPriorsIfPending(yuv);
   if (offsets_camera_.matrix() != base_to_optical.matrix()) {
     likelihood_->setOffsets(base_to_optical, &image_);
     offsets_camera_ = base_to_optical;

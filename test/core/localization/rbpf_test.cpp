@@ -454,6 +454,52 @@ TEST(Rbpf, MirrorTestMovesAMirroredTrackToTheTruth) {
   EXPECT_GE(flips, 1);
 }
 
+// A camera faster than view_interval_s adds each image's ratio as a share of one view: a second of
+// the same image gives the evidence of four views at 30 Hz as at 4 Hz, where counting every frame
+// as a view summed the same ratio 7.5 times as often.
+TEST(Rbpf, MirrorTestCountsViewsNotFrames) {
+  Scene s;
+  sim::FieldSimConfig sc;
+  sc.seed = 1;
+  sim::FieldSimulator sim(s.map, s.cam, s.head, sc);
+  RbpfConfig cfg;
+  const ImageLikelihood likelihood(s.map, s.cam, cfg.model, cfg.likelihood);
+  SampledImage image = likelihood.grid(cfg.likelihood.pixel_stride);
+  // A view with a beacon or goal in it, where the pose and its mirror score apart.
+  for (double t = 0.5;; t += 0.5) {
+    ASSERT_LT(t, 20.0) << "no beacon or goal in view";
+    sim.advanceTo(t);
+    const auto img = sim.renderCamera();
+    int non_field = 0;
+    for (size_t k = 0; k < img.labels.total(); ++k)
+      non_field += img.labels.data[k] >= 2 && img.labels.data[k] <= 4;
+    if (non_field < 200) continue;
+    likelihood.setColours(color::unpackUyvy(img.uyvy), &image, nullptr);
+    break;
+  }
+  const Eigen::Isometry3d b2o = s.head.baseToOptical(sim.state().pan_rad, sim.state().tilt_rad);
+  likelihood.setOffsets(b2o, &image);
+  const auto evidence = [&](double dt_s, int frames, double view_interval_s) {
+    MirrorTestConfig mc;
+    mc.margin_nats = 1e6;  // never flips: the sum alone
+    mc.view_interval_s = view_interval_s;
+    MirrorTest test(s.priors, cfg.model, cfg.switching, mc);
+    double e = 0.0;
+    for (int k = 0; k < frames; ++k)
+      e = test.observe(sim.state().true_pose, math::SE2(), dt_s, false, likelihood, image, b2o)
+              .evidence;
+    return e;
+  };
+  const double at_4hz = evidence(0.25, 4, 0.25), at_30hz = evidence(1.0 / 30.0, 30, 0.25);
+  const double per_frame = evidence(1.0 / 30.0, 30, 1e-3);  // every frame a view (the old rule)
+  ASSERT_LT(at_4hz, -0.1) << "the truth must beat its mirror on this view";
+  // The same ratio r each image: 4 views fading by e^(-0.25/4) against 30 frames of 1/7.5 view
+  // fading by e^(-1/120): sums r (1 - e^-0.25) / (1 - e^-0.0625) and r (1 - e^-0.25) / 7.5 /
+  // (1 - e^-(1/120)), within 1% of each other; the reference lighting's learning moves r a little.
+  EXPECT_NEAR(at_30hz / at_4hz, 1.0, 0.1);
+  EXPECT_GT(per_frame / at_4hz, 6.0);
+}
+
 // On a track that starts at the truth the test never moves the particles.
 TEST(Rbpf, MirrorTestLeavesATrueTrackAlone) {
   Scene s;
