@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -283,6 +285,70 @@ TEST(Tools, EveryToolAnswersHelpAndRefusesAnUnknownOption) {
     ++checked;
   }
   EXPECT_GE(checked, 15);
+}
+
+// field_images_to_bag reads and checks every image of the list before it opens the bag: a bad line
+// is named with its file and line, and no bag (nor its temporary) is left behind.
+TEST(Tools, FieldImagesToBagChecksEveryImageBeforeWriting) {
+  ScratchDir dir("field_images_to_bag");
+  const fs::path good = dir.path() / "good.png", small = dir.path() / "small.png",
+                 text = dir.path() / "text.jpg", bag = dir.path() / "out.bag";
+  ASSERT_TRUE(cv::imwrite(good.string(), cv::Mat(480, 640, CV_8UC3, cv::Scalar(40, 120, 40))));
+  ASSERT_TRUE(cv::imwrite(small.string(), cv::Mat(240, 320, CV_8UC3, cv::Scalar(40, 120, 40))));
+  std::ofstream(text) << "not an image";
+  const auto list = [&](const std::string& name, const std::vector<std::string>& lines) {
+    const fs::path p = dir.path() / name;
+    std::ofstream out(p);
+    out << "image,head_pitch_rad,head_yaw_rad\n";
+    for (const std::string& l : lines) out << l << "\n";
+    return p.string();
+  };
+  const std::string tool = std::string(AP_TOOL_DIR) + "/field_images_to_bag --camera " +
+                           AP_SOURCE_DIR + "/config/cameras/nao_v6_top.yaml --output " +
+                           bag.string() + " --seconds_per_image 1 --rate_hz 5 --list ";
+  std::string out;
+  EXPECT_EQ(run(tool + list("small.csv", {"good.png,0.0,0.0", "small.png,0.0,0.0"}), &out), 1);
+  EXPECT_NE(out.find("small.csv:3: "), std::string::npos) << out;
+  EXPECT_NE(out.find("is 320x240 but the camera (nao_v6_top) is 640x480"), std::string::npos)
+      << out;
+  EXPECT_EQ(run(tool + list("text.csv", {"text.jpg,0.0,0.0"}), &out), 1);
+  EXPECT_NE(out.find("text.csv:2: "), std::string::npos) << out;
+  EXPECT_NE(out.find("not a JPEG or PNG file"), std::string::npos) << out;
+  EXPECT_EQ(run(tool + list("pitch.csv", {"good.png,1.5,0.0"}), &out), 1);
+  EXPECT_NE(out.find("pitch.csv:2: head angles"), std::string::npos) << out;
+  EXPECT_NE(out.find("outside the joint ranges of nao_v6_top"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(bag));
+  EXPECT_FALSE(fs::exists(bag.string() + ".tmp"));
+  // Two images, one second each at 5 Hz.
+  EXPECT_EQ(run(tool + list("ok.csv", {"good.png,0.0,0.0", "good.png,0.1,-0.2"}), &out), 0)
+      << out;
+  EXPECT_NE(out.find("images=2 frames=10 duration_s=2.0"), std::string::npos) << out;
+  EXPECT_TRUE(fs::exists(bag));
+}
+
+// evaluate_color_priors names an image that has no mask, before any work.
+TEST(Tools, EvaluateColorPriorsNamesAnImageWithoutAMask) {
+  ScratchDir dir("evaluate_color_priors");
+  fs::create_directories(dir.path() / "image");
+  fs::create_directories(dir.path() / "mask");
+  const cv::Mat image(48, 64, CV_8UC3, cv::Scalar(40, 120, 40));
+  cv::Mat mask(48, 64, CV_8UC1, cv::Scalar(3));
+  mask.rowRange(20, 24).setTo(2);
+  for (const std::string name : {"a", "b", "c"}) {
+    ASSERT_TRUE(cv::imwrite((dir.path() / "image" / (name + ".png")).string(), image));
+    if (name != "b") {
+      ASSERT_TRUE(cv::imwrite((dir.path() / "mask" / (name + ".png")).string(), mask));
+    }
+  }
+  std::string out;
+  EXPECT_EQ(run(std::string(AP_TOOL_DIR) + "/evaluate_color_priors --images " +
+                    (dir.path() / "image").string() + " --masks " +
+                    (dir.path() / "mask").string() + " --output " +
+                    (dir.path() / "results").string(),
+                &out),
+            1);
+  EXPECT_NE(out.find("b.png"), std::string::npos) << out;
+  EXPECT_NE(out.find("mask"), std::string::npos) << out;
 }
 
 }  // namespace
