@@ -59,6 +59,11 @@ void BoxTrackerConfig::validate() const {
     fail("filter_scales = " + std::to_string(filter_scales) + " (allowed: 0..5)");
   if (!(filter_scale_step > 0.0 && filter_scale_step < 0.5))
     fail("filter_scale_step = " + std::to_string(filter_scale_step) + " (allowed: 0 < x < 0.5)");
+  if (!(redetect_after_frames >= 0 && redetect_after_frames <= 1000))
+    fail("redetect_after_frames = " + std::to_string(redetect_after_frames) +
+         " (allowed: 0..1000)");
+  if (!(redetect_places >= 1 && redetect_places <= 100))
+    fail("redetect_places = " + std::to_string(redetect_places) + " (allowed: 1..100)");
   if (!(filter_scale_share >= 0.0 && filter_scale_share <= 1.0))
     fail("filter_scale_share = " + std::to_string(filter_scale_share) + " (allowed: 0..1)");
   try {
@@ -159,7 +164,8 @@ void BoxCondensationTracker::init(const cv::Mat& image, const cv::Rect2d& box) {
   if (config_.filter_gain > 0.0) filter_.init(image, box);
   samples_.assign(config_.samples, estimate_);
   weights_.assign(config_.samples, 1.0 / config_.samples);
-  lost_frames_ = 0;
+  lost_frames_ = lost_run_ = 0;
+  searching_ = false;
   mean_peak_ = mean_apce_ = mean_colour_ = 0.0;
   response_frames_ = 0;
   initialized_ = true;
@@ -367,6 +373,39 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
     mean_colour_ += (colour_now - mean_colour_) / response_frames_;
   }
   out.lost = colour_lost || out.unreliable;
+  // Re-detection: the cues' means as they were when the target was last followed are kept for
+  // the search (the means go on averaging the lost frames, and the models learn what stands in
+  // the target's place, so the flag alone fades while the target is still away).
+  if (out.lost && lost_run_ == 0 && !searching_) {
+    reference_peak_ = mean_peak_;
+    reference_colour_ = mean_colour_;
+    reference_apce_ = mean_apce_;
+    reference_log_scale_ = estimate_.log_scale;
+    reference_log_aspect_ = estimate_.log_aspect;
+  }
+  lost_run_ = out.lost ? lost_run_ + 1 : 0;
+  if (config_.redetect_after_frames > 0 && lost_run_ >= config_.redetect_after_frames)
+    searching_ = true;
+  if (searching_ && peak_now >= config_.reliable_peak_ratio * reference_peak_ &&
+      colour_now >= config_.reliable_peak_ratio * reference_colour_)
+    searching_ = false;  // the estimate answers as the target did: found where it is
+  Sample found;
+  if (use_filter && searching_ && redetect(image, grey_image, lut, peak_now, colour_now, &found)) {
+    // Taken back: the samples start again at the place found; nothing is learnt from this frame.
+    out.redetected = true;
+    out.lost = out.unreliable = false;
+    lost_run_ = lost_frames_ = 0;
+    searching_ = false;
+    vx_ = vy_ = 0.0;
+    estimate_ = found;
+    samples_.assign(n, found);
+    weights_.assign(n, 1.0 / n);
+    out.box = boxOf(estimate_);
+    out.confidence = confidence;
+    out.samples.assign(n, out.box);
+    out.weights = weights_;
+    return out;
+  }
   if (colour_lost) {
     // Doubtful: the estimate stays where the target was last seen with confidence; the samples
     // spread further each frame until one scores again.
@@ -382,9 +421,9 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   out.confidence = confidence;
 
   // 4. Model update (eq. 29), gated by the confidence (and by the response's reliability when
-  // unreliable_stops_learning).
+  // unreliable_stops_learning); nothing is learnt while the whole-frame search runs.
   const bool learn = !colour_lost && !(config_.unreliable_stops_learning && out.unreliable) &&
-                     confidence >= config_.update_min_score;
+                     !searching_ && confidence >= config_.update_min_score;
   if (learn && config_.learning_rate > 0.0) {
     std::vector<float> o, s;
     histograms(image, out.box, &o, &s);

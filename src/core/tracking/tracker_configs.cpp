@@ -30,7 +30,12 @@ const config::Fields<BoxTrackerConfig>& BoxTrackerConfig::fields() {
                "mode box: boxes around the target scoring this share of its colour score are "
                "distractors, whose colours count against the target's (0: off)")
           .add("box_distractor_scale", &C::distractor_scale, closed(1.5, 10),
-               "mode box: how far distractors are looked for, in target sizes");
+               "mode box: how far distractors are looked for, in target sizes")
+          .add("box_redetect_after_frames", &C::redetect_after_frames, closed(0, 1000),
+               "mode box: after this many frames in a row reported lost, the whole frame is "
+               "searched until the target is back (0: off)")
+          .add("box_redetect_places", &C::redetect_places, closed(1, 100),
+               "mode box: places of the target's colours the search gives to the filter");
   return f;
 }
 

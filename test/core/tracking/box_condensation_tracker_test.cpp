@@ -2,6 +2,7 @@
 // simulated sequences (a moving target among clutter; a distractor of the target's colour
 // crossing it) against their ground truth, with the default configuration.
 #include "adaptive_perception/tracking/box_condensation_tracker.h"
+#include "adaptive_perception/tracking/redetection.h"
 
 #include <gtest/gtest.h>
 
@@ -164,6 +165,71 @@ TEST(BoxCondensationTracker, ReportsAHiddenTargetLost) {
               lost_hidden, hidden);
   EXPECT_LE(lost_visible, 1);
   EXPECT_GE(lost_hidden, hidden / 2);
+}
+
+// The hidden target of ReportsAHiddenTargetLost comes out from behind the board somewhere else
+// (120 px right and 60 px down of where it went in, as if the camera had jumped): the samples,
+// spread about where it was lost, do not reach it; the whole-frame search
+// (redetect_after_frames) finds it by its colours and its correlation filter together, and the
+// box follows it again.
+TEST(BoxCondensationTracker, ReDetectsATargetThatComesBackElsewhere) {
+  cv::Mat background(240, 320, CV_8UC3);
+  cv::theRNG().state = 12345;
+  cv::randu(background, cv::Scalar::all(60), cv::Scalar::all(200));
+  cv::GaussianBlur(background, background, cv::Size(0, 0), 2.0);
+  cv::Mat board(90, 80, CV_8UC3);
+  cv::randu(board, cv::Scalar::all(100), cv::Scalar::all(140));
+  auto frame = [&](int t, cv::Rect2d* truth) {
+    cv::Mat img = background.clone();
+    const cv::Rect target =
+        t < 60 ? cv::Rect(60 + t, 100, 30, 40) : cv::Rect(180 + t - 60, 160, 30, 40);
+    for (int y = 0; y < target.height; ++y)
+      for (int x = 0; x < target.width; ++x)
+        img.at<cv::Vec3b>(target.y + y, target.x + x) =
+            ((x / 6 + y / 6) % 2) ? cv::Vec3b(200, 40, 30) : cv::Vec3b(30, 40, 210);
+    if (t >= 40) board.copyTo(img(cv::Rect(75, 75, 80, 90)));
+    *truth = target;
+    return img;
+  };
+  const auto run = [&](int redetect_after_frames, int* redetections) {
+    tr::BoxTrackerConfig c;
+    c.redetect_after_frames = redetect_after_frames;
+    tr::BoxCondensationTracker tracker(c, 3);
+    cv::Rect2d truth;
+    tracker.init(frame(0, &truth), truth);
+    int on_target = 0;
+    *redetections = 0;
+    for (int t = 1; t < 100; ++t) {
+      const tr::BoxTrackResult r = tracker.track(frame(t, &truth));
+      *redetections += r.redetected;
+      if (t >= 80) on_target += tr::boxIou(r.box, truth) > 0.5;
+    }
+    return on_target;
+  };
+  int redetections = 0;
+  EXPECT_EQ(run(0, &redetections), 0) << "without the search the target must stay lost";
+  EXPECT_EQ(redetections, 0);
+  EXPECT_EQ(run(tr::BoxTrackerConfig().redetect_after_frames, &redetections), 20)
+      << "the last 20 frames, after the search (the default)";
+  EXPECT_GE(redetections, 1);
+}
+
+// The places of colourPlaces: two blobs of the target's colours on an empty map, the stronger one
+// first, each at its centre; a strip too close to a better place is not a place of its own.
+TEST(ColourPlaces, FindsTheBlobsBestFirst) {
+  cv::Mat p(200, 300, CV_32F, cv::Scalar(0.1f));
+  // On the grid of a 30 x 40 box (centres 15 px and 20 px apart).
+  p(cv::Rect(45, 40, 30, 40)).setTo(0.9f);    // centre (60, 60)
+  p(cv::Rect(195, 120, 30, 40)).setTo(0.7f);  // centre (210, 140)
+  p(cv::Rect(227, 120, 6, 40)).setTo(0.6f);   // beside the second: no place of its own
+  const auto places = tr::colourPlaces(p, cv::Size2d(30, 40), 1.6, 5);
+  ASSERT_GE(places.size(), 2u);
+  EXPECT_EQ(places[0].centre, cv::Point2d(60, 60));
+  EXPECT_EQ(places[1].centre, cv::Point2d(210, 140));
+  EXPECT_NEAR(places[0].score, 0.8, 1e-6);  // 0.9 inside, 0.1 in the ring
+  EXPECT_GT(places[0].score, places[1].score);
+  for (std::size_t k = 2; k < places.size(); ++k) EXPECT_LT(places[k].score, 0.2) << k;
+  EXPECT_THROW(tr::colourPlaces(cv::Mat(), cv::Size2d(30, 40), 1.6, 5), std::invalid_argument);
 }
 
 // A target red above and blue below stands still next to an all-red block of its size, a gap of
