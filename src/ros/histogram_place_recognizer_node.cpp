@@ -265,6 +265,7 @@ void HistogramPlaceRecognizerNode::onImage(const sensor_msgs::ImageConstPtr& msg
   out.filtered_place = r.filtered_place >= 0 ? names[r.filtered_place] : "";
   out.filtered_confidence = r.filtered_confidence;
   out.sequence_place = r.sequence_place >= 0 ? names[r.sequence_place] : "";
+  out.route_frame = r.route_frame;
   place_pub_.publish(out);
   ++results_;
   if (!label_.empty() && label_ != "none") {

@@ -3,7 +3,8 @@
 // (camera/image_raw, labelled by the ground_truth/place message of the same stamp, or the latest
 // one before it; with the ground_truth/pose of that stamp when the bag has one) or from a CSV image
 // list (io/image_list.h). Images that cannot be read are
-// reported on stderr and skipped; images labelled "none" (outside every place) are skipped.
+// reported on stderr and skipped; images labelled "none" (outside every place) are skipped unless
+// asked for.
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
@@ -35,9 +36,11 @@ struct LabelledImage {
 };
 
 /// Calls `fn` for each labelled image in order; returns the number delivered. Throws
-/// std::runtime_error when the bag or list cannot be opened.
+/// std::runtime_error when the bag or list cannot be opened. `keep_unplaced`: images labelled
+/// "none" are delivered too (a reference drive keeps every image).
 inline long forEachLabelledImage(const std::string& bag_path, const std::string& list_path,
-                                 const std::function<void(const LabelledImage&)>& fn) {
+                                 const std::function<void(const LabelledImage&)>& fn,
+                                 bool keep_unplaced = false) {
   long delivered = 0, skipped = 0;
   if (!list_path.empty()) {
     for (const io::LabelledPath& p : io::readImageList(list_path)) {
@@ -49,7 +52,7 @@ inline long forEachLabelledImage(const std::string& bag_path, const std::string&
         ++skipped;
         continue;
       }
-      if (p.label == "none") continue;
+      if (p.label == "none" && !keep_unplaced) continue;
       li.label = p.label;
       li.source = p.path;
       li.stamp_s = static_cast<double>(delivered);
@@ -106,7 +109,7 @@ inline long forEachLabelledImage(const std::string& bag_path, const std::string&
       continue;
     }
     --it;
-    if (it->second == "none" || it->second.empty()) continue;
+    if (it->second.empty() || (it->second == "none" && !keep_unplaced)) continue;
     LabelledImage li;
     try {
       li.bgr = ros_conv::imageToBgr8(*img);

@@ -9,6 +9,8 @@
 // database takes --bins/--spaces/--mask (defaults 256, all eight spaces, no mask); an existing one
 // keeps its own, and explicit options that differ are refused. Adjacency: consecutive images with
 // different places make the two places adjacent (the route walked), unless --no_adjacency.
+// --route: a reference drive for the route filter: every image its own place (route_NNNNNN in the
+// order read), each joined to the one before.
 // --features also stores each image's SIFT descriptors, its line-structure descriptor (default
 // LineStructureConfig) and, from bags, its ground_truth/pose (the training frames of the room
 // classifier and the appearance localizer, papers/002).
@@ -59,6 +61,11 @@ int main(int argc, char** argv) {
   bool no_adjacency = false;
   cli.flag("no_adjacency", &no_adjacency,
            "consecutive images of different places do not make the places adjacent");
+  bool route = false;
+  cli.flag("route", &route,
+           "a reference drive: every image is a place of its own (route_000000, ... in the order "
+           "read) joined to the one before, the database the route filter follows "
+           "(histogram_place_recognizer ~use_route); --images_per_place is not used");
   bool features = false;
   cli.flag("features", &features,
            "also stores SIFT, line-structure descriptors and poses (room classifier, appearance "
@@ -68,6 +75,8 @@ int main(int argc, char** argv) {
   cli.parse(argc, argv);
   const bool explicit_settings = bins_opt->count() + spaces_opt->count() + mask_opt->count() > 0;
   const bool adjacency = !no_adjacency;
+  if (route && no_adjacency)
+    cli.fail("--route joins each image to the one before: not with --no_adjacency");
   if (bag.empty() == list.empty()) cli.fail("give exactly one of --bag FILE and --list CSV");
   try {
     sift.validate();
@@ -108,10 +117,16 @@ int main(int argc, char** argv) {
         ti.structure = places::lineStructure(li.bgr, places::LineStructureConfig{});
         ti.pose = li.pose;
       }
-      by_place[li.label].push_back(std::move(ti));
-      if (!previous.empty() && previous != li.label) edges.insert(std::minmax(previous, li.label));
-      previous = li.label;
-    });
+      std::string label = li.label;
+      if (route) {
+        char name[32];
+        std::snprintf(name, sizeof name, "route_%06ld", seen - 1);
+        label = name;
+      }
+      by_place[label].push_back(std::move(ti));
+      if (!previous.empty() && previous != label) edges.insert(std::minmax(previous, label));
+      previous = label;
+    }, route);
     progress.finish();
     if (n == 0) throw std::runtime_error("no labelled image in " + (bag.empty() ? list : bag));
     long added = 0;
