@@ -41,6 +41,28 @@ double successOn(sim::TrackingScenario scenario, std::uint64_t seed, bool grey =
   return static_cast<double>(success) / frames;
 }
 
+// A red and blue checked target over a fixed textured background, and a grey textured board that
+// can stand in front of it (ReportsAHiddenTargetLost, ReDetectsATargetThatComesBackElsewhere).
+struct HiddenTargetScene {
+  cv::Mat background, board;
+  HiddenTargetScene() : background(240, 320, CV_8UC3), board(90, 80, CV_8UC3) {
+    cv::theRNG().state = 12345;
+    cv::randu(background, cv::Scalar::all(60), cv::Scalar::all(200));
+    cv::GaussianBlur(background, background, cv::Size(0, 0), 2.0);
+    cv::randu(board, cv::Scalar::all(100), cv::Scalar::all(140));
+  }
+  /// The target at `target`, the board's top-left at `board_at` (none when negative).
+  cv::Mat frame(const cv::Rect& target, cv::Point board_at) const {
+    cv::Mat img = background.clone();
+    for (int y = 0; y < target.height; ++y)
+      for (int x = 0; x < target.width; ++x)
+        img.at<cv::Vec3b>(target.y + y, target.x + x) =
+            ((x / 6 + y / 6) % 2) ? cv::Vec3b(200, 40, 30) : cv::Vec3b(30, 40, 210);
+    if (board_at.x >= 0) board.copyTo(img(cv::Rect(board_at, board.size())));
+    return img;
+  }
+};
+
 }  // namespace
 
 TEST(BoxTrackerConfig, RejectsBadFieldsByName) {
@@ -130,22 +152,12 @@ TEST(BoxCondensationTracker, FollowsACameraComingCloserAndTheHandheldScene) {
 // frames are reported lost (BoxTrackerConfig::reliable_peak_ratio), although no colour of the
 // target is left to score.
 TEST(BoxCondensationTracker, ReportsAHiddenTargetLost) {
-  cv::Mat background(240, 320, CV_8UC3);
-  cv::theRNG().state = 12345;
-  cv::randu(background, cv::Scalar::all(60), cv::Scalar::all(200));
-  cv::GaussianBlur(background, background, cv::Size(0, 0), 2.0);
-  cv::Mat board(90, 80, CV_8UC3);
-  cv::randu(board, cv::Scalar::all(100), cv::Scalar::all(140));
+  const HiddenTargetScene scene;
   auto frame = [&](int t, cv::Rect2d* truth) {
-    cv::Mat img = background.clone();
     const cv::Rect target(60 + t, 100, 30, 40);
-    for (int y = 0; y < target.height; ++y)
-      for (int x = 0; x < target.width; ++x)
-        img.at<cv::Vec3b>(target.y + y, target.x + x) =
-            ((x / 6 + y / 6) % 2) ? cv::Vec3b(200, 40, 30) : cv::Vec3b(30, 40, 210);
-    if (t >= 40 && t < 60) board.copyTo(img(cv::Rect(target.x - 25, target.y - 25, 80, 90)));
     *truth = target;
-    return img;
+    return scene.frame(target, t >= 40 && t < 60 ? cv::Point(target.x - 25, target.y - 25)
+                                                 : cv::Point(-1, -1));
   };
   tr::BoxCondensationTracker tracker(tr::BoxTrackerConfig{}, 3);
   cv::Rect2d truth;
@@ -173,23 +185,12 @@ TEST(BoxCondensationTracker, ReportsAHiddenTargetLost) {
 // (redetect_after_frames) finds it by its colours and its correlation filter together, and the
 // box follows it again.
 TEST(BoxCondensationTracker, ReDetectsATargetThatComesBackElsewhere) {
-  cv::Mat background(240, 320, CV_8UC3);
-  cv::theRNG().state = 12345;
-  cv::randu(background, cv::Scalar::all(60), cv::Scalar::all(200));
-  cv::GaussianBlur(background, background, cv::Size(0, 0), 2.0);
-  cv::Mat board(90, 80, CV_8UC3);
-  cv::randu(board, cv::Scalar::all(100), cv::Scalar::all(140));
+  const HiddenTargetScene scene;
   auto frame = [&](int t, cv::Rect2d* truth) {
-    cv::Mat img = background.clone();
     const cv::Rect target =
         t < 60 ? cv::Rect(60 + t, 100, 30, 40) : cv::Rect(180 + t - 60, 160, 30, 40);
-    for (int y = 0; y < target.height; ++y)
-      for (int x = 0; x < target.width; ++x)
-        img.at<cv::Vec3b>(target.y + y, target.x + x) =
-            ((x / 6 + y / 6) % 2) ? cv::Vec3b(200, 40, 30) : cv::Vec3b(30, 40, 210);
-    if (t >= 40) board.copyTo(img(cv::Rect(75, 75, 80, 90)));
     *truth = target;
-    return img;
+    return scene.frame(target, t >= 40 ? cv::Point(75, 75) : cv::Point(-1, -1));
   };
   const auto run = [&](int redetect_after_frames, int* redetections) {
     tr::BoxTrackerConfig c;
