@@ -6,7 +6,7 @@ seconds, when the robot was no longer touched; field frame x = X, y = -Z).
 
 usage: nao_field_list.py SESSION_DIR OUTPUT.csv [top|bottom]
 SESSION_DIR holds puntN/ folders with imagetop.jpg, imagebottom.jpg, record.csv and pointN.csv
-(../shared/data/field/README.md). Image paths are written absolute (symlinks resolved).
+(../shared/data/field/README.md). Image paths are written absolute (the session folder's symlinks resolved).
 OUTPUT.csv is not replaced if it exists.
 """
 import csv
@@ -52,7 +52,7 @@ def main():
         number = "".join(ch for ch in p if ch.isdigit())
         x, y = mocap_xy(os.path.join(folder, f"point{number}.csv"))
         pitch, yaw = head_angles(os.path.join(folder, "record.csv"))
-        image = os.path.realpath(os.path.join(folder, f"image{camera}.jpg"))
+        image = os.path.join(os.path.realpath(session), p, f"image{camera}.jpg")
         lines.append(f"{image},{pitch:.6f},{yaw:.6f},{x:.4f},{y:.4f}")
     with open(output, "w") as f:
         f.write("\n".join(lines) + "\n")

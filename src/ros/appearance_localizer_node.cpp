@@ -171,6 +171,7 @@ void AppearanceLocalizerNode::processImage(const sensor_msgs::ImageConstPtr& msg
   }
   PlaceRecognition room;
   room.header = msg->header;
+  room.route_frame = -1;  // no route filter here
   room.method = "sift_mcl";
   room.places = classifier_->rooms();
   room.belief = e.room_weights;

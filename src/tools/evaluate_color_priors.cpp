@@ -6,23 +6,23 @@
 //   evaluate_color_priors --help   (every option with its default, unit and range)
 //
 // Each image with its mask (io/label_mask.h: 2 field line, 3 field) gives the mean YUV of its
-// field pixels (green) and of its line pixels (white); images whose names differ only in a trailing
-// frame number are one venue (venueOf below). Leave one venue out: a prior over the two colours'
-// means is learnt from the other venues (color/prior_learning.h, learnPrior; each venue one data
-// set of its images); at each image of the venue left out the robot sees its carpet without a pose (the pixels the
-// pose-free segmentation, color/field_segmentation.h, calls carpet, not the mask's) and updates
-// the prior's filter with that colour alone (eqs. 3-5); the line paint it did not observe is then
-// what the prior predicts from the carpet: jointly, the carpet's offset from the venues' mean
-// moves the paint's mean by their learnt covariance; independently, the paint stays at the prior
-// mean. Scores per image: the predicted paint mean's distance to the mask's line pixels' mean
-// (YUV levels), and each colour's recall over its mask pixels (the share the posterior's classifier,
-// eq. 9 with the unknown threshold, gives that colour), with the line's precision among the field
-// and line pixels. Rows: the prior alone (no observation), the independent prior after the carpet,
-// the joint prior after the carpet, and both colours observed from the mask (the bound).
-// Prints one CSV line per image and row, writes it to OUTPUT/images.csv, and ends with one line
-// per row:
-//   evaluate_color_priors: prior=joint images=.. venues=.. white_mean_error=.. green_recall=.. white_recall=..
-//       white_precision=..
+// field pixels (green) and of its line pixels (white); images whose names differ only in a
+// trailing frame number are one venue (venueOf below). Leave one venue out: a prior over the two
+// colours' means is learnt from the other venues (color/prior_learning.h, learnPrior; each venue
+// one data set of its images); at each image of the venue left out the robot sees its carpet
+// without a pose (the pixels the pose-free segmentation, color/field_segmentation.h, calls
+// carpet, not the mask's) and updates the prior's filter with that colour alone (eqs. 3-5); the
+// line paint it did not observe is then what the prior predicts from the carpet: jointly, the
+// carpet's offset from the venues' mean moves the paint's mean by their learnt covariance;
+// independently, the paint stays at the prior mean. Scores per image: the predicted paint mean's
+// distance to the mask's line pixels' mean (YUV levels), and each colour's recall over its mask
+// pixels (the share the posterior's classifier, eq. 9 with the unknown threshold, gives that
+// colour), with the line's precision among the field and line pixels. Rows: the prior alone (no
+// observation), the independent prior after the carpet, the joint prior after the carpet, and
+// both colours observed from the mask (the bound). Prints one CSV line per image and row, writes
+// it to OUTPUT/images.csv, and ends with one line per row:
+//   evaluate_color_priors: prior=joint images=.. venues=.. white_mean_error=.. green_recall=..
+//       white_recall=.. white_precision=..
 #include <Eigen/Core>
 #include <cctype>
 #include <cstdio>
@@ -97,10 +97,11 @@ Scores score(const color::ColorFilter& filter, const Venue& v, const color::Colo
 int main(int argc, char** argv) {
   tools::CommandLine cli("evaluate_color_priors",
                          "Colour priors learnt jointly versus independently, at a venue left out "
-                         "(one image and its mask per venue): the line paint's colour predicted "
-                         "from the carpet, and each colour's classification.");
+                         "(images with their masks; names that differ only in a trailing frame "
+                         "number are one venue): the line paint's colour predicted from the "
+                         "carpet, and each colour's classification.");
   std::string images_dir, masks_dir;
-  cli.option("images", &images_dir, "folder of camera images, one venue each")->required();
+  cli.option("images", &images_dir, "folder of camera images")->required();
   cli.option("masks", &masks_dir,
              "folder of masks of the same names (2 line, 3 field; the rest is not scored)")
       ->required();
@@ -135,6 +136,11 @@ int main(int argc, char** argv) {
       v.carpet.counts[white] = 0;  // the paint is what the prior has to predict
       venues.push_back(std::move(v));
     }
+    std::set<std::string> names;
+    for (const Venue& v : venues) names.insert(v.venue);
+    if (names.size() < 3)
+      throw std::runtime_error(images_dir + ": " + std::to_string(names.size()) +
+                               " venues; leaving one out needs at least 3");
     fs::create_directories(output);
     std::ofstream csv(fs::path(output) / "images.csv");
     const std::string header =
@@ -143,11 +149,6 @@ int main(int argc, char** argv) {
     std::cout << header << "\n";
     const char* rows[] = {"prior_alone", "independent", "joint", "both_observed"};
     std::vector<Scores> sums(4);
-    std::set<std::string> names;
-    for (const Venue& v : venues) names.insert(v.venue);
-    if (names.size() < 3)
-      throw std::runtime_error(images_dir + ": " + std::to_string(names.size()) +
-                               " venues; leaving one out needs at least 3");
     for (std::size_t i = 0; i < venues.size(); ++i) {
       // The other venues, each one data set of its images (the hierarchical model's environments).
       std::map<std::string, color::LightingDataSet> by_venue;
@@ -183,10 +184,10 @@ int main(int argc, char** argv) {
     const double n = static_cast<double>(venues.size());
     for (int r = 0; r < 4; ++r)
       std::printf(
-          "evaluate_color_priors: prior=%s images=%zu venues=%zu white_mean_error=%.2f green_recall=%.3f "
-          "white_recall=%.3f white_precision=%.3f\n",
-          rows[r], venues.size(), names.size(), sums[r].white_mean_error / n, sums[r].green_recall / n,
-          sums[r].white_recall / n, sums[r].white_precision / n);
+          "evaluate_color_priors: prior=%s images=%zu venues=%zu white_mean_error=%.2f "
+          "green_recall=%.3f white_recall=%.3f white_precision=%.3f\n",
+          rows[r], venues.size(), names.size(), sums[r].white_mean_error / n,
+          sums[r].green_recall / n, sums[r].white_recall / n, sums[r].white_precision / n);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_color_priors: " << e.what() << "\n";
     return 1;

@@ -36,8 +36,9 @@ struct LabelledImage {
 };
 
 /// Calls `fn` for each labelled image in order; returns the number delivered. Throws
-/// std::runtime_error when the bag or list cannot be opened. `keep_unplaced`: images labelled
-/// "none" are delivered too (a reference drive keeps every image).
+/// std::runtime_error when the bag or list cannot be opened (or, without `keep_unplaced`, the bag
+/// has no ground_truth/place). `keep_unplaced`: every image is delivered, those outside every
+/// place (or before the first place message) labelled "none" (a reference drive keeps them all).
 inline long forEachLabelledImage(const std::string& bag_path, const std::string& list_path,
                                  const std::function<void(const LabelledImage&)>& fn,
                                  bool keep_unplaced = false) {
@@ -75,7 +76,7 @@ inline long forEachLabelledImage(const std::string& bag_path, const std::string&
     for (const rosbag::MessageInstance& m : v)
       if (const auto s = m.instantiate<std_msgs::String>()) places[m.getTime().toSec()] = s->data;
   }
-  if (places.empty())
+  if (places.empty() && !keep_unplaced)
     throw std::runtime_error(bag_path + ": no " + place_topic +
                              " messages: cannot label the images (use --list for image lists)");
   std::map<double, std::array<double, 3>> poses;
@@ -103,13 +104,14 @@ inline long forEachLabelledImage(const std::string& bag_path, const std::string&
     const auto img = m.instantiate<sensor_msgs::Image>();
     if (!img) continue;
     const double t = img->header.stamp.toSec();
+    std::string label = "none";
     auto it = places.upper_bound(t + 1e-6);
-    if (it == places.begin()) {
-      ++skipped;
+    if (it != places.begin()) label = std::prev(it)->second;
+    if (keep_unplaced && label.empty()) label = "none";
+    if (label.empty() || (label == "none" && !keep_unplaced)) {
+      if (it == places.begin() && !keep_unplaced) ++skipped;
       continue;
     }
-    --it;
-    if (it->second.empty() || (it->second == "none" && !keep_unplaced)) continue;
     LabelledImage li;
     try {
       li.bgr = ros_conv::imageToBgr8(*img);
@@ -118,7 +120,7 @@ inline long forEachLabelledImage(const std::string& bag_path, const std::string&
       ++skipped;
       continue;
     }
-    li.label = it->second;
+    li.label = label;
     char src[64];
     std::snprintf(src, sizeof(src), "@%.3f", t);
     li.source = bag_path + src;

@@ -93,6 +93,10 @@ int main(int argc, char** argv) {
     const places::DatabaseSettings wanted = places::DatabaseSettings::fromHistogramConfig(hc);
     places::PlaceDatabase db = places::PlaceDatabase::openOrCreate(db_path, wanted);
     if (explicit_settings) db.requireSettings(wanted);
+    if (route && !db.places().empty())
+      throw std::runtime_error(db_path + ": --route makes a database of one drive; this one has " +
+                               std::to_string(db.places().size()) +
+                               " places already (give a new file)");
     db.beginBatch();
     const places::HistogramConfig use = db.settings().histogramConfig();
     const places::GlobalDescriptorConfig descriptors =

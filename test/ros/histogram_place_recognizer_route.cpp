@@ -97,7 +97,8 @@ TEST(HistogramPlaceRecognizerRoute, FollowsTheRouteAndRecoversFromAKidnap) {
   EXPECT_LE(recovered, settle);
   EXPECT_GE(shareRight(after, settle, tolerance), min_share);
   if (n_wrong > 0) {
-    EXPECT_GT(conf_right / n_right, conf_wrong / n_wrong) << "the posterior mass must mean something";
+    EXPECT_GT(conf_right / n_right, conf_wrong / n_wrong)
+        << "the posterior mass must mean something";
   }
 }
 

@@ -69,6 +69,10 @@ class NaoFieldReplay : public ::testing::Test {
     }
     ros::WallDuration(3.0).sleep();
   }
+  void TearDown() override {  // no callback may run on the members after this
+    spinner_.stop();
+    subs_.clear();
+  }
 
   ros::NodeHandle nh_;
   ros::AsyncSpinner spinner_{2};

@@ -62,7 +62,8 @@ struct RbpfConfig {
   GlobalLocalizationConfig global;      // the global search after initUniform()
   RelocalizationConfig relocalization;  // the check that the particles are not lost
   MirrorTestConfig mirror_test;         // which half of the field
-  // At the first image after initUniform() / initGaussian(), the priors (of the particles, the
+  // At the first image after initUniform() / initGaussian() that shows carpet (the pose-free
+  // segmentation's, at least the model's min_pixels_per_color), the priors (of the particles, the
   // searches and the mirror test) are adapted to that image without a pose
   // (color/image_adapted_prior.h): for a camera at a venue the priors were not learnt from, such
   // as a real robot's with the simulated venues' priors. Off for a venue of the priors: the

@@ -125,17 +125,18 @@ struct BoxTrackerConfig {
   bool unreliable_stops_learning = false;
   // Re-detection: after this many frames in a row reported lost, the whole frame is searched, each
   // frame, until the target is back. The redetect_places best places of the target's colours
-  // (tracking/redetection.h, at the estimate's size, farther than a box side from it) are each
+  // (tracking/redetection.h, at the target's size when last followed, farther than a box side
+  // from the estimate) are each
   // given to the correlation filter (a window about the place at the target's scale when last
   // followed), and the target jumps to the best answer only where both cues agree: the filter's
   // response is as sharp as it was while the target was followed (APCE at least
   // reliable_apce_ratio of its mean then) with a higher peak than at the estimate, and the colour
   // score at that peak reaches reliable_peak_ratio of its mean then and beats the estimate's. The
   // search ends there, or when the estimate's own peak and colours reach reliable_peak_ratio of
-  // those means again; while it runs, the models do not learn. 0 turns it off. 5 on the
-  // development sequences (mean success 0.806 -> 0.811, AUC 0.621 -> 0.631; 2 searched on false
-  // alarms, 0.792 / 0.613; 10 and 20 found less; left out one at a time, each sequence's choice
-  // among 0, 2, 5, 10, 20 was 5: docs/tracking_real_video.md).
+  // those means again; while it runs, the models do not learn, and a target taken back starts its
+  // means again from those. 0 turns it off. 5 on the development sequences (mean success 0.806 ->
+  // 0.807, AUC 0.621 -> 0.626; 2 searched on false alarms, 0.792 / 0.613; 10 the same AUC, 20
+  // nothing; left out one at a time 0.806 / 0.624: docs/tracking_real_video.md).
   int redetect_after_frames = 5;  // 0..1000
   int redetect_places = 5;        // 1..100
   /// The fields condensation_tracker sets (config/fields.h: ~box_samples, ~box_filter_gain,

@@ -8,7 +8,8 @@
 // box tracker's colour score of a box of `box_size` centred there (the mean of P inside minus the
 // mean in the ring out to ring_scale times the box). Places are the centres of a grid half a box
 // side apart (boxes wholly inside the frame); a place is returned when no place within one box
-// side (in x and in y) scores higher; at most `count`, best first, each with its score.
+// side (in x and in y) scores higher; at most `count`, best first, each with its score. A box
+// larger than the frame has no place.
 #include <opencv2/core.hpp>
 #include <vector>
 

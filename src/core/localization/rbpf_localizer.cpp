@@ -1,7 +1,5 @@
 #include "adaptive_perception/localization/rbpf_localizer.h"
 
-#include "adaptive_perception/color/image_adapted_prior.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +11,7 @@
 #include "adaptive_perception/math/gaussian.h"
 #include "adaptive_perception/math/parallel_for.h"
 #include "adaptive_perception/math/particle_set.h"
+#include "adaptive_perception/world/color_class.h"
 
 namespace adaptive_perception::localization {
 
@@ -148,9 +147,13 @@ void RbpfLocalizer::setImage(const cv::Mat& yuv) {
 
 void RbpfLocalizer::adaptPriorsIfPending(const cv::Mat& yuv) {
   if (!adapt_pending_) return;
+  const color::FieldSegmentation seg =
+      color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
+  // An image without carpet (the head up, a dark start-up frame) says nothing: the next one adapts.
+  if (cv::countNonZero(seg.labels == world::kGreen) < config_.model.min_pixels_per_color) return;
   adapt_pending_ = false;
-  const std::vector<color::LightingPrior> adapted = color::adaptPriorsToImage(
-      priors_, yuv, color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()), config_.model);
+  const std::vector<color::LightingPrior> adapted =
+      color::adaptPriorsToImage(priors_, yuv, seg, config_.model);
   prior_lighting_ = color::SwitchingColorFilter(adapted, config_.model, config_.switching);
   mirror_test_ = MirrorTest(adapted, config_.model, config_.switching, config_.mirror_test);
   for (Particle& p : particles_) p.lighting = prior_lighting_;

@@ -394,6 +394,10 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
     // Taken back: the samples start again at the place found; nothing is learnt from this frame.
     out.redetected = true;
     out.lost = out.unreliable = false;
+    // The means took in the lost frames: they start again from those of when it was followed.
+    mean_peak_ = reference_peak_;
+    mean_apce_ = reference_apce_;
+    mean_colour_ = reference_colour_;
     lost_run_ = lost_frames_ = 0;
     searching_ = false;
     vx_ = vy_ = 0.0;

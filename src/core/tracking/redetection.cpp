@@ -22,9 +22,9 @@ std::vector<ColourPlace> colourPlaces(const cv::Mat& likelihood, const cv::Size2
   cv::integral(likelihood, sat, CV_64F);
   const double step_x = std::max(1.0, box_size.width / 2);
   const double step_y = std::max(1.0, box_size.height / 2);
-  const int nx = static_cast<int>((likelihood.cols - box_size.width) / step_x) + 1;
-  const int ny = static_cast<int>((likelihood.rows - box_size.height) / step_y) + 1;
-  if (nx < 1 || ny < 1) return {};
+  if (box_size.width > likelihood.cols || box_size.height > likelihood.rows) return {};
+  const int nx = static_cast<int>(std::floor((likelihood.cols - box_size.width) / step_x)) + 1;
+  const int ny = static_cast<int>(std::floor((likelihood.rows - box_size.height) / step_y)) + 1;
   cv::Mat scores(ny, nx, CV_64F);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
