@@ -96,7 +96,8 @@ int main(int argc, char** argv) {
     fs::create_directories(output);
     std::ofstream csv(fs::path(output) / "images.csv");
     const std::string header =
-        "image,x_m,y_m,heading_deg,spread_m,cluster_weight,true_x_m,true_y_m,position_error_m,ms";
+        "image,x_m,y_m,heading_deg,spread_m,cluster_weight,true_x_m,true_y_m,position_error_m,ms,"
+        "goals_seen,camera_pitch_offset_rad,mirror_evidence";
     csv << header << "\n";
     std::cout << header << "\n";
     std::vector<double> errors;
@@ -116,8 +117,14 @@ int main(int argc, char** argv) {
       const auto t0 = Clock::now();
       localization::RbpfLocalizer rbpf(map, camera.camera, priors, cfg);
       rbpf.initUniform();
-      for (int k = 0; k < frames; ++k)
-        rbpf.step(math::SE2(), k == 0 ? 0.0 : 1.0 / 30.0, yuv, base_to_optical);
+      int goals = -1;
+      double pitch_offset = 0.0, mirror_evidence = 0.0;
+      for (int k = 0; k < frames; ++k) {
+        const auto r = rbpf.step(math::SE2(), k == 0 ? 0.0 : 1.0 / 30.0, yuv, base_to_optical);
+        if (r.goal_sightings >= 0) goals = r.goal_sightings;
+        mirror_evidence = r.mirror_evidence;
+        pitch_offset = r.camera_pitch_offset_rad;
+      }
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
       ms_total += ms;
       const localization::PoseEstimate est = rbpf.estimate();
@@ -129,17 +136,19 @@ int main(int argc, char** argv) {
       }
       const std::string name = fs::path(item.path).parent_path().filename().string() + "_" +
                                fs::path(item.path).stem().string();
-      char line[512];
-      std::snprintf(line, sizeof line, "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f",
+      char line[640];
+      std::snprintf(line, sizeof line, "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f,%d,%.4f,%.2f",
                     item.path.c_str(), est.pose.x_m, est.pose.y_m, math::radToDeg(est.pose.yaw_rad),
                     est.spread_m, est.cluster_weight,
                     item.truth_xy_m ? std::to_string(item.truth_xy_m->x()).c_str() : "",
-                    item.truth_xy_m ? std::to_string(item.truth_xy_m->y()).c_str() : "", error, ms);
+                    item.truth_xy_m ? std::to_string(item.truth_xy_m->y()).c_str() : "", error, ms,
+                    goals, pitch_offset, mirror_evidence);
       std::cout << line << std::endl;
       csv << line << "\n";
       cv::imwrite((fs::path(output) / (name + ".png")).string(),
                   drawEstimate(bgr, map, camera.camera,
-                               world::planarToIsometry(est.pose) * base_to_optical));
+                               world::planarToIsometry(est.pose) * base_to_optical *
+                                   Eigen::AngleAxisd(-pitch_offset, Eigen::Vector3d::UnitX())));
     }
     double median = -1.0;
     int within = 0;

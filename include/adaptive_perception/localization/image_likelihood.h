@@ -147,6 +147,7 @@ class ImageLikelihood {
 
   const world::FieldMap& map() const { return renderer_.map(); }
   const world::PinholeCamera& camera() const { return renderer_.camera(); }
+  const world::LabelRenderer& renderer() const { return renderer_; }
   const ImageLikelihoodConfig& config() const { return config_; }
 
  private:

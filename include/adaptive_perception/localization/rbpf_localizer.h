@@ -31,6 +31,7 @@
 
 #include "adaptive_perception/color/switching_color_filter.h"
 #include "adaptive_perception/localization/global_localization.h"
+#include "adaptive_perception/localization/goal_detection.h"
 #include "adaptive_perception/localization/image_likelihood.h"
 #include "adaptive_perception/localization/mirror_test.h"
 #include "adaptive_perception/localization/motion_model.h"
@@ -62,6 +63,14 @@ struct RbpfConfig {
   GlobalLocalizationConfig global;      // the global search after initUniform()
   RelocalizationConfig relocalization;  // the check that the particles are not lost
   MirrorTestConfig mirror_test;         // which half of the field
+  GoalDetectionConfig goals;            // goals seen, for the global search's pool
+  // The camera's pitch beyond the head chain's, as the goal seen at a global start measures it
+  // (GoalSighting::pitch_offset_rad), is added to every camera pose until the particles are
+  // placed anew (initUniform(), initGaussian()).
+  // A legged robot's stance tilts its camera by more than its head joints say (0.09 rad on one
+  // development point of docs/field_localization.md), and the likelihood needs the pitch to a few
+  // thousandths of a radian.
+  bool goal_pitch_correction = true;
   // At the first image after initUniform() / initGaussian() that shows carpet (the pose-free
   // segmentation's, at least the model's min_pixels_per_color), the priors (of the particles, the
   // searches and the mirror test) are adapted to that image without a pose
@@ -128,9 +137,14 @@ class RbpfLocalizer {
     // whether the particles were moved to their mirrors.
     double mirror_evidence = 0.0;
     bool mirror_flipped = false;
+    // Goals seen on the first image of a global search (goal_detection.h; -1: not looked for).
+    int goal_sightings = -1;
+    // The camera pitch correction in use (goal_pitch_correction).
+    double camera_pitch_offset_rad = 0.0;
   };
   /// One image: odometry delta since the previous image (in the previous base frame), elapsed time,
-  /// the YUV image (CV_8UC3) and the camera pose on the robot (base_link -> camera_optical_frame).
+  /// the YUV image (CV_8UC3) and the camera pose on the robot (base_link -> camera_optical_frame;
+  /// the goal_pitch_correction's offset is added to it).
   StepResult step(const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv,
                   const Eigen::Isometry3d& base_to_optical);
 
@@ -173,6 +187,10 @@ class RbpfLocalizer {
   /// A lighting filter at the priors (the particles' start, and the searches' lighting).
   const color::SwitchingColorFilter& priorLighting() const { return prior_lighting_; }
 
+  /// The global search's goal proposals for this image (its first): poses drawn around the goals
+  /// it shows; sets result->goal_sightings and, with goal_pitch_correction, the pitch offset.
+  std::vector<math::SE2> goalProposals(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
+                                       std::uint64_t frame_seed, StepResult* result);
   /// Adapts the priors to this image (adapt_priors_to_image) when the particles were just placed.
   void adaptPriorsIfPending(const cv::Mat& yuv);
 
@@ -192,6 +210,7 @@ class RbpfLocalizer {
   Eigen::Isometry3d offsets_camera_ = Eigen::Isometry3d(Eigen::Matrix4d::Zero());  // image_'s
   std::vector<int> pixels_used_;
   std::uint64_t frame_ = 0;
+  double pitch_offset_rad_ = 0.0;  // goal_pitch_correction's
 };
 
 }  // namespace adaptive_perception::localization

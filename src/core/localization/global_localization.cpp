@@ -1,5 +1,7 @@
 #include "adaptive_perception/localization/global_localization.h"
 
+#include <algorithm>
+
 #include "adaptive_perception/math/parallel_for.h"
 
 namespace adaptive_perception::localization {
@@ -14,6 +16,7 @@ void GlobalLocalization::clearPool() {
   pool_ll_.clear();
   pool_ll_.shrink_to_fit();
   frames_ = 0;
+  from_proposals_ = false;
 }
 
 void GlobalLocalization::start() {
@@ -30,7 +33,7 @@ void GlobalLocalization::stop() {
 GlobalLocalization::SearchStep GlobalLocalization::searchImage(
     PoseSearch* search, const math::SE2& odom_delta, const cv::Mat& yuv,
     const color::SwitchingColorFilter& lighting, const Eigen::Isometry3d& base_to_optical,
-    std::uint64_t seed, int count, math::Rng& rng) {
+    std::uint64_t seed, int count, math::Rng& rng, const std::vector<math::SE2>& proposals) {
   SampledImage image = search->coarseImage(yuv, base_to_optical);
   const std::size_t n = static_cast<std::size_t>(config_.pool_size);
   const bool first = pool_.empty();
@@ -38,6 +41,10 @@ GlobalLocalization::SearchStep GlobalLocalization::searchImage(
     pool_.resize(n);
     pool_ll_.assign(n, 0.0);
     search->fillUniform(&pool_, n, seed);
+    const std::size_t share = static_cast<std::size_t>(config_.goal_pool_share * n) / 2 * 2;
+    const std::size_t taken = std::min(share, proposals.size() / 2 * 2);
+    std::copy_n(proposals.begin(), taken, pool_.begin());
+    from_proposals_ = taken > 0;
   }
   search->score(&pool_, &pool_ll_, 0, !first, odom_delta, image, lighting, base_to_optical);
   ++frames_;
@@ -48,7 +55,7 @@ GlobalLocalization::SearchStep GlobalLocalization::searchImage(
   for (std::size_t i : search->draw(pool_ll_, n, count, rng)) step.poses.push_back(pool_[i]);
   if (!step.committed) return step;
   searching_ = false;
-  confirming_ = config_.confirm_frames > config_.search_frames;
+  confirming_ = config_.confirm_frames > config_.search_frames && !from_proposals_;
   if (!confirming_) {
     search->clearWindow();
     clearPool();

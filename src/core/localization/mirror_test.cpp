@@ -23,7 +23,7 @@ void MirrorTest::reset() {
 
 MirrorTest::Result MirrorTest::observe(const math::SE2& pose, const math::SE2& odom_delta,
                                        double dt_s, bool restart, const ImageLikelihood& likelihood,
-                                       const SampledImage& image,
+                                       const SampledImage& image, const cv::Mat& yuv,
                                        const Eigen::Isometry3d& base_to_optical) {
   Result result;
   if (config_.margin_nats <= 0.0) return result;
@@ -49,8 +49,17 @@ MirrorTest::Result MirrorTest::observe(const math::SE2& pose, const math::SE2& o
       likelihood.logLikelihood(image, pose, lighting_, base_to_optical, &obs, nullptr);
   const double ll_mirror = likelihood.logLikelihood(image, math::pointMirror(pose), lighting_,
                                                     base_to_optical, nullptr, nullptr);
+  double hues = 0.0;
+  const world::FieldDimensions& field = likelihood.map().dimensions();
+  if (config_.landmarks.concentration > 0.0 &&
+      field.goal_color_minus_x == field.goal_color_plus_x) {
+    hues = landmarkMirrorEvidence(yuv, likelihood.renderer(), pose, base_to_optical,
+                                  config_.landmarks)
+               .mirror_minus_pose_nats;
+  }
   const double view_share = dt > 0.0 ? std::min(1.0, dt / config_.view_interval_s) : 1.0;
-  evidence_ = evidence_ * std::exp(-dt / config_.memory_s) + view_share * (ll_mirror - ll_pose);
+  evidence_ = evidence_ * std::exp(-dt / config_.memory_s) +
+              view_share * (ll_mirror - ll_pose + hues);
   // Only the colours that look alike from both poses teach the reference lighting.
   const auto& classes = model_.classes;
   for (std::size_t k = 0; k < obs.counts.size() && k < classes.size(); ++k)

@@ -3,6 +3,8 @@
 // evaluate_localization and the doc page. The node's parameters are one flat namespace, so the
 // parts' names stand together here (Fields refuses a name declared twice).
 #include "adaptive_perception/localization/global_localization.h"
+#include "adaptive_perception/localization/goal_detection.h"
+#include "adaptive_perception/localization/landmark_colours.h"
 #include "adaptive_perception/localization/image_likelihood.h"
 #include "adaptive_perception/localization/mirror_test.h"
 #include "adaptive_perception/localization/motion_model.h"
@@ -28,6 +30,9 @@ const config::Fields<RbpfConfig>& RbpfConfig::fields() {
           .add("mode_stay_probability", &C::switching,
                &color::SwitchingFilterConfig::mode_stay_probability, config::closed(1e-3, 1),
                "probability that the lighting stays in its mode from one image to the next")
+          .add("goal_pitch_correction", &C::goal_pitch_correction,
+               "the camera pitch a goal seen at a global start measures is added to the head "
+               "chain's until the next global start")
           .add("adapt_priors_to_image", &C::adapt_priors_to_image,
                "the priors are adapted to the first image after a start, without a pose (a "
                "camera at a venue the priors were not learnt from, such as a real robot's)")
@@ -36,7 +41,8 @@ const config::Fields<RbpfConfig>& RbpfConfig::fields() {
           .nest(&C::search, PoseSearchConfig::fields())
           .nest(&C::global, GlobalLocalizationConfig::fields())
           .nest(&C::relocalization, RelocalizationConfig::fields())
-          .nest(&C::mirror_test, MirrorTestConfig::fields());
+          .nest(&C::mirror_test, MirrorTestConfig::fields())
+          .nest(&C::goals, GoalDetectionConfig::fields());
   return f;
 }
 
@@ -119,7 +125,9 @@ const config::Fields<GlobalLocalizationConfig>& GlobalLocalizationConfig::fields
           .add("global_confirm_fraction", &C::confirm_fraction, config::closed(0, 1),
                "share of the particles drawn again from the pool at the second draw")
           .add("refine_candidates", &C::refine_candidates, config::closed(0, 1000000),
-               "best poses refined at the commit and at the second draw");
+               "best poses refined at the commit and at the second draw")
+          .add("global_goal_pool_share", &C::goal_pool_share, config::closed(0, 1),
+               "share of the global search's pool drawn from the goals its first image shows");
   return f;
 }
 
@@ -151,7 +159,8 @@ const config::Fields<MirrorTestConfig>& MirrorTestConfig::fields() {
           .add("mirror_test_memory_s", &C::memory_s, config::aboveZero(1e6),
                "time constant of the evidence's fading (s)")
           .add("mirror_test_view_interval_s", &C::view_interval_s, config::aboveZero(60),
-               "images closer in time than this count as a share of one view (s)");
+               "images closer in time than this count as a share of one view (s)")
+          .nest(&C::landmarks, LandmarkColourConfig::fields());
   return f;
 }
 

@@ -88,6 +88,7 @@ void RbpfLocalizer::resetSearches() {
 
 void RbpfLocalizer::initUniform() {
   adapt_pending_ = config_.adapt_priors_to_image;
+  pitch_offset_rad_ = 0.0;
   particles_.clear();
   const color::SwitchingColorFilter lighting = priorLighting();
   for (int i = 0; i < config_.particles; ++i)
@@ -98,6 +99,7 @@ void RbpfLocalizer::initUniform() {
 
 void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& cov) {
   adapt_pending_ = config_.adapt_priors_to_image;
+  pitch_offset_rad_ = 0.0;
   particles_.clear();
   const color::SwitchingColorFilter lighting = priorLighting();
   const math::Gaussian g(Eigen::Vector3d(mean.x_m, mean.y_m, mean.yaw_rad), cov);
@@ -143,6 +145,30 @@ void RbpfLocalizer::setImage(const cv::Mat& yuv) {
   }
   search_.setBackground(background);
   likelihood_->setColours(yuv, &image_, background.get());
+}
+
+std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
+                                                    const Eigen::Isometry3d& base_to_optical,
+                                                    std::uint64_t frame_seed,
+                                                    StepResult* result) {
+  const int count = static_cast<int>(config_.global.goal_pool_share * config_.global.pool_size);
+  if (count < 2 || likelihood_->map().dimensions().goal_post_diameter_m <= 0.0) return {};
+  const color::FieldSegmentation seg =
+      color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
+  const std::vector<GoalSighting> sightings = detectGoals(
+      yuv, seg, likelihood_->camera(), base_to_optical, likelihood_->map(), config_.goals);
+  result->goal_sightings = static_cast<int>(sightings.size());
+  if (config_.goal_pitch_correction && !sightings.empty())
+    pitch_offset_rad_ = sightings.front().pitch_offset_rad;
+  // Each sighting gets its share of the proposals.
+  std::vector<math::SE2> proposals;
+  math::Rng rng(math::mixSeeds(frame_seed, 0x60a1));
+  for (const GoalSighting& s : sightings) {
+    const int share = count / static_cast<int>(sightings.size());
+    for (const math::SE2& p : sampleGoalPoses(s, likelihood_->map(), config_.goals, share, rng))
+      proposals.push_back(p);
+  }
+  return proposals;
 }
 
 void RbpfLocalizer::adaptPriorsIfPending(const cv::Mat& yuv) {
@@ -211,22 +237,28 @@ bool RbpfLocalizer::applyContest(PoseContest contest, const color::SwitchingColo
 
 RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, double dt_s,
                                               const cv::Mat& yuv,
-                                              const Eigen::Isometry3d& base_to_optical) {
+                                              const Eigen::Isometry3d& head_base_to_optical) {
   setImage(yuv);
   adaptPriorsIfPending(yuv);
+  const std::uint64_t frame_seed = math::mixSeeds(config_.seed, ++frame_);
+  StepResult r;
+  // A global search's first image: the goals it shows (and the camera pitch they measure).
+  std::vector<math::SE2> proposals;
+  if (global_.poolPending()) proposals = goalProposals(yuv, head_base_to_optical, frame_seed, &r);
+  const Eigen::Isometry3d base_to_optical =
+      head_base_to_optical * Eigen::AngleAxisd(-pitch_offset_rad_, Eigen::Vector3d::UnitX());
+  r.camera_pitch_offset_rad = pitch_offset_rad_;
   if (offsets_camera_.matrix() != base_to_optical.matrix()) {
     likelihood_->setOffsets(base_to_optical, &image_);
     offsets_camera_ = base_to_optical;
   }
-  const std::uint64_t frame_seed = math::mixSeeds(config_.seed, ++frame_);
-  StepResult r;
   // While the global search runs, the particles are drawn from its pool, which carries this
   // image's odometry already.
   const bool moved = global_.searching();
   if (moved) {
     GlobalLocalization::SearchStep s =
         global_.searchImage(&search_, odom_delta, yuv, priorLighting(), base_to_optical, frame_seed,
-                            config_.particles, rng_);
+                            config_.particles, rng_, proposals);
     const color::SwitchingColorFilter lighting = priorLighting();
     particles_.clear();
     for (const math::SE2& p : s.poses) particles_.push_back({p, lighting, 0.0});
@@ -281,7 +313,7 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
   if (config_.mirror_test.margin_nats > 0.0) {
     const MirrorTest::Result m =
         mirror_test_.observe(estimate().pose, delta, dt_s, r.relocalized || r.second_draw,
-                             *likelihood_, image_, base_to_optical);
+                             *likelihood_, image_, yuv, base_to_optical);
     if (m.flip) {
       // Only the hypothesis the evidence was summed for moves; other clusters (a relocalization's
       // draw) keep their places.

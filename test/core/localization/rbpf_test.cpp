@@ -465,6 +465,7 @@ TEST(Rbpf, MirrorTestCountsViewsNotFrames) {
   RbpfConfig cfg;
   const ImageLikelihood likelihood(s.map, s.cam, cfg.model, cfg.likelihood);
   SampledImage image = likelihood.grid(cfg.likelihood.pixel_stride);
+  cv::Mat yuv;
   // A view with a beacon or goal in it, where the pose and its mirror score apart.
   for (double t = 0.5;; t += 0.5) {
     ASSERT_LT(t, 20.0) << "no beacon or goal in view";
@@ -474,7 +475,8 @@ TEST(Rbpf, MirrorTestCountsViewsNotFrames) {
     for (size_t k = 0; k < img.labels.total(); ++k)
       non_field += img.labels.data[k] >= 2 && img.labels.data[k] <= 4;
     if (non_field < 200) continue;
-    likelihood.setColours(color::unpackUyvy(img.uyvy), &image, nullptr);
+    yuv = color::unpackUyvy(img.uyvy);
+    likelihood.setColours(yuv, &image, nullptr);
     break;
   }
   const Eigen::Isometry3d b2o = s.head.baseToOptical(sim.state().pan_rad, sim.state().tilt_rad);
@@ -486,7 +488,8 @@ TEST(Rbpf, MirrorTestCountsViewsNotFrames) {
     MirrorTest test(s.priors, cfg.model, cfg.switching, mc);
     double e = 0.0;
     for (int k = 0; k < frames; ++k)
-      e = test.observe(sim.state().true_pose, math::SE2(), dt_s, false, likelihood, image, b2o)
+      e = test.observe(sim.state().true_pose, math::SE2(), dt_s, false, likelihood, image, yuv,
+                       b2o)
               .evidence;
     return e;
   };

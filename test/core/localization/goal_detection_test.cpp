@@ -1,0 +1,180 @@
+// Goal sightings and the landmarks' hues, on images rendered from the map at known poses (the
+// renderer's geometry, independent of the detector's inversion of it).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/color/field_segmentation.h"
+#include "adaptive_perception/localization/goal_detection.h"
+#include "adaptive_perception/localization/landmark_colours.h"
+#include "adaptive_perception/world/label_renderer.h"
+#include "adaptive_perception/world/robot_camera.h"
+
+namespace adaptive_perception::localization {
+namespace {
+
+const std::string kConfig = std::string(AP_SOURCE_DIR) + "/config/";
+
+struct Scene {
+  world::FieldMap map = world::FieldMap::loadYaml(kConfig + "field_spl_landmarks.yaml");
+  world::RobotCamera nao = world::RobotCamera::loadYaml(kConfig + "cameras/nao_v6_top.yaml");
+  world::LabelRenderer renderer{map, nao.camera};
+  // punt1 of the development set: 6 m from the goal at -x, looking at it.
+  math::SE2 pose{1.64, 1.02, -153.6 * M_PI / 180.0};
+  Eigen::Isometry3d head = nao.baseToOptical(0.0138, 0.0782);
+
+  /// The image the map shows from `pose` with the camera at `base_to_optical`, each class
+  /// painted in its paint's colour; the room a dark grey.
+  cv::Mat render(const math::SE2& at, const Eigen::Isometry3d& base_to_optical) const {
+    cv::Mat labels(nao.camera.height_px, nao.camera.width_px, CV_8UC1);
+    renderer.renderImage(world::planarToIsometry(at) * base_to_optical, labels.data);
+    cv::Mat yuv(labels.size(), CV_8UC3);
+    for (int v = 0; v < labels.rows; ++v) {
+      for (int u = 0; u < labels.cols; ++u) {
+        Eigen::Vector3d rgb(90, 80, 70);
+        switch (labels.at<std::uint8_t>(v, u)) {
+          case world::kGreen: rgb = {40, 140, 40}; break;
+          case world::kWhite: rgb = {235, 235, 235}; break;
+          case world::kPink: rgb = {255, 105, 180}; break;
+          case world::kYellow: rgb = {255, 255, 0}; break;
+          case world::kCyan: rgb = {80, 160, 230}; break;
+          default: break;
+        }
+        const Eigen::Vector3d p = color::rgbToYuv(rgb);
+        yuv.at<cv::Vec3b>(v, u) = cv::Vec3b(cv::saturate_cast<std::uint8_t>(p[0]),
+                                            cv::saturate_cast<std::uint8_t>(p[1]),
+                                            cv::saturate_cast<std::uint8_t>(p[2]));
+      }
+    }
+    return yuv;
+  }
+  std::vector<GoalSighting> detect(const cv::Mat& yuv, const Eigen::Isometry3d& b2o) const {
+    return detectGoals(yuv, color::segmentFieldYuv(yuv, {}), nao.camera, b2o, map, {});
+  }
+};
+
+/// The pose nearest `truth` among `poses`, and its distance.
+double nearest(const std::vector<math::SE2>& poses, const math::SE2& truth, math::SE2* best) {
+  double d = 1e9;
+  for (const math::SE2& p : poses) {
+    const double e = std::hypot(p.x_m - truth.x_m, p.y_m - truth.y_m);
+    if (e < d) d = e, *best = p;
+  }
+  return d;
+}
+
+TEST(GoalDetection, FindsTheGoalAndTheRobotsPoseOnARenderedImage) {
+  const Scene s;
+  const auto goals = s.detect(s.render(s.pose, s.head), s.head);
+  ASSERT_EQ(goals.size(), 1u);
+  // The feet where the posts of the goal at -x stand, seen from the pose (left in the image: the
+  // post at -y, facing -x).
+  const math::SE2 inv = s.pose.inverse();
+  const auto seen = [&](double x, double y) {
+    const math::SE2 p = inv * math::SE2(x, y, 0.0);
+    return Eigen::Vector2d(p.x_m, p.y_m);
+  };
+  const double post_x = -4.5 + 0.05 + 0.05;  // the line's inner edge, then the post's radius
+  EXPECT_LT((goals[0].left.foot_m - seen(post_x, -0.8)).norm(), 0.25);
+  EXPECT_LT((goals[0].right.foot_m - seen(post_x, 0.8)).norm(), 0.25);
+  EXPECT_NEAR(goals[0].pitch_offset_rad, 0.0, 0.01);
+  const auto poses = goalPoses(goals[0], s.map);
+  ASSERT_EQ(poses.size(), 2u);
+  math::SE2 best;
+  EXPECT_LT(nearest(poses, s.pose, &best), 0.3);
+  // The heading rests on the ratio of the posts' ranges, from their feet's rows: at 6 m one row
+  // is 2% of the range, and 2% of 6 m across the goal's 1.6 m turns the heading by 0.075 rad.
+  EXPECT_NEAR(math::wrapAngle(best.yaw_rad - s.pose.yaw_rad), 0.0, 0.075);
+  // The other is its point mirror (the other goal).
+  const math::SE2 m = math::pointMirror(best);
+  EXPECT_LT(nearest(poses, m, &best), 1e-9);
+}
+
+TEST(GoalDetection, MeasuresTheCameraPitchTheHeadChainDoesNotKnow) {
+  const Scene s;
+  const double tilt = 0.04;  // the body leans: the camera looks 0.04 rad further down
+  const Eigen::Isometry3d real = s.head * Eigen::AngleAxisd(-tilt, Eigen::Vector3d::UnitX());
+  const auto goals = s.detect(s.render(s.pose, real), s.head);
+  ASSERT_EQ(goals.size(), 1u);
+  EXPECT_NEAR(goals[0].pitch_offset_rad, tilt, 0.006);
+  math::SE2 best;
+  EXPECT_LT(nearest(goalPoses(goals[0], s.map), s.pose, &best), 0.3);
+}
+
+TEST(GoalDetection, NothingWithoutPostsOrWithoutAGoalInView) {
+  const Scene s;
+  // Facing the side line: no goal in view.
+  const math::SE2 side(0.5, -1.0, M_PI / 2);
+  EXPECT_TRUE(s.detect(s.render(side, s.head), s.head).empty());
+  // The four-legged field's goals are panels, not posts.
+  const world::FieldMap four(world::FieldDimensions{});
+  const cv::Mat yuv = s.render(s.pose, s.head);
+  EXPECT_TRUE(
+      detectGoals(yuv, color::segmentFieldYuv(yuv, {}), s.nao.camera, s.head, four, {}).empty());
+}
+
+TEST(GoalDetection, SamplesArePointMirroredPairsOnTheCarpetAroundTheTruth) {
+  const Scene s;
+  const auto goals = s.detect(s.render(s.pose, s.head), s.head);
+  ASSERT_EQ(goals.size(), 1u);
+  math::Rng rng(3);
+  const auto samples = sampleGoalPoses(goals[0], s.map, GoalDetectionConfig{}, 2000, rng);
+  ASSERT_GE(samples.size(), 1900u);
+  ASSERT_EQ(samples.size() % 2, 0u);
+  int near = 0;
+  for (std::size_t k = 0; k < samples.size(); k += 2) {
+    const math::SE2 m = math::pointMirror(samples[k]);
+    EXPECT_NEAR(samples[k + 1].x_m, m.x_m, 1e-9);
+    EXPECT_NEAR(samples[k + 1].y_m, m.y_m, 1e-9);
+    EXPECT_NEAR(math::wrapAngle(samples[k + 1].yaw_rad - m.yaw_rad), 0.0, 1e-9);
+    for (const math::SE2& p : {samples[k], samples[k + 1]}) {
+      EXPECT_TRUE(s.map.isFree(p.x_m, p.y_m, 0.0));
+      near += std::hypot(p.x_m - s.pose.x_m, p.y_m - s.pose.y_m) < 0.2 &&
+              std::abs(math::wrapAngle(p.yaw_rad - s.pose.yaw_rad)) < 0.05;
+    }
+  }
+  EXPECT_GT(near, 10);
+  // With no uncertainty every draw is goalPoses() (up to the pitch bisection's precision).
+  GoalDetectionConfig exact;
+  exact.goal_range_ratio_sd = 0.0;
+  exact.goal_bearing_sd_rad = 0.0;
+  const auto same = sampleGoalPoses(goals[0], s.map, exact, 4, rng);
+  const auto poses = goalPoses(goals[0], s.map);
+  ASSERT_EQ(same.size(), 4u);
+  EXPECT_NEAR(same[2].x_m, poses[0].x_m, 1e-6);
+  EXPECT_NEAR(same[3].y_m, poses[1].y_m, 1e-6);
+}
+
+TEST(LandmarkColours, TheHuesTellAPoseFromItsMirror) {
+  const Scene s;
+  // punt5 of the development set: the landmark yellow over pink in view.
+  const math::SE2 pose(-1.03, 0.51, -23.4 * M_PI / 180.0);
+  const Eigen::Isometry3d head = s.nao.baseToOptical(0.0138, -0.1304);
+  const cv::Mat yuv = s.render(pose, head);
+  const LandmarkColourConfig config;
+  const LandmarkColourEvidence at_truth =
+      landmarkMirrorEvidence(yuv, s.renderer, pose, head, config);
+  ASSERT_EQ(at_truth.bands, 2);  // yellow against pink, pink against cyan
+  // Each band: concentration * (cos(hue of the mirror's colour, the pixel's) - 1), the pixels
+  // having the pose's colour exactly; by hand from the paints' (U, V).
+  const auto hue = [](double r, double g, double b) {
+    const Eigen::Vector3d y = color::rgbToYuv({r, g, b});
+    return Eigen::Vector2d(y[1] - 128, y[2] - 128).normalized();
+  };
+  const Eigen::Vector2d pink = hue(255, 105, 180), yellow = hue(255, 255, 0),
+                        cyan = hue(80, 160, 230);
+  const double expected = config.concentration * ((yellow.dot(pink) - 1.0) + (pink.dot(cyan) - 1.0));
+  EXPECT_NEAR(at_truth.mirror_minus_pose_nats, expected, 0.05);
+  // From the mirror, the same evidence the other way.
+  const LandmarkColourEvidence at_mirror =
+      landmarkMirrorEvidence(yuv, s.renderer, math::pointMirror(pose), head, config);
+  EXPECT_NEAR(at_mirror.mirror_minus_pose_nats, -at_truth.mirror_minus_pose_nats, 0.05);
+  // A grey image has no hues: nothing to say.
+  const cv::Mat grey(yuv.size(), CV_8UC3, cv::Scalar(128, 128, 128));
+  EXPECT_EQ(landmarkMirrorEvidence(grey, s.renderer, pose, head, config).bands, 0);
+}
+
+}  // namespace
+}  // namespace adaptive_perception::localization
