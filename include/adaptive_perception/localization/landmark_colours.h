@@ -2,21 +2,25 @@
 // Which half of the field, from the landmarks' colours alone: a pose against its point mirror.
 //
 // On a point-symmetric field a pose and its mirror see the same lines and, where the goals are
-// alike (the SPL's white goals), the same goals; only the landmarks differ, and a landmark one
-// pose sees, the other sees at the same pixels with other bands (pink over yellow against cyan
-// over pink). The image likelihood weighs those few pixels by colour models that on a real camera
-// come from other venues. This test asks the pixels' hue alone: each band the pose puts in the
-// image (pixels where the pose's label and the mirror's differ) is compared with the hue of the
-// pose's colour and of the mirror's. A pixel's hue is the direction of its chroma (U - 128,
-// V - 128); its log-likelihood under a colour is concentration * cos(angle to the colour's hue)
-// (a von Mises density over the hue angle), pixels paler than min_chroma saying nothing. Each band
-// counts once (its pixels' mean: they see one surface and are not independent), so the evidence is
-// in nats per band. Only the landmarks' pixels are rendered (their bounding boxes' images), so the
-// test costs little at any image size.
+// alike (the SPL's white goals), the same goals; only the landmarks differ: a landmark one pose
+// sees, the other sees at the same pixels with the bands of the landmark at its point mirror (pink
+// over yellow against cyan over pink). The image likelihood weighs those few pixels by colour
+// models that on a real camera come from other venues. This test asks the pixels' hue alone.
+//
+// A pixel's similarity to a colour is the cosine between its chroma (U - 128, V - 128) and the
+// colour's hue (0 for a pixel paler than min_chroma); a band's score is its pixels' mean, a
+// landmark's the sum over its hued bands. Each landmark in view is placed twice, once with its own
+// bands and once with its mirror twin's, each at its best shift within a window (up to the
+// landmark's width sideways, one and a half bands up or down: the pose is a few centimetres and
+// degrees off, and one band's height is all that tells pink over cyan from cyan over pink), and
+// the evidence is concentration * (mirror's best score - pose's best score), summed over the
+// landmarks seen (min_fit_share): in nats, the log-ratio of von Mises densities over the hue, one
+// term per band (a band's pixels see one surface and are not independent).
 //
 // The colours' hues are those of typical paints (sRGB pink 255/105/180, yellow 255/255/0,
 // sky-blue 80/160/230, green 0/160/0, orange 255/128/0, converted as color_space.h does); white
-// and the background have none.
+// and the background have none. Only the landmarks' windows are read, so the test costs little at
+// any image size.
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
@@ -28,8 +32,15 @@ namespace adaptive_perception::localization {
 
 struct LandmarkColourConfig {
   double concentration = 2.0;  // of the hue's von Mises density (nats per unit cosine)
-  double min_chroma = 8.0;     // levels; paler pixels have no hue to speak of
-  int min_band_pixels = 6;     // bands with fewer hued pixels in the image are not scored
+  // Levels; paler pixels have no hue to speak of (a beige wall has 13 and looked yellow and pink
+  // enough to win a landmark's mirror template on the NAO development images; the landmarks'
+  // bands there have 22 to 40).
+  double min_chroma = 15.0;
+  // A landmark counts only where one of its templates fits at least this share as well as a
+  // perfect one (the mean similarity of its hued bands): where the pose puts it on nothing like
+  // it, both fit noise, and the difference of two noises is no evidence.
+  double min_fit_share = 0.5;
+  int min_band_pixels = 6;  // landmarks whose hued bands cover fewer pixels are not scored
 
   static const config::Fields<LandmarkColourConfig>& fields();
   void validate() const { fields().validate(*this); }
@@ -37,7 +48,7 @@ struct LandmarkColourConfig {
 
 struct LandmarkColourEvidence {
   double mirror_minus_pose_nats = 0.0;  // > 0: the landmarks' hues favour the mirror
-  int bands = 0;                        // bands scored
+  int landmarks = 0;                    // landmarks scored
 };
 
 /// The evidence of the landmarks in `yuv` (CV_8UC3, the camera's full image) for the point mirror

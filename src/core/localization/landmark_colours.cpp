@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <vector>
 
@@ -20,8 +22,11 @@ const config::Fields<LandmarkColourConfig>& LandmarkColourConfig::fields() {
                "mirror test does not ask the landmarks' hues)")
           .add("landmark_min_chroma", &C::min_chroma, config::closed(0, 128),
                "pixels paler than this (levels from neutral) say nothing of a landmark's hue")
+          .add("landmark_min_fit_share", &C::min_fit_share, config::closed(0, 1),
+               "a landmark is scored when one of its two templates fits at least this share as "
+               "well as a perfect one")
           .add("landmark_min_band_pixels", &C::min_band_pixels, config::closed(1, 1000000),
-               "landmark bands with fewer hued pixels in the image are not scored");
+               "landmarks whose hued bands cover fewer pixels in the image are not scored");
   return f;
 }
 
@@ -53,6 +58,49 @@ std::optional<Eigen::Vector2d> hue(std::uint8_t c) {
   return Eigen::Vector2d(yuv[1] - 128.0, yuv[2] - 128.0).normalized();
 }
 
+/// A landmark's bands in the image: each band's rows [v0, v1) and colour, over columns [u0, u1).
+struct BandTemplate {
+  int u0 = 0, u1 = 0;
+  std::vector<std::array<int, 2>> rows;
+  std::vector<std::uint8_t> pose_colours, mirror_colours;
+};
+
+/// The landmark `c` as the camera at map_to_optical sees it, with the colours of the landmark at
+/// its point mirror (which the mirror pose sees at the same pixels); none when not wholly in front
+/// of the camera, without a mirror twin or smaller than a pixel.
+std::optional<BandTemplate> bandTemplate(const world::Cylinder& c, const world::FieldMap& map,
+                                         const world::PinholeCamera& camera,
+                                         const Eigen::Isometry3d& optical_from_map) {
+  const world::Cylinder* twin = nullptr;
+  for (const world::Cylinder& o : map.cylinders()) {
+    if (o.kind == world::SurfaceKind::kBeacon && std::abs(o.cx_m + c.cx_m) < 1e-6 &&
+        std::abs(o.cy_m + c.cy_m) < 1e-6 && o.bands.size() == c.bands.size())
+      twin = &o;
+  }
+  if (!twin) return std::nullopt;
+  BandTemplate t;
+  Eigen::Vector2d centre;
+  const Eigen::Vector3d axis_top = optical_from_map * Eigen::Vector3d(c.cx_m, c.cy_m, 0.0);
+  if (!camera.project(axis_top, &centre)) return std::nullopt;
+  // Half its width: the radius at the axis's depth.
+  const double half = c.radius_m * camera.fx_px / axis_top.z();
+  t.u0 = static_cast<int>(std::lround(centre.x() - half));
+  t.u1 = static_cast<int>(std::lround(centre.x() + half)) + 1;
+  for (std::size_t k = 0; k < c.bands.size(); ++k) {
+    Eigen::Vector2d bottom, top;
+    if (!camera.project(optical_from_map * Eigen::Vector3d(c.cx_m, c.cy_m, c.bands[k].z0_m),
+                        &bottom) ||
+        !camera.project(optical_from_map * Eigen::Vector3d(c.cx_m, c.cy_m, c.bands[k].z1_m), &top))
+      return std::nullopt;
+    t.rows.push_back(
+        {static_cast<int>(std::lround(top.y())), static_cast<int>(std::lround(bottom.y()))});
+    t.pose_colours.push_back(c.bands[k].color);
+    t.mirror_colours.push_back(twin->bands[k].color);
+  }
+  if (t.u1 - t.u0 < 1) return std::nullopt;
+  return t;
+}
+
 }  // namespace
 
 LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
@@ -64,68 +112,78 @@ LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
   const world::PinholeCamera& camera = renderer.camera();
   if (yuv.type() != CV_8UC3 || yuv.cols != camera.width_px || yuv.rows != camera.height_px)
     return out;
-  // The pixels where the pose sees a landmark (its bounding box's image); the mirror pose sees
-  // the mirrored landmark at the same pixels.
-  const Eigen::Isometry3d map_to_optical = world::planarToIsometry(pose) * base_to_optical;
-  const Eigen::Isometry3d optical_from_map = map_to_optical.inverse();
-  std::vector<world::PixelCoord> pixels;
-  std::vector<std::uint8_t> seen(static_cast<std::size_t>(camera.width_px) * camera.height_px, 0);
+  const Eigen::Isometry3d optical_from_map =
+      (world::planarToIsometry(pose) * base_to_optical).inverse();
   for (const world::Cylinder& c : renderer.map().cylinders()) {
     if (c.kind != world::SurfaceKind::kBeacon || c.bands.empty()) continue;
-    double u0 = camera.width_px, u1 = -1, v0 = camera.height_px, v1 = -1;
-    bool behind = false;
-    for (double dx : {-c.radius_m, c.radius_m})
-      for (double dy : {-c.radius_m, c.radius_m})
-        for (double z : {c.bands.front().z0_m, c.bands.back().z1_m}) {
-          Eigen::Vector2d uv;
-          if (!camera.project(optical_from_map * Eigen::Vector3d(c.cx_m + dx, c.cy_m + dy, z),
-                              &uv)) {
-            behind = true;
-            continue;
-          }
-          u0 = std::min(u0, uv.x()), u1 = std::max(u1, uv.x());
-          v0 = std::min(v0, uv.y()), v1 = std::max(v1, uv.y());
+    const auto t = bandTemplate(c, renderer.map(), camera, optical_from_map);
+    if (!t) continue;
+    // The search window: the landmark shifted by up to its width sideways and one and a half of
+    // its tallest band up or down (the pose's error; a band's height is all that tells pink over
+    // cyan from cyan over pink).
+    int band_px = 1;
+    for (const auto& r : t->rows) band_px = std::max(band_px, r[1] - r[0]);
+    const int du = std::max(3, t->u1 - t->u0), dv = std::max(2, 3 * band_px / 2);
+    const cv::Rect window = cv::Rect(t->u0 - du, t->rows.back()[0] - dv, t->u1 - t->u0 + 2 * du,
+                                     t->rows.front()[1] - t->rows.back()[0] + 2 * dv) &
+                            cv::Rect(0, 0, yuv.cols, yuv.rows);
+    if (window.area() <= 0) continue;
+    // Per colour of either template, each window pixel's similarity to its hue (0 for a pixel
+    // paler than min_chroma), summed in an integral image.
+    std::array<cv::Mat, world::kNumColorClasses> sums;
+    for (int colour = 0; colour < world::kNumColorClasses; ++colour) {
+      const auto h = hue(static_cast<std::uint8_t>(colour));
+      if (!h) continue;
+      cv::Mat sim(window.size(), CV_64FC1);
+      for (int v = 0; v < window.height; ++v) {
+        const cv::Vec3b* row = yuv.ptr<cv::Vec3b>(window.y + v) + window.x;
+        for (int u = 0; u < window.width; ++u) {
+          const Eigen::Vector2d chroma(row[u][1] - 128.0, row[u][2] - 128.0);
+          const double n = chroma.norm();
+          sim.at<double>(v, u) = n >= config.min_chroma ? h->dot(chroma) / n : 0.0;
         }
-    if (behind) continue;
-    const int ua = std::max(0, static_cast<int>(std::floor(u0)) - 1);
-    const int ub = std::min(camera.width_px - 1, static_cast<int>(std::ceil(u1)) + 1);
-    const int va = std::max(0, static_cast<int>(std::floor(v0)) - 1);
-    const int vb = std::min(camera.height_px - 1, static_cast<int>(std::ceil(v1)) + 1);
-    for (int v = va; v <= vb; ++v)
-      for (int u = ua; u <= ub; ++u) {
-        auto& mark = seen[static_cast<std::size_t>(v) * camera.width_px + u];
-        if (mark) continue;
-        mark = 1;
-        pixels.push_back({static_cast<std::uint16_t>(u), static_cast<std::uint16_t>(v)});
       }
-  }
-  if (pixels.empty()) return out;
-  std::vector<std::uint8_t> mine, mirror;
-  renderer.renderPixels(map_to_optical, pixels, &mine);
-  renderer.renderPixels(world::planarToIsometry(math::pointMirror(pose)) * base_to_optical, pixels,
-                        &mirror);
-  // Per (pose colour, mirror colour) pair, a band: the sums of its hued pixels' cosines.
-  constexpr int kPairs = world::kNumColorClasses * world::kNumColorClasses;
-  std::array<double, kPairs> sum_mine{}, sum_mirror{};
-  std::array<int, kPairs> count{};
-  for (std::size_t i = 0; i < pixels.size(); ++i) {
-    const std::uint8_t a = mine[i], b = mirror[i];
-    if (a == b || a >= world::kNumColorClasses || b >= world::kNumColorClasses) continue;
-    const auto ha = hue(a), hb = hue(b);
-    if (!ha || !hb) continue;  // white against a colour: a hue cannot tell
-    const cv::Vec3b& px = yuv.at<cv::Vec3b>(pixels[i].v, pixels[i].u);
-    const Eigen::Vector2d chroma(px[1] - 128.0, px[2] - 128.0);
-    const double c = chroma.norm();
-    if (c < config.min_chroma) continue;
-    const int k = a * world::kNumColorClasses + b;
-    sum_mine[k] += ha->dot(chroma) / c;
-    sum_mirror[k] += hb->dot(chroma) / c;
-    ++count[k];
-  }
-  for (int k = 0; k < kPairs; ++k) {
-    if (count[k] < config.min_band_pixels) continue;
-    out.mirror_minus_pose_nats += config.concentration * (sum_mirror[k] - sum_mine[k]) / count[k];
-    ++out.bands;
+      cv::integral(sim, sums[static_cast<std::size_t>(colour)], CV_64F);
+    }
+    // The best placement of each template in the window: the sum over its hued bands of the mean
+    // similarity inside the band.
+    const auto best = [&](const std::vector<std::uint8_t>& colours) {
+      double best_score = -std::numeric_limits<double>::infinity();
+      int scored = 0;
+      for (int sv = -dv; sv <= dv; ++sv) {
+        for (int su = -du; su <= du; ++su) {
+          double score = 0.0;
+          int bands = 0, pixels = 0;
+          for (std::size_t k = 0; k < colours.size(); ++k) {
+            const cv::Mat& sum = sums[colours[k]];
+            if (sum.empty()) continue;  // white: no hue
+            const cv::Rect band = cv::Rect(t->u0 + su - window.x, t->rows[k][0] + sv - window.y,
+                                           t->u1 - t->u0, t->rows[k][1] - t->rows[k][0]) &
+                                  cv::Rect(0, 0, window.width, window.height);
+            if (band.area() <= 0) continue;
+            const double total = sum.at<double>(band.y + band.height, band.x + band.width) -
+                                 sum.at<double>(band.y, band.x + band.width) -
+                                 sum.at<double>(band.y + band.height, band.x) +
+                                 sum.at<double>(band.y, band.x);
+            score += total / band.area();
+            pixels += band.area();
+            ++bands;
+          }
+          if (bands == 0 || pixels < config.min_band_pixels) continue;
+          best_score = std::max(best_score, score);
+          ++scored;
+        }
+      }
+      return scored > 0 ? best_score : std::nan("");
+    };
+    const double mine = best(t->pose_colours), mirror = best(t->mirror_colours);
+    if (std::isnan(mine) || std::isnan(mirror)) continue;
+    // Seen at all: the better template fits at least min_fit_share as well as a perfect one.
+    int hued = 0;
+    for (std::uint8_t colour : t->pose_colours) hued += hue(colour).has_value();
+    if (std::max(mine, mirror) < config.min_fit_share * hued) continue;
+    out.mirror_minus_pose_nats += config.concentration * (mirror - mine);
+    ++out.landmarks;
   }
   return out;
 }
