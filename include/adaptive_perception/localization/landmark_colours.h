@@ -9,12 +9,14 @@
 //
 // A pixel's similarity to a colour is the cosine between its chroma (U - 128, V - 128) and the
 // colour's hue (0 for a pixel paler than min_chroma); a band's score is its pixels' mean, a
-// landmark's the sum over its hued bands. Each landmark in view is placed twice, once with its own
-// bands and once with its mirror twin's, each at its best shift within a window (up to the
-// landmark's width sideways, one and a half bands up or down: the pose is a few centimetres and
-// degrees off, and one band's height is all that tells pink over cyan from cyan over pink), and
-// the evidence is concentration * (mirror's best score - pose's best score), summed over the
-// landmarks seen (min_fit_share): in nats, the log-ratio of von Mises densities over the hue, one
+// template's the sum over its hued bands. Each landmark in view is found in a window around where
+// the pose puts it (up to its width sideways, one and a half bands up or down: the pose is a few
+// centimetres and degrees off, and one band's height is all that tells pink over cyan from cyan
+// over pink), at the shift where its own bands or its mirror twin's fit best; both templates are
+// scored at that one place (the two poses see the landmark at the same pixels; scored each at its
+// own best shift, the mirror's pink band found the pose's pink band and fitted as well), and the
+// evidence is concentration * (mirror's score - pose's score), summed over the landmarks seen
+// (min_fit_share): in nats, the log-ratio of von Mises densities over the hue, one
 // term per band (a band's pixels see one surface and are not independent).
 //
 // The colours' hues are those of typical paints (sRGB pink 255/105/180, yellow 255/255/0,

@@ -145,39 +145,41 @@ LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
       }
       cv::integral(sim, sums[static_cast<std::size_t>(colour)], CV_64F);
     }
-    // The best placement of each template in the window: the sum over its hued bands of the mean
-    // similarity inside the band.
-    const auto best = [&](const std::vector<std::uint8_t>& colours) {
-      double best_score = -std::numeric_limits<double>::infinity();
-      int scored = 0;
-      for (int sv = -dv; sv <= dv; ++sv) {
-        for (int su = -du; su <= du; ++su) {
-          double score = 0.0;
-          int bands = 0, pixels = 0;
-          for (std::size_t k = 0; k < colours.size(); ++k) {
-            const cv::Mat& sum = sums[colours[k]];
-            if (sum.empty()) continue;  // white: no hue
-            const cv::Rect band = cv::Rect(t->u0 + su - window.x, t->rows[k][0] + sv - window.y,
-                                           t->u1 - t->u0, t->rows[k][1] - t->rows[k][0]) &
-                                  cv::Rect(0, 0, window.width, window.height);
-            if (band.area() <= 0) continue;
-            const double total = sum.at<double>(band.y + band.height, band.x + band.width) -
-                                 sum.at<double>(band.y, band.x + band.width) -
-                                 sum.at<double>(band.y + band.height, band.x) +
-                                 sum.at<double>(band.y, band.x);
-            score += total / band.area();
-            pixels += band.area();
-            ++bands;
-          }
-          if (bands == 0 || pixels < config.min_band_pixels) continue;
-          best_score = std::max(best_score, score);
-          ++scored;
-        }
+    // A template's score at a shift: the sum over its hued bands of the mean similarity inside
+    // the band (NaN where too little of it is in the image).
+    const auto score = [&](const std::vector<std::uint8_t>& colours, int su, int sv) {
+      double total = 0.0;
+      int bands = 0, pixels = 0;
+      for (std::size_t k = 0; k < colours.size(); ++k) {
+        const cv::Mat& sum = sums[colours[k]];
+        if (sum.empty()) continue;  // white: no hue
+        const cv::Rect band = cv::Rect(t->u0 + su - window.x, t->rows[k][0] + sv - window.y,
+                                       t->u1 - t->u0, t->rows[k][1] - t->rows[k][0]) &
+                              cv::Rect(0, 0, window.width, window.height);
+        if (band.area() <= 0) continue;
+        total += (sum.at<double>(band.y + band.height, band.x + band.width) -
+                  sum.at<double>(band.y, band.x + band.width) -
+                  sum.at<double>(band.y + band.height, band.x) + sum.at<double>(band.y, band.x)) /
+                 band.area();
+        pixels += band.area();
+        ++bands;
       }
-      return scored > 0 ? best_score : std::nan("");
+      return bands == 0 || pixels < config.min_band_pixels ? std::nan("") : total;
     };
-    const double mine = best(t->pose_colours), mirror = best(t->mirror_colours);
-    if (std::isnan(mine) || std::isnan(mirror)) continue;
+    // The landmark's place: the shift where either template fits best. Both poses put it at the
+    // same pixels, so both are scored there (each at its own best shift, the mirror's pink band
+    // found the pose's pink band and scored as well as the pose's own).
+    double mine = std::nan(""), mirror = std::nan(""), placed = -1e9;
+    for (int sv = -dv; sv <= dv; ++sv) {
+      for (int su = -du; su <= du; ++su) {
+        const double a = score(t->pose_colours, su, sv), b = score(t->mirror_colours, su, sv);
+        if (std::isnan(a) || std::isnan(b) || std::max(a, b) <= placed) continue;
+        placed = std::max(a, b);
+        mine = a;
+        mirror = b;
+      }
+    }
+    if (std::isnan(mine)) continue;
     // Seen at all: the better template fits at least min_fit_share as well as a perfect one.
     int hued = 0;
     for (std::uint8_t colour : t->pose_colours) hued += hue(colour).has_value();
