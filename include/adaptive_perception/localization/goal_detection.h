@@ -89,7 +89,8 @@ struct GoalSighting {
 /// The goals in `yuv` (CV_8UC3, Y U V) whose posts and crossbar are all in view and that are seen
 /// from the carpet (goalPoses() on it), best first, none sharing a post. `segmentation` is the
 /// image's pose-free segmentation (its carpet colour and line pixels); `base_to_optical` the camera's pose on the
-/// robot (base_link -> camera_optical_frame).
+/// robot (base_link -> camera_optical_frame). std::invalid_argument for another image type or
+/// labels of another size.
 std::vector<GoalSighting> detectGoals(const cv::Mat& yuv,
                                       const color::FieldSegmentation& segmentation,
                                       const world::PinholeCamera& camera,

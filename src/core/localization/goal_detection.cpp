@@ -5,6 +5,7 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <optional>
+#include <stdexcept>
 
 namespace adaptive_perception::localization {
 
@@ -266,6 +267,9 @@ std::vector<GoalSighting> detectGoals(const cv::Mat& yuv, const color::FieldSegm
                                       const GoalDetectionConfig& config) {
   const world::FieldDimensions& d = map.dimensions();
   if (d.goal_post_diameter_m <= 0.0 || yuv.empty()) return {};
+  if (yuv.type() != CV_8UC3 || seg.labels.type() != CV_8UC1 || seg.labels.size() != yuv.size())
+    throw std::invalid_argument("detectGoals: needs a CV_8UC3 image and its segmentation's labels "
+                                "(CV_8UC1) of the same size");
   const Geometry g(camera, base_to_optical);
   const cv::Mat white = whiteMask(yuv, seg, config);
   const std::vector<GoalPostSighting> posts = findPosts(g, white, seg.labels, d, config);
@@ -298,8 +302,8 @@ std::vector<GoalSighting> detectGoals(const cv::Mat& yuv, const color::FieldSegm
       s.crossbar_white_share = crossbarShare(c, white, s.left.foot_m, s.right.foot_m, d);
       if (s.crossbar_white_share < config.crossbar_min_white_share) continue;
       // Seen from the carpet (a pose that sees it from outside is a look-alike beyond the field).
-      const math::SE2 pose = goalPoses(s, map).front();
-      if (!map.isFree(pose.x_m, pose.y_m, 0.0)) continue;
+      const std::vector<math::SE2> poses = goalPoses(s, map);
+      if (poses.empty() || !map.isFree(poses.front().x_m, poses.front().y_m, 0.0)) continue;
       goals.push_back(s);
     }
   }

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
 #include <string>
 
 #include "adaptive_perception/color/color_space.h"
@@ -113,6 +115,17 @@ TEST(GoalDetection, NothingWithoutPostsOrWithoutAGoalInView) {
   const cv::Mat yuv = s.render(s.pose, s.head);
   EXPECT_TRUE(
       detectGoals(yuv, color::segmentFieldYuv(yuv, {}), s.nao.camera, s.head, four, {}).empty());
+}
+
+TEST(GoalDetection, RefusesAnImageOfAnotherKindOrLabelsOfAnotherSize) {
+  const Scene s;
+  const cv::Mat yuv = s.render(s.pose, s.head);
+  const color::FieldSegmentation seg = color::segmentFieldYuv(yuv, {});
+  const cv::Mat grey(yuv.size(), CV_8UC1, cv::Scalar(128));
+  EXPECT_THROW(detectGoals(grey, seg, s.nao.camera, s.head, s.map, {}), std::invalid_argument);
+  color::FieldSegmentation half = seg;
+  cv::resize(seg.labels, half.labels, cv::Size(), 0.5, 0.5, cv::INTER_NEAREST);
+  EXPECT_THROW(detectGoals(yuv, half, s.nao.camera, s.head, s.map, {}), std::invalid_argument);
 }
 
 TEST(GoalDetection, SamplesArePointMirroredPairsOnTheCarpetAroundTheTruth) {
