@@ -11,25 +11,38 @@
 #   TOOL OPTIONS: passed to evaluate_field_localization (e.g. --seed 2).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+die() { echo "evaluate_field_localization.sh: $*" >&2; exit 2; }
 [ $# -ge 1 ] || { sed -n '2,11p' "$0"; exit 2; }
 SESSION="$1"; shift
 OUT="$AP_ROOT/results/field_localization"
-if [ "${1:-}" = "--output" ]; then OUT="$2"; shift 2; fi
-[ -d "$SESSION" ] || { echo "evaluate_field_localization.sh: no session folder $SESSION" >&2; exit 2; }
+if [ "${1:-}" = "--output" ]; then
+  [ $# -ge 2 ] || die "--output needs a folder"
+  OUT="$2"; shift 2
+fi
+[ -d "$SESSION" ] || die "no session folder $SESSION"
+# Absolute before the cd below.
+SESSION="$(cd "$SESSION" && pwd)"
 mkdir -p "$OUT"
+OUT="$(cd "$OUT" && pwd)"
 make_tmp
 cd "$AP_ROOT"
 CAMERA=config/cameras/nao_v6_top.yaml
 python3 scripts/nao_field_list.py "$SESSION" "$TMP/all.csv" > /dev/null
 # The leave-one-point-out cameras: fx, the pan axis's height and the camera's pitch of each
 # without_<point> fit.
-python3 scripts/calibrate_head_camera.py data/calibration/nao_v6_top_marks.csv |
-  sed -n 's/.*fit=without_\([^ ]*\) .*fx_px=\([^ ]*\) .*base_to_pan_z_m=\([^ ]*\) camera_pitch_rad=\([^ ]*\) .*/\1 \2 \3 \4/p' |
-  while read -r point fx z pitch; do
-    sed -e "s/^fx_px: .*/fx_px: $fx/" -e "s/^fy_px: .*/fy_px: $fx/" \
-        -e "s/^base_to_pan_m: .*/base_to_pan_m: [0.0, 0.0, $z]/" \
-        -e "s/^camera_pitch_rad: .*/camera_pitch_rad: $pitch/" "$CAMERA" > "$TMP/without_$point.yaml"
-  done
+FIT='s/.*fit=without_\([^ ]*\) .*fx_px=\([^ ]*\) .*base_to_pan_z_m=\([^ ]*\)'
+FIT+=' camera_pitch_rad=\([^ ]*\) .*/\1 \2 \3 \4/p'
+python3 scripts/calibrate_head_camera.py data/calibration/nao_v6_top_marks.csv > "$TMP/fits.txt"
+sed -n "$FIT" "$TMP/fits.txt" > "$TMP/without.txt"
+# Every point the calibration used needs its camera fitted without it.
+used="$(grep -c '^  punt' "$TMP/fits.txt" || true)"
+[ "$(wc -l < "$TMP/without.txt")" -eq "$used" ] && [ "$used" -gt 0 ] ||
+  die "calibrate_head_camera.py printed $used fitted points but not a without_ fit for each"
+while read -r point fx z pitch; do
+  sed -e "s/^fx_px: .*/fx_px: $fx/" -e "s/^fy_px: .*/fy_px: $fx/" \
+      -e "s/^base_to_pan_m: .*/base_to_pan_m: [0.0, 0.0, $z]/" \
+      -e "s/^camera_pitch_rad: .*/camera_pitch_rad: $pitch/" "$CAMERA" > "$TMP/without_$point.yaml"
+done < "$TMP/without.txt"
 header="$(head -n 1 "$TMP/all.csv")"
 errors=()
 printf 'point,camera,x_m,y_m,heading_deg,position_error_m,goals_seen,camera_pitch_offset_rad\n' |
@@ -44,10 +57,12 @@ while IFS= read -r line; do
   row="$(tail -n 1 "$OUT/$point/images.csv")"
   IFS=, read -r _ x y heading _ _ _ _ error _ goals pitch _ <<< "$row"
   echo "$point,$(basename "$camera"),$x,$y,$heading,$error,$goals,$pitch" | tee -a "$OUT/points.csv"
-  errors+=("$error")
+  # (-1: the list gave no true position)
+  awk -v e="$error" 'BEGIN { exit !(e >= 0) }' && errors+=("$error")
 done < <(tail -n +2 "$TMP/all.csv" | grep imagetop)
-within="$(printf '%s\n' "${errors[@]}" | awk '$1 >= 0 && $1 <= 0.5' | wc -l)"
-median="$(printf '%s\n' "${errors[@]}" | sort -g | awk '{a[NR] = $1} END {
-  if (NR % 2) print a[(NR + 1) / 2]; else printf "%.3f\n", (a[NR / 2] + a[NR / 2 + 1]) / 2 }')"
-echo "evaluate_field_localization.sh: images=${#errors[@]} within_0_5m=$within" \
-     "median_position_error_m=$median"
+within="$(printf '%s\n' "${errors[@]}" | awk 'NF && $1 <= 0.5' | wc -l)"
+median="$(printf '%s\n' "${errors[@]}" | sort -g | awk 'NF {a[++n] = $1} END {
+  if (n == 0) print -1; else if (n % 2) print a[(n + 1) / 2];
+  else printf "%.3f\n", (a[n / 2] + a[n / 2 + 1]) / 2 }')"
+echo "evaluate_field_localization.sh: images=$(($(wc -l < "$OUT/points.csv") - 1))" \
+     "within_0_5m=$within median_position_error_m=$median"

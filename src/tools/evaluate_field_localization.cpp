@@ -147,8 +147,8 @@ int main(int argc, char** argv) {
       csv << line << "\n";
       cv::imwrite((fs::path(output) / (name + ".png")).string(),
                   drawEstimate(bgr, map, camera.camera,
-                               world::planarToIsometry(est.pose) * base_to_optical *
-                                   Eigen::AngleAxisd(-pitch_offset, Eigen::Vector3d::UnitX())));
+                               world::planarToIsometry(est.pose) *
+                                   localization::leanCamera(base_to_optical, pitch_offset)));
     }
     double median = -1.0;
     int within = 0;

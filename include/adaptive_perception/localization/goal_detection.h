@@ -6,16 +6,17 @@
 //
 // Contract: detectGoals() looks for goals whose two posts and crossbar are all in the image, with
 // the camera's pose on the robot known (the head chain; the robot's pose on the field is not
-// needed). A post is a vertical run of white pixels standing on the ground as tall and as wide as
-// the field's post would be at the distance its foot's row gives, with non-white on both sides; a
-// goal is two posts whose feet are the goal's width apart, joined by a white crossbar at the
-// posts' height. Fields whose goals are panels (goal_post_diameter_m 0) have no posts: nothing is
-// found. goalPoses() turns a sighting into the robot's pose for each of the field's goals (two on
-// a point-symmetric field: which one the robot sees is for the image likelihood to decide);
-// sampleGoalPoses() draws poses with the sighting's uncertainty: the posts' bearings (their
-// columns) are sharp, their ranges (their feet's rows) are not, and a goal seen nearly head-on
-// tells little about where along the circle through its posts (the points that see them the same
-// angle apart) the robot stands; the image likelihood decides that.
+// needed). A post is a vertical run of white pixels standing on the ground (not cut by the
+// image's side); a goal is two posts whose feet a body lean of at most max_pitch_offset_rad puts
+// the goal's width apart, each as wide and at least as tall as a post standing there, joined by a
+// white crossbar at the posts' height. Fields whose goals are panels (goal_post_diameter_m 0) or
+// not white have none: nothing is found. goalPoses() turns a sighting into the robot's pose for
+// each of the field's goals (two on a point-symmetric field: which one the robot sees is for the
+// mirror test, the landmarks, to decide); sampleGoalPoses() draws poses with the sighting's
+// uncertainty: the posts' bearings (their columns) are sharp, their ranges (their feet's rows)
+// are not, and a goal seen nearly head-on tells little about where along the circle through its
+// posts (the points that see them the same angle apart) the robot stands; the image likelihood
+// decides that.
 //
 // "White" is the goal's paint under this image's light: chroma near neutral and luma near the line
 // paint's (the pose-free segmentation's colours). A post stands on the field: the pixels below its
@@ -69,34 +70,42 @@ struct GoalDetectionConfig {
 
 struct GoalPostSighting {
   double u_px = 0.0;       // the post's centre column
-  double foot_v_px = 0.0;  // the row below its bottom, where it stands on the ground
+  double foot_v_px = 0.0;  // its bottom edge, where it stands (in rayThrough()'s rows)
   double width_px = 0.0;   // columns
   double height_px = 0.0;  // rows (nearly every column at least this tall)
-  // Where it stands on the ground, base_link frame (in a GoalSighting: under the camera pitch
-  // that puts the two feet the goal's width apart).
+  // Its axis on the ground (its near side at foot_v_px, moved away by the radius), base_link frame
+  // (in a GoalSighting: under the lean that puts the two axes the goal's width apart).
   Eigen::Vector2d foot_m{0, 0};
 };
 
 struct GoalSighting {
   GoalPostSighting left, right;  // left and right in the image
   double crossbar_white_share = 0.0;
-  // The camera's pitch beyond the head chain's (positive: down) that puts the feet the goal's
-  // width apart: a legged robot's stance tilts its camera (on the NAO development points by
-  // 0.002 to 0.09 rad).
+  // The body's lean beyond the head chain's pose (leanCamera(); positive: forward, the camera
+  // looking down) that puts the feet the goal's width apart: a legged robot's stance tilts its
+  // camera (on the NAO development points by -0.03 to 0.09 rad).
   double pitch_offset_rad = 0.0;
 };
 
 /// The goals in `yuv` (CV_8UC3, Y U V) whose posts and crossbar are all in view and that are seen
 /// from the carpet (goalPoses() on it), best first, none sharing a post. `segmentation` is the
-/// image's pose-free segmentation (its carpet colour and line pixels); `base_to_optical` the camera's pose on the
-/// robot (base_link -> camera_optical_frame). std::invalid_argument for another image type or
-/// labels of another size.
+/// image's pose-free segmentation (its carpet colour and line pixels); `base_to_optical` the
+/// camera's pose on the robot (base_link -> camera_optical_frame). std::invalid_argument for
+/// another image type or size, or labels of another size.
 std::vector<GoalSighting> detectGoals(const cv::Mat& yuv,
                                       const color::FieldSegmentation& segmentation,
                                       const world::PinholeCamera& camera,
                                       const Eigen::Isometry3d& base_to_optical,
                                       const world::FieldMap& map,
                                       const GoalDetectionConfig& config);
+
+/// The camera pose (base_link -> camera_optical_frame) when the robot's body leans forward by
+/// `pitch_rad` (negative: back) beyond what the head chain says: the camera turned about
+/// base_link's y axis, so that at any head yaw the lean tilts it as the stance does, where it is
+/// (where the body pivots is not known, and turned about base_link's origin on the ground the
+/// camera moved 4.5 cm at 0.09 rad: the NAO development point punt5 then ended 1.4 m off along
+/// the goal's arc for one seed in three). GoalSighting::pitch_offset_rad is such a lean.
+Eigen::Isometry3d leanCamera(const Eigen::Isometry3d& base_to_optical, double pitch_rad);
 
 /// The robot poses (map -> base_link) that put the sighting's left and right feet on the left and
 /// right posts of each of the map's goals (as seen from the field): one pose per goal, the heading

@@ -54,7 +54,8 @@ struct LandmarkColourEvidence {
 };
 
 /// The evidence of the landmarks in `yuv` (CV_8UC3, the camera's full image) for the point mirror
-/// of `pose` against `pose`; the camera at base_to_optical on the robot.
+/// of `pose` against `pose`; the camera at base_to_optical on the robot. std::invalid_argument for
+/// an image of another type or size than the renderer's camera.
 LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
                                               const world::LabelRenderer& renderer,
                                               const math::SE2& pose,

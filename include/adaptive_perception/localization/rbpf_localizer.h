@@ -64,12 +64,12 @@ struct RbpfConfig {
   RelocalizationConfig relocalization;  // the check that the particles are not lost
   MirrorTestConfig mirror_test;         // which half of the field
   GoalDetectionConfig goals;            // goals seen, for the global search's pool
-  // The camera's pitch beyond the head chain's, as the goal seen at a global start measures it
-  // (GoalSighting::pitch_offset_rad), is added to every camera pose until the particles are
-  // placed anew (initUniform(), initGaussian()).
-  // A legged robot's stance tilts its camera by more than its head joints say (0.09 rad on one
-  // development point of docs/field_localization.md), and the likelihood needs the pitch to a few
-  // thousandths of a radian.
+  // The body's lean beyond the head chain's camera pose, as the goal seen at a global start
+  // measures it (GoalSighting::pitch_offset_rad, applied by leanCamera()), is added to every
+  // camera pose until the particles are placed anew (initUniform(), initGaussian(): a pose given
+  // by hand comes without a goal to measure it). A legged robot's stance tilts its camera by more
+  // than its head joints say (0.09 rad on one development point of docs/field_localization.md),
+  // and the likelihood needs the pitch to a few thousandths of a radian.
   bool goal_pitch_correction = true;
   // At the first image after initUniform() / initGaussian() that shows carpet (the pose-free
   // segmentation's, at least the model's min_pixels_per_color), the priors (of the particles, the
@@ -139,12 +139,12 @@ class RbpfLocalizer {
     bool mirror_flipped = false;
     // Goals seen on the first image of a global search (goal_detection.h; -1: not looked for).
     int goal_sightings = -1;
-    // The camera pitch correction in use (goal_pitch_correction).
+    // The body lean added to the camera pose (goal_pitch_correction).
     double camera_pitch_offset_rad = 0.0;
   };
   /// One image: odometry delta since the previous image (in the previous base frame), elapsed time,
   /// the YUV image (CV_8UC3) and the camera pose on the robot (base_link -> camera_optical_frame;
-  /// the goal_pitch_correction's offset is added to it).
+  /// the goal_pitch_correction's lean is added to it).
   StepResult step(const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv,
                   const Eigen::Isometry3d& base_to_optical);
 

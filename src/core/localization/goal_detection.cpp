@@ -51,10 +51,9 @@ struct Geometry {
 
   Geometry(const world::PinholeCamera& c, const Eigen::Isometry3d& t)
       : camera(c), base_to_optical(t), optical_from_base(t.inverse()) {}
-  /// The same camera pitched down by `pitch_rad` more.
-  Geometry pitched(double pitch_rad) const {
-    return Geometry(camera,
-                    base_to_optical * Eigen::AngleAxisd(-pitch_rad, Eigen::Vector3d::UnitX()));
+  /// The same camera on a body leaning forward by `pitch_rad` (leanCamera()).
+  Geometry leaning(double pitch_rad) const {
+    return Geometry(camera, leanCamera(base_to_optical, pitch_rad));
   }
   /// The ground point (z = 0, base_link) under pixel (u, v); none above the horizon.
   std::optional<Eigen::Vector3d> ground(double u, double v) const {
@@ -62,6 +61,15 @@ struct Geometry {
     const Eigen::Vector3d ray = base_to_optical.linear() * camera.rayThrough(u, v);
     if (ray.z() > -1e-6 || o.z() <= 0.0) return std::nullopt;
     return Eigen::Vector3d(o + (-o.z() / ray.z()) * ray);
+  }
+  /// The axis of a post of `radius_m` whose near side stands on the ground at pixel (u, v): that
+  /// ground point moved away from the camera by the radius.
+  std::optional<Eigen::Vector2d> axis(double u, double v, double radius_m) const {
+    const auto p = ground(u, v);
+    if (!p) return std::nullopt;
+    const Eigen::Vector2d away = p->head<2>() - base_to_optical.translation().head<2>();
+    if (away.norm() < 1e-9) return std::nullopt;
+    return Eigen::Vector2d(p->head<2>() + radius_m * away.normalized());
   }
   /// The pixel of a base_link point and its depth; none behind the camera.
   std::optional<Eigen::Vector3d> project(const Eigen::Vector3d& p_base) const {
@@ -170,9 +178,11 @@ std::vector<GoalPostSighting> findPosts(const Geometry& g, const cv::Mat& white,
     std::sort(lengths.begin(), lengths.end());
     GoalPostSighting post;
     post.u_px = 0.5 * (blob.front().u + blob.back().u);
-    post.foot_v_px = bottoms[bottoms.size() / 2] + 1;
+    post.foot_v_px = bottoms[bottoms.size() / 2] + 0.5;  // the bottom edge (rayThrough's rows)
     post.width_px = static_cast<double>(blob.size());
     post.height_px = lengths[lengths.size() / 4];  // nearly every column at least this tall
+    // A post cut by the image's side has no centre to speak of.
+    if (blob.front().u == 0 || blob.back().u == white.cols - 1) continue;
     if (post.width_px < config.min_post_width_px ||
         post.height_px < config.post_min_aspect_share * aspect * post.width_px)
       continue;
@@ -185,7 +195,8 @@ std::vector<GoalPostSighting> findPosts(const Geometry& g, const cv::Mat& white,
       }
     }
     if (below == 0 || field < config.post_min_field_below_share * below) continue;
-    if (const auto ground = g.ground(post.u_px, post.foot_v_px)) post.foot_m = ground->head<2>();
+    if (const auto foot = g.axis(post.u_px, post.foot_v_px, 0.5 * d.goal_post_diameter_m))
+      post.foot_m = *foot;
     posts.push_back(post);
   }
   std::sort(posts.begin(), posts.end(),
@@ -260,16 +271,29 @@ math::SE2 alignFeet(const Eigen::Vector2d& left_b, const Eigen::Vector2d& right_
 
 }  // namespace
 
+Eigen::Isometry3d leanCamera(const Eigen::Isometry3d& base_to_optical, double pitch_rad) {
+  // A positive turn about +y takes +x (forward) towards -z: the body leans forward. The camera
+  // turns where it is (where the body pivots is not known; the head chain placed the camera).
+  Eigen::Isometry3d out = base_to_optical;
+  out.linear() = Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()).toRotationMatrix() *
+                 base_to_optical.linear();
+  return out;
+}
+
 std::vector<GoalSighting> detectGoals(const cv::Mat& yuv, const color::FieldSegmentation& seg,
                                       const world::PinholeCamera& camera,
                                       const Eigen::Isometry3d& base_to_optical,
                                       const world::FieldMap& map,
                                       const GoalDetectionConfig& config) {
+  if (yuv.type() != CV_8UC3 || yuv.cols != camera.width_px || yuv.rows != camera.height_px ||
+      seg.labels.type() != CV_8UC1 || seg.labels.size() != yuv.size())
+    throw std::invalid_argument("detectGoals: needs a CV_8UC3 image of the camera's size and its "
+                                "segmentation's labels (CV_8UC1) of the same size");
   const world::FieldDimensions& d = map.dimensions();
-  if (d.goal_post_diameter_m <= 0.0 || yuv.empty()) return {};
-  if (yuv.type() != CV_8UC3 || seg.labels.type() != CV_8UC1 || seg.labels.size() != yuv.size())
-    throw std::invalid_argument("detectGoals: needs a CV_8UC3 image and its segmentation's labels "
-                                "(CV_8UC1) of the same size");
+  // (White posts: the detector's paint.)
+  if (d.goal_post_diameter_m <= 0.0 || d.goal_color_minus_x != world::kWhite ||
+      d.goal_color_plus_x != world::kWhite)
+    return {};
   const Geometry g(camera, base_to_optical);
   const cv::Mat white = whiteMask(yuv, seg, config);
   const std::vector<GoalPostSighting> posts = findPosts(g, white, seg.labels, d, config);
@@ -282,9 +306,10 @@ std::vector<GoalSighting> detectGoals(const cv::Mat& yuv, const color::FieldSegm
     for (std::size_t j = i + 1; j < posts.size(); ++j) {
       const GoalPostSighting &a = posts[i], &b = posts[j];
       // Pitching the camera down brings both feet closer, and with them each other.
+      const double r = 0.5 * d.goal_post_diameter_m;
       const auto apart = [&](double pitch) -> double {
-        const Geometry c = g.pitched(pitch);
-        const auto fa = c.ground(a.u_px, a.foot_v_px), fb = c.ground(b.u_px, b.foot_v_px);
+        const Geometry c = g.leaning(pitch);
+        const auto fa = c.axis(a.u_px, a.foot_v_px, r), fb = c.axis(b.u_px, b.foot_v_px, r);
         return fa && fb ? (*fa - *fb).norm() : std::numeric_limits<double>::infinity();
       };
       double lo = -config.max_pitch_offset_rad, hi = config.max_pitch_offset_rad;
@@ -294,10 +319,12 @@ std::vector<GoalSighting> detectGoals(const cv::Mat& yuv, const color::FieldSegm
         (apart(mid) > post_distance ? lo : hi) = mid;
       }
       const double pitch = 0.5 * (lo + hi);
-      const Geometry c = g.pitched(pitch);
+      const Geometry c = g.leaning(pitch);
       GoalSighting s{a, b, 0.0, pitch};
-      s.left.foot_m = c.ground(a.u_px, a.foot_v_px)->head<2>();
-      s.right.foot_m = c.ground(b.u_px, b.foot_v_px)->head<2>();
+      const auto fa = c.axis(a.u_px, a.foot_v_px, r), fb = c.axis(b.u_px, b.foot_v_px, r);
+      if (!fa || !fb) continue;
+      s.left.foot_m = *fa;
+      s.right.foot_m = *fb;
       if (!standsThere(c, s.left, d, config) || !standsThere(c, s.right, d, config)) continue;
       s.crossbar_white_share = crossbarShare(c, white, s.left.foot_m, s.right.foot_m, d);
       if (s.crossbar_white_share < config.crossbar_min_white_share) continue;

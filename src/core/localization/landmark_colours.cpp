@@ -6,6 +6,8 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "adaptive_perception/color/color_space.h"
@@ -80,12 +82,12 @@ std::optional<BandTemplate> bandTemplate(const world::Cylinder& c, const world::
   if (!twin) return std::nullopt;
   BandTemplate t;
   Eigen::Vector2d centre;
-  const Eigen::Vector3d axis_top = optical_from_map * Eigen::Vector3d(c.cx_m, c.cy_m, 0.0);
-  if (!camera.project(axis_top, &centre)) return std::nullopt;
-  // Half its width: the radius at the axis's depth.
-  const double half = c.radius_m * camera.fx_px / axis_top.z();
+  const Eigen::Vector3d foot = optical_from_map * Eigen::Vector3d(c.cx_m, c.cy_m, 0.0);
+  if (!camera.project(foot, &centre)) return std::nullopt;
+  // Half its width: the radius at its axis's depth; columns [u0, u1).
+  const double half = c.radius_m * camera.fx_px / foot.z();
   t.u0 = static_cast<int>(std::lround(centre.x() - half));
-  t.u1 = static_cast<int>(std::lround(centre.x() + half)) + 1;
+  t.u1 = static_cast<int>(std::lround(centre.x() + half));
   for (std::size_t k = 0; k < c.bands.size(); ++k) {
     Eigen::Vector2d bottom, top;
     if (!camera.project(optical_from_map * Eigen::Vector3d(c.cx_m, c.cy_m, c.bands[k].z0_m),
@@ -111,7 +113,9 @@ LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
   LandmarkColourEvidence out;
   const world::PinholeCamera& camera = renderer.camera();
   if (yuv.type() != CV_8UC3 || yuv.cols != camera.width_px || yuv.rows != camera.height_px)
-    return out;
+    throw std::invalid_argument("landmarkMirrorEvidence: needs a CV_8UC3 image of the camera's "
+                                "size (" + std::to_string(camera.width_px) + "x" +
+                                std::to_string(camera.height_px) + ")");
   const Eigen::Isometry3d optical_from_map =
       (world::planarToIsometry(pose) * base_to_optical).inverse();
   for (const world::Cylinder& c : renderer.map().cylinders()) {

@@ -4,8 +4,8 @@
 // parts' names stand together here (Fields refuses a name declared twice).
 #include "adaptive_perception/localization/global_localization.h"
 #include "adaptive_perception/localization/goal_detection.h"
-#include "adaptive_perception/localization/landmark_colours.h"
 #include "adaptive_perception/localization/image_likelihood.h"
+#include "adaptive_perception/localization/landmark_colours.h"
 #include "adaptive_perception/localization/mirror_test.h"
 #include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/localization/pose_search.h"
@@ -31,8 +31,9 @@ const config::Fields<RbpfConfig>& RbpfConfig::fields() {
                &color::SwitchingFilterConfig::mode_stay_probability, config::closed(1e-3, 1),
                "probability that the lighting stays in its mode from one image to the next")
           .add("goal_pitch_correction", &C::goal_pitch_correction,
-               "the camera pitch a goal seen at a global start measures is added to the head "
-               "chain's until the next global start")
+               "the body lean a goal seen at a global start measures is added to the head "
+               "chain's camera pose until the particles are placed anew (a global start or an "
+               "initial pose)")
           .add("adapt_priors_to_image", &C::adapt_priors_to_image,
                "the priors are adapted to the first image after a start, without a pose (a "
                "camera at a venue the priors were not learnt from, such as a real robot's)")

@@ -152,7 +152,9 @@ std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
                                                     std::uint64_t frame_seed,
                                                     StepResult* result) {
   const int count = static_cast<int>(config_.global.goal_pool_share * config_.global.pool_size);
-  if (count < 2 || likelihood_->map().dimensions().goal_post_diameter_m <= 0.0) return {};
+  if ((count < 2 && !config_.goal_pitch_correction) ||
+      likelihood_->map().dimensions().goal_post_diameter_m <= 0.0)
+    return {};
   const color::FieldSegmentation seg =
       color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
   const std::vector<GoalSighting> sightings = detectGoals(
@@ -160,11 +162,13 @@ std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
   result->goal_sightings = static_cast<int>(sightings.size());
   if (config_.goal_pitch_correction && !sightings.empty())
     pitch_offset_rad_ = sightings.front().pitch_offset_rad;
-  // Each sighting gets its share of the proposals.
+  // Each sighting gets its share of the proposals (sampled under its own lean: the best's is the
+  // one the particles use, and the others are rare).
   std::vector<math::SE2> proposals;
   math::Rng rng(math::mixSeeds(frame_seed, 0x60a1));
   for (const GoalSighting& s : sightings) {
     const int share = count / static_cast<int>(sightings.size());
+    if (share < 2) break;
     for (const math::SE2& p : sampleGoalPoses(s, likelihood_->map(), config_.goals, share, rng))
       proposals.push_back(p);
   }
@@ -246,7 +250,7 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
   std::vector<math::SE2> proposals;
   if (global_.poolPending()) proposals = goalProposals(yuv, head_base_to_optical, frame_seed, &r);
   const Eigen::Isometry3d base_to_optical =
-      head_base_to_optical * Eigen::AngleAxisd(-pitch_offset_rad_, Eigen::Vector3d::UnitX());
+      leanCamera(head_base_to_optical, pitch_offset_rad_);
   r.camera_pitch_offset_rad = pitch_offset_rad_;
   if (offsets_camera_.matrix() != base_to_optical.matrix()) {
     likelihood_->setOffsets(base_to_optical, &image_);
