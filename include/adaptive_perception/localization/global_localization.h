@@ -40,7 +40,9 @@ struct GlobalLocalizationConfig {
   // poses that see the goal where it is seen, with the sighting's uncertainty), the rest uniform;
   // none seen, all uniform. A uniform pool puts a pose within 0.07 m and 0.07 rad of the truth
   // only by chance, and on a real camera a wrong pose seen on the coarse grid can win (docs/
-  // field_localization.md); a goal's posts narrow the field to a few arcs.
+  // field_localization.md); a goal's posts narrow the field to a few arcs. All of the pool: with
+  // half of it uniform, as a guard against a false goal, a uniform pose elsewhere won again on a
+  // development point (punt5, 6.25 m off).
   double goal_pool_share = 1.0;
   /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
   static const config::Fields<GlobalLocalizationConfig>& fields();
