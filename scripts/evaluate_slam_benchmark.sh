@@ -6,11 +6,20 @@
 # the same on every log (FLAGS adds options), and one table of relation errors (mean and std, translational and rotational)
 # beside the published figures of the usual peers, plus each log's map PNG. Writes
 # results/slam_benchmark/<log>/ (evaluate_slam's output, log.txt), table.csv and table.md.
-# Usage: [FLAGS="..."] scripts/evaluate_slam_benchmark.sh [LOG ...]
+# Usage: [FLAGS="..."] scripts/evaluate_slam_benchmark.sh [--leave_one_out] [LOG ...]
 # About 10 minutes on two cores for the four logs.
+# --leave_one_out: also the defaults chosen without each log. The one default set on these logs'
+# relations is the EKF's prediction noise behind the front end (LaserSlamConfig::front_end_motion,
+# a quarter of the wheel-odometry model); every log with relations is run again with it scaled by
+# each of LOO_SCALES (--odom_noise_scale), and each log is then scored with the scale that does best
+# on the OTHER logs (the mean of their errors, each relative to its error at the default). Prints
+# that table beside the defaults' and writes leave_one_out.csv / .md. About 3 times as long.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 FLAGS="${FLAGS:-}"
+LOO=0
+if [ "${1:-}" = "--leave_one_out" ]; then LOO=1; shift; fi
+LOO_SCALES="${LOO_SCALES:-0.5 2 4}"
 [ -x "$BIN/evaluate_slam" ] || "$AP_ROOT/scripts/setup.sh" || exit 1
 OUT="$AP_ROOT/results/slam_benchmark"
 mkdir -p "$OUT"
@@ -29,6 +38,8 @@ published() {
   esac
 }
 csv="$OUT/table.csv"
+loo_runs="$OUT/leave_one_out_runs.csv"
+[ "$LOO" = 1 ] && echo "log,odom_noise_scale,trans_error_m" > "$loo_runs"
 echo "log,scans,relations_used,trans_error_m,trans_error_m_std,rot_error_deg,rot_error_deg_std,ekf_trans_error_m,front_end_trans_error_m,loop_closures,realtime_factor,published_scan_matching_m,published_gmapping_m,published_graph_mapping_m,published_cartographer_m" > "$csv"
 for log in "${logs[@]}"; do
   dir="$OUT/$log"
@@ -45,10 +56,26 @@ for log in "${logs[@]}"; do
       --name "$log" >> "$dir/log.txt" 2>&1; then
     echo "evaluate_slam_benchmark: $log: evaluate_slam failed: $(tail -n 1 "$dir/log.txt")"; continue
   fi
-  rm -f "$dir/$log.bag"
   line="$(grep '^evaluate_slam:' "$dir/log.txt" | tail -n 1)"
   echo "$log $line"
   v() { summary_value "$line" "$1"; }
+  if [ "$LOO" = 1 ] && [ -f "$rel" ]; then
+    echo "$log,1,$(v relation_trans_error_m)" >> "$loo_runs"
+    for scale in $LOO_SCALES; do
+      sdir="$dir/odom_noise_scale_$scale"
+      mkdir -p "$sdir"
+      # shellcheck disable=SC2086
+      if "$BIN/evaluate_slam" --bag "$dir/$log.bag" "${rel_args[@]}" $FLAGS --odom_noise_scale \
+          "$scale" --output "$sdir" --name "$log" > "$sdir/log.txt" 2>&1; then
+        sline="$(grep '^evaluate_slam:' "$sdir/log.txt" | tail -n 1)"
+        echo "$log,$scale,$(summary_value "$sline" relation_trans_error_m)" >> "$loo_runs"
+        echo "$log odom_noise_scale=$scale $sline"
+      else
+        echo "evaluate_slam_benchmark: $log at --odom_noise_scale $scale failed: $(tail -n 1 "$sdir/log.txt")"
+      fi
+    done
+  fi
+  rm -f "$dir/$log.bag"
   read -r p_sm p_gm p_graph p_carto <<< "$(published "$log")"
   echo "$log,$(v scans),$(v relations_used),$(v relation_trans_error_m),$(v relation_trans_error_m_std),$(v relation_rot_error_deg),$(v relation_rot_error_deg_std),$(v ekf_relation_trans_error_m),$(v front_end_relation_trans_error_m),$(v loop_closures),$(v realtime_factor),$p_sm,$p_gm,$p_graph,$p_carto" >> "$csv"
 done
@@ -59,3 +86,34 @@ md="$OUT/table.md"
 } > "$md"
 cat "$md"
 echo "evaluate_slam_benchmark: flags '${FLAGS:-(the defaults)}'; table in $csv and $md, maps in $OUT/<log>/: map.png (line landmarks), map_grid.png and map.yaml + map.pgm (the occupancy grid at the optimised poses, map_server format)"
+[ "$LOO" = 1 ] || exit 0
+# Each log with relations, scored at the scale chosen on the others (ties go to the default, 1).
+loo_csv="$OUT/leave_one_out.csv"
+awk -F, 'NR > 1 { e[$1, $2] = $3; logs[$1] = 1; scales[$2] = 1 }
+  END {
+    print "log,trans_error_m_defaults,odom_noise_scale_chosen_without_it,trans_error_m_leave_one_out"
+    for (l in logs) {
+      best = 1; best_score = -1
+      for (s in scales) {
+        sum = 0; n = 0; ok = 1
+        for (m in logs) {
+          if (m == l) continue
+          if (!((m, s) in e) || !((m, 1) in e) || e[m, 1] <= 0) { ok = 0; break }
+          sum += e[m, s] / e[m, 1]; ++n
+        }
+        if (!ok || n == 0) continue
+        score = sum / n
+        if (best_score < 0 || score < best_score - 1e-12 || (score <= best_score + 1e-12 && s == 1)) {
+          best = s; best_score = score
+        }
+      }
+      printf "%s,%s,%s,%s\n", l, e[l, 1], best, ((l, best) in e) ? e[l, best] : "-"
+    }
+  }' "$loo_runs" | { read -r header; echo "$header"; sort; } > "$loo_csv"
+loo_md="$OUT/leave_one_out.md"
+{
+  md_header "log" "translational error, defaults (m)" "odom_noise_scale chosen without the log" "translational error, leave one log out (m)"
+  tail -n +2 "$loo_csv" | awk -F, '{printf "| %s | %s | %s | %s |\n", $1, $2, $3, $4}'
+} > "$loo_md"
+cat "$loo_md"
+echo "evaluate_slam_benchmark: leave one log out over --odom_noise_scale 1 $LOO_SCALES: $loo_csv and $loo_md (every run: $loo_runs)"

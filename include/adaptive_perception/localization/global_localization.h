@@ -44,6 +44,13 @@ struct GlobalLocalizationConfig {
   // half of it uniform, as a guard against a false goal, a uniform pose elsewhere won again on a
   // development point (punt5, 6.25 m off).
   double goal_pool_share = 1.0;
+  // A pool from a goal lies on a few arcs, not over the whole field: fewer poses cover it, and a
+  // finer grid sees the lines that choose where along the arc the robot stands (at the uniform
+  // search's stride, 37 px of a 640-wide image, a development point facing the goal head-on ended
+  // on the arc's far side for 2 of 8 seeds; with these, 8 of 8 within 0.1 m, and each image costs
+  // about what the uniform pool's does: docs/field_localization.md).
+  int goal_pool_size = 15000;
+  int goal_pixel_stride = 6;  // px of an ImageLikelihoodConfig::reference_width_px-wide image
   /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
   static const config::Fields<GlobalLocalizationConfig>& fields();
   void validate() const { fields().validate(*this); }
@@ -70,8 +77,9 @@ class GlobalLocalization {
   bool poolPending() const { return searching_ && pool_.empty(); }
   /// One image while searching(): the pool's poses move by odom_delta (from the second image on)
   /// and take this image's score; `count` poses are drawn from it with `rng`. On the first image
-  /// the pool is filled: the `proposals` (at most goal_pool_share of it, in mirrored pairs), then
-  /// uniform poses.
+  /// the pool is filled: with `proposals`, goal_pool_size poses on the goal_pixel_stride grid (at
+  /// most goal_pool_share of them the proposals, in mirrored pairs, the rest uniform); without,
+  /// pool_size uniform poses on the search's grid.
   SearchStep searchImage(PoseSearch* search, const math::SE2& odom_delta, const cv::Mat& yuv,
                          const color::SwitchingColorFilter& lighting,
                          const Eigen::Isometry3d& base_to_optical, std::uint64_t seed, int count,
@@ -96,6 +104,7 @@ class GlobalLocalization {
   std::vector<double> pool_ll_;  // their summed log-likelihoods
   int frames_ = 0;               // images scored on the pool so far
   bool from_proposals_ = false;  // the pool holds proposals: no second draw
+  int pixel_stride_ = 0;         // the running search's grid (0: the PoseSearch's)
 };
 
 }  // namespace adaptive_perception::localization

@@ -57,9 +57,10 @@ class PoseSearch {
 
   /// A pose uniform over where a robot can stand (the field's centre after 10000 misses).
   math::SE2 uniformPose(math::Rng& rng) const;
-  /// The image on the search's coarse grid, with offsets for the camera at base_to_optical (and
-  /// the background density of setBackground()).
-  SampledImage coarseImage(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical) const;
+  /// The image on the search's coarse grid (or every pixel_stride-th pixel, when > 0), with
+  /// offsets for the camera at base_to_optical (and the background density of setBackground()).
+  SampledImage coarseImage(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
+                           int pixel_stride = 0) const;
   /// The current image's background density (null: the uniform density), for coarseImage().
   void setBackground(std::shared_ptr<const BackgroundDensity> background) {
     background_ = std::move(background);

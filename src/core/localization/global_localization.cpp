@@ -17,6 +17,7 @@ void GlobalLocalization::clearPool() {
   pool_ll_.shrink_to_fit();
   frames_ = 0;
   from_proposals_ = false;
+  pixel_stride_ = 0;
 }
 
 void GlobalLocalization::start() {
@@ -34,18 +35,23 @@ GlobalLocalization::SearchStep GlobalLocalization::searchImage(
     PoseSearch* search, const math::SE2& odom_delta, const cv::Mat& yuv,
     const color::SwitchingColorFilter& lighting, const Eigen::Isometry3d& base_to_optical,
     std::uint64_t seed, int count, math::Rng& rng, const std::vector<math::SE2>& proposals) {
-  SampledImage image = search->coarseImage(yuv, base_to_optical);
-  const std::size_t n = static_cast<std::size_t>(config_.pool_size);
   const bool first = pool_.empty();
   if (first) {
+    const bool goal =
+        config_.goal_pool_share * config_.goal_pool_size >= 2 && proposals.size() >= 2;
+    const std::size_t n =
+        static_cast<std::size_t>(goal ? config_.goal_pool_size : config_.pool_size);
     pool_.resize(n);
     pool_ll_.assign(n, 0.0);
     search->fillUniform(&pool_, n, seed);
     const std::size_t share = static_cast<std::size_t>(config_.goal_pool_share * n) / 2 * 2;
-    const std::size_t taken = std::min(share, proposals.size() / 2 * 2);
+    const std::size_t taken = goal ? std::min(share, proposals.size() / 2 * 2) : 0;
     std::copy_n(proposals.begin(), taken, pool_.begin());
     from_proposals_ = taken > 0;
+    pixel_stride_ = from_proposals_ ? config_.goal_pixel_stride : 0;
   }
+  const std::size_t n = pool_.size();
+  SampledImage image = search->coarseImage(yuv, base_to_optical, pixel_stride_);
   search->score(&pool_, &pool_ll_, 0, !first, odom_delta, image, lighting, base_to_optical);
   ++frames_;
   search->pushWindow(odom_delta, std::move(image), lighting, base_to_optical, first);

@@ -24,9 +24,10 @@ math::SE2 PoseSearch::uniformPose(math::Rng& rng) const {
   return math::SE2(0, 0, 0);
 }
 
-SampledImage PoseSearch::coarseImage(const cv::Mat& yuv,
-                                     const Eigen::Isometry3d& base_to_optical) const {
-  return likelihood_->sample(yuv, config_.pixel_stride, base_to_optical, background_.get());
+SampledImage PoseSearch::coarseImage(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
+                                     int pixel_stride) const {
+  return likelihood_->sample(yuv, pixel_stride > 0 ? pixel_stride : config_.pixel_stride,
+                             base_to_optical, background_.get());
 }
 
 void PoseSearch::fillUniform(std::vector<math::SE2>* pool, std::size_t n,

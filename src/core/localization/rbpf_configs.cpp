@@ -128,7 +128,11 @@ const config::Fields<GlobalLocalizationConfig>& GlobalLocalizationConfig::fields
           .add("refine_candidates", &C::refine_candidates, config::closed(0, 1000000),
                "best poses refined at the commit and at the second draw")
           .add("global_goal_pool_share", &C::goal_pool_share, config::closed(0, 1),
-               "share of the global search's pool drawn from the goals its first image shows");
+               "share of the global search's pool drawn from the goals its first image shows")
+          .add("global_goal_pool_size", &C::goal_pool_size, config::closed(2, 10000000),
+               "poses a global search scores when its first image shows a goal")
+          .add("global_goal_pixel_stride", &C::goal_pixel_stride, config::closed(1, 256),
+               "that search's grid: every stride-th pixel (px of a reference_width_px-wide image)");
   return f;
 }
 

@@ -151,7 +151,7 @@ std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
                                                     const Eigen::Isometry3d& base_to_optical,
                                                     std::uint64_t frame_seed,
                                                     StepResult* result) {
-  const int count = static_cast<int>(config_.global.goal_pool_share * config_.global.pool_size);
+  const int count = static_cast<int>(config_.global.goal_pool_share * config_.global.goal_pool_size);
   if ((count < 2 && !config_.goal_pitch_correction) ||
       likelihood_->map().dimensions().goal_post_diameter_m <= 0.0)
     return {};

@@ -184,7 +184,7 @@ TEST(GoalDetection, AGlobalStartTakesItsPoolAndTheLeanFromTheGoal) {
   RbpfConfig cfg;
   cfg.particles = 200;
   cfg.threads = 2;
-  cfg.global.pool_size = 4000;
+  cfg.global.goal_pool_size = 4000;
   cfg.relocalization.interval_s = 0.0;
   const double lean = 0.03;
   const cv::Mat yuv = s.render(s.pose, leanCamera(s.head, lean));

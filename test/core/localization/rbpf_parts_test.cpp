@@ -211,6 +211,54 @@ TEST(GlobalLocalization, SearchesThenConfirmsThenHandsOverAContest) {
   EXPECT_THROW(GlobalLocalization{config}, std::invalid_argument);
 }
 
+// A first image with a goal's proposals: a pool of goal_pool_size poses (here all proposals, so
+// every drawn pose is one of them) scored on the goal_pixel_stride grid, and no second draw; the
+// same search without proposals is the uniform one, with its second draw.
+TEST(GlobalLocalization, AGoalsProposalsMakeTheirOwnPool) {
+  PoseSearch search(fieldLikelihood(), PoseSearchConfig(), 2);
+  const cv::Mat yuv = greyImage();
+  const Eigen::Isometry3d cam = cameraOnRobot();
+  EXPECT_EQ(search.coarseImage(yuv, cam).stride, PoseSearchConfig().pixel_stride);
+  EXPECT_EQ(search.coarseImage(yuv, cam, 3).stride, 3);
+  EXPECT_GT(search.coarseImage(yuv, cam, 3).pixels.size(),
+            3 * search.coarseImage(yuv, cam).pixels.size());
+  GlobalLocalizationConfig config;
+  config.pool_size = 200;
+  config.goal_pool_size = 10;
+  config.search_frames = 2;
+  config.confirm_frames = 4;
+  config.refine_candidates = 0;
+  std::vector<math::SE2> proposals;
+  for (int k = 0; k < 5; ++k) {
+    proposals.emplace_back(-2.0 + 0.1 * k, 1.0, 0.3 * k);
+    proposals.push_back(math::pointMirror(proposals.back()));
+  }
+  const color::SwitchingColorFilter lighting = lightingOf("bright");
+  math::Rng rng(3);
+  GlobalLocalization goal(config);
+  goal.start();
+  EXPECT_TRUE(goal.poolPending());
+  const auto first =
+      goal.searchImage(&search, math::SE2(), yuv, lighting, cam, 7, 40, rng, proposals);
+  EXPECT_FALSE(goal.poolPending());
+  ASSERT_EQ(first.poses.size(), 40u);
+  for (const math::SE2& p : first.poses) {
+    const bool proposed = std::any_of(proposals.begin(), proposals.end(), [&](const math::SE2& q) {
+      return q.x_m == p.x_m && q.y_m == p.y_m && q.yaw_rad == p.yaw_rad;
+    });
+    EXPECT_TRUE(proposed) << p.x_m << " " << p.y_m;
+  }
+  EXPECT_TRUE(goal.searchImage(&search, math::SE2(), yuv, lighting, cam, 8, 40, rng).committed);
+  EXPECT_FALSE(goal.confirming());  // a goal's pool has no second draw
+  GlobalLocalization uniform(config);
+  uniform.start();
+  uniform.searchImage(&search, math::SE2(), yuv, lighting, cam, 7, 40, rng);
+  EXPECT_TRUE(uniform.searchImage(&search, math::SE2(), yuv, lighting, cam, 8, 40, rng).committed);
+  EXPECT_TRUE(uniform.confirming());
+  config.goal_pixel_stride = 0;
+  EXPECT_THROW(GlobalLocalization{config}, std::invalid_argument);
+}
+
 // Interval 1 s at 4 images a second: the check starts on the 4th image, scores `frames` images and
 // hands over its contest, with the particles' poses of its first image; then the interval starts
 // again.
