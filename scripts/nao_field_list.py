@@ -15,16 +15,27 @@ import statistics
 import sys
 
 
-def mocap_xy(path):
+def mocap_last_seconds(path, seconds=2.0):
+    """The take's rows of its last `seconds` that hold a rotation and a position."""
     with open(path, newline="") as f:
         rows = [r for r in csv.reader(f)][7:]
-    rows = [r for r in rows if len(r) >= 8 and r[1] and r[5] and r[7]]
+    rows = [r for r in rows if len(r) >= 8 and all(r[i] for i in (1, 2, 3, 4, 5, 6, 7))]
     if not rows:
-        raise SystemExit(f"{path}: no motion-capture rows with a position")
+        raise SystemExit(f"{path}: no motion-capture rows with a rotation and a position")
     end = float(rows[-1][1])
-    last = [r for r in rows if float(r[1]) >= end - 2.0]
+    return [r for r in rows if float(r[1]) >= end - seconds]
+
+
+def mocap_xy(path):
+    last = mocap_last_seconds(path)
     return (statistics.median(float(r[5]) for r in last),
             -statistics.median(float(r[7]) for r in last))
+
+
+def mocap_rotation_deg(path):
+    """The rigid body's rotation X, Y, Z (degrees, the export's XYZ order), medians."""
+    last = mocap_last_seconds(path)
+    return tuple(statistics.median(float(r[i]) for r in last) for i in (2, 3, 4))
 
 
 def head_angles(path):

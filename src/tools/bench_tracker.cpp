@@ -7,7 +7,8 @@
 // the same frames from the first frame's ground truth, with OpenCV on one thread. The paper ran in
 // MATLAB and gave no speed; the target is 30 frames per second at 320 x 240 with 100 samples.
 // Also times the box tracker (tracking/box_condensation_tracker.h: the default tracker of
-// evaluate_tracking and of the node) with its default configuration; its target is 30 frames per
+// evaluate_tracking and of the node) with its default configuration (or the --box_* options given);
+// its target is 30 frames per
 // second at 640 x 480 and 100 at 320 x 240. Last line: `bench_tracker: fps=.. ms_per_frame=..
 // condensation_fps=.. condensation_ms_per_frame=.. ellipse_fps=.. samples=N width=W height=H
 // lost_frames=L` (fps and ms_per_frame: the box tracker; samples and lost_frames: CONDENSATION's).
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
   sc.frames = 200;
   cli.fields(sim::TrackingSceneConfig::fields(), &sc, {"frames", "width", "height"});
   cli.word("scenario", &sc.scenario, sim::trackingScenarios(), "the simulated scene");
+  tracking::BoxTrackerConfig bc;  // the box tracker's options, as the node's (e.g. --box_samples)
+  cli.fields(tracking::BoxTrackerConfig::fields(), &bc);
   const std::uint64_t& seed = cli.seed();
   cli.parse(argc, argv);
   cv::setNumThreads(1);  // one core, as the target says
@@ -60,7 +63,7 @@ int main(int argc, char** argv) {
     for (size_t i = 1; i < frames.size(); ++i) ell.track(frames[i].bgr);
     const double ell_s = std::chrono::duration<double>(Clock::now() - t0).count();
 
-    tracking::BoxCondensationTracker box;
+    tracking::BoxCondensationTracker box(bc, seed);
     box.init(frames[0].bgr, frames[0].truth);
     t0 = Clock::now();
     for (size_t i = 1; i < frames.size(); ++i) box.track(frames[i].bgr);

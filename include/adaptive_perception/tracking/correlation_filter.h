@@ -44,6 +44,11 @@ struct CorrelationFilterConfig {
 /// `cell_px`): one CV_32F map per channel, window.rows / cell_px x window.cols / cell_px:
 /// `orientations` gradient-orientation energies, then the cells' mean grey level minus 0.5.
 std::vector<cv::Mat> gradientCellFeatures(const cv::Mat& window, int cell_px, int orientations);
+/// The window of `grey` (CV_8UC1) of size `window_px` (image pixels) centred at `centre`,
+/// resampled to `out_size` pixels (CV_32F, 0..1), the image's border repeated beyond it; smoothed
+/// before shrinking, so that the features change continuously with the window's size.
+cv::Mat resampledWindow(const cv::Mat& grey, const cv::Point2d& centre, const cv::Size2d& window_px,
+                        const cv::Size& out_size);
 
 class CorrelationFilter {
  public:

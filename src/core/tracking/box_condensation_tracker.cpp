@@ -71,12 +71,20 @@ void BoxTrackerConfig::validate() const {
   } catch (const std::invalid_argument& e) {
     fail(std::string("filter.") + e.what());
   }
+  try {
+    scale.validate();
+  } catch (const std::invalid_argument& e) {
+    fail(std::string("scale.") + e.what());
+  }
 }
 
 using namespace box_regions;
 
 BoxCondensationTracker::BoxCondensationTracker(BoxTrackerConfig config, std::uint64_t seed)
-    : config_(config), rng_(seed), filter_((config.validate(), config.filter)) {}
+    : config_(config),
+      rng_(seed),
+      filter_((config.validate(), config.filter)),
+      scale_filter_(config.scale) {}
 
 double BoxCondensationTracker::FilterMaps::at(const CorrelationFilter& f, double step, double x,
                                               double y, double sample_log_scale) const {
@@ -162,6 +170,11 @@ void BoxCondensationTracker::init(const cv::Mat& image, const cv::Rect2d& box) {
     template_ = patch(grey, region.tl(), box);
   }
   if (config_.filter_gain > 0.0) filter_.init(image, box);
+  if (config_.scale_filter) {
+    cv::Mat grey = image;
+    if (image.channels() == 3) cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+    scale_filter_.init(grey, {box.x + box.width / 2, box.y + box.height / 2}, box.size());
+  }
   samples_.assign(config_.samples, estimate_);
   weights_.assign(config_.samples, 1.0 / config_.samples);
   lost_frames_ = lost_run_ = 0;
@@ -214,11 +227,14 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   FilterMaps filter_maps;
   double peak_now = 0.0, apce_now = 0.0;
   const bool use_filter = config_.filter_gain > 0.0 && filter_.initialized();
-  if (use_filter) {
+  const bool use_scale_filter = config_.scale_filter && scale_filter_.initialized();
+  if (use_filter || use_scale_filter) {
     if (image.channels() == 1)
       grey_image = image;
     else
       cv::cvtColor(image, grey_image, cv::COLOR_BGR2GRAY);
+  }
+  if (use_filter) {
     filter_maps.centre = {estimate_.x + config_.velocity_gain * vx_,
                           estimate_.y + config_.velocity_gain * vy_};
     filter_maps.log_scale = estimate_.log_scale;
@@ -325,7 +341,13 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
     mean.log_aspect += weights_[i] * s.log_aspect;
   }
   mean = sw > 0 ? Sample{mean.x / sw, mean.y / sw, mean.log_scale / sw, mean.log_aspect / sw} : b;
-  if (use_filter && config_.filter_scale_share > 0.0) {
+  if (use_scale_filter) {
+    // The scale the scale filter finds at the estimate's centre, about the last estimate's.
+    const Sample last_size{mean.x, mean.y, estimate_.log_scale, mean.log_aspect};
+    const double factor =
+        scale_filter_.estimate(grey_image, {mean.x, mean.y}, boxOf(last_size).size());
+    mean.log_scale = estimate_.log_scale + std::log(factor);
+  } else if (use_filter && config_.filter_scale_share > 0.0) {
     // The scale whose map answers best at the estimate's centre, blended into the samples'.
     double best_response = -1e300, best_log = mean.log_scale;
     for (int k = -config_.filter_scales; k <= config_.filter_scales; ++k) {
@@ -439,6 +461,8 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
     if (config_.distractor_ratio > 0.0) learnDistractors(image, out.box, lut);
     if (use_filter)
       filter_.update(grey_image, {estimate_.x, estimate_.y}, std::exp(estimate_.log_scale));
+    if (use_scale_filter)
+      scale_filter_.update(grey_image, {estimate_.x, estimate_.y}, out.box.size());
     if (use_template && config_.template_rate > 0.0) {
       const std::vector<float> p = patch(grey, out.search.tl(), out.box);
       if (!p.empty()) {

@@ -80,10 +80,6 @@ CorrelationFilter::CorrelationFilter(CorrelationFilterConfig config) : config_(c
   config_.validate();
 }
 
-namespace {
-
-/// The window of `grey` (CV_8UC1) of size `window_px` (image pixels) centred at `centre`,
-/// resampled to `out_size` pixels (CV_32F, 0..1), borders replicated; smoothed before shrinking.
 cv::Mat resampledWindow(const cv::Mat& grey, const cv::Point2d& centre, const cv::Size2d& window_px,
                         const cv::Size& out_size) {
   const double sx = window_px.width / out_size.width, sy = window_px.height / out_size.height;
@@ -119,6 +115,8 @@ cv::Mat resampledWindow(const cv::Mat& grey, const cv::Point2d& centre, const cv
   out8.convertTo(out, CV_32F, 1.0 / 255.0);
   return out;
 }
+
+namespace {
 
 cv::Mat toGrey(const cv::Mat& image) {
   if (image.type() == CV_8UC1) return image;

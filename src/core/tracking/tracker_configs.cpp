@@ -34,6 +34,9 @@ const config::Fields<BoxTrackerConfig>& BoxTrackerConfig::fields() {
           .add("box_redetect_after_frames", &C::redetect_after_frames, closed(0, 1000),
                "mode box: after this many frames in a row reported lost, the whole frame is "
                "searched until the target is back (0: off)")
+          .add("box_scale_filter", &C::scale_filter,
+               "mode box: the estimate's scale from a scale filter over 33 scales (DSST), not "
+               "from the correlation filter's few scales")
           .add("box_redetect_places", &C::redetect_places, closed(1, 100),
                "mode box: places of the target's colours the search gives to the filter");
   return f;
