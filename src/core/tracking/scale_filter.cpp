@@ -38,9 +38,9 @@ void ScaleFilter::init(const cv::Mat& grey, const cv::Point2d& centre,
     throw std::invalid_argument("ScaleFilter::init: expected a non-empty mono8 image");
   if (!(target_px.width >= 1.0 && target_px.height >= 1.0 && std::isfinite(target_px.area())))
     throw std::invalid_argument("ScaleFilter::init: target smaller than a pixel or not finite");
-  // The model: the target's aspect, at most model_area_px (never larger than the target), at
-  // least two cells a side.
-  const double shrink = std::min(1.0, std::sqrt(config_.model_area_px / target_px.area()));
+  // The model: the target's aspect at model_area_px, at least two cells a side (a small target is
+  // enlarged: at its own size a 10 x 9 px target would have 2 x 2 cells).
+  const double shrink = std::sqrt(config_.model_area_px / target_px.area());
   const int c = config_.cell_px;
   auto cells = [&](double px) { return std::max(2, static_cast<int>(std::lround(px / c))); };
   model_px_ = {cells(target_px.width * shrink) * c, cells(target_px.height * shrink) * c};

@@ -37,6 +37,10 @@ const config::Fields<BoxTrackerConfig>& BoxTrackerConfig::fields() {
           .add("box_scale_filter", &C::scale_filter,
                "mode box: the estimate's scale from a scale filter over 33 scales (DSST), not "
                "from the correlation filter's few scales")
+          .add("box_scale_learning_rate", &C::scale, &ScaleFilterConfig::learning_rate,
+               closed(0, 1), "mode box: the scale filter's learning rate")
+          .add("box_scale_model_area_px", &C::scale, &ScaleFilterConfig::model_area_px,
+               closed(64, 65536), "mode box: the scale filter's patches' size (pixels)")
           .add("box_redetect_places", &C::redetect_places, closed(1, 100),
                "mode box: places of the target's colours the search gives to the filter");
   return f;
