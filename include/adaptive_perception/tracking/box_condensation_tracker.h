@@ -20,7 +20,7 @@
 //     Its weight is exp(score_gain * score + template_gain * NCC of a grey template + filter_gain *
 //     the correlation filter's response at its centre and scale; see `filter` below).
 //  3. Estimate: the weighted mean of the samples within half a box side of the best one, its
-//     scale then set by the filter (`filter_scale_share`) or by the scale filter (`scale_filter`).
+//     scale then set by the filter (`filter_scale_share`) and the scale filter (`scale_filter_share`).
 //     Confidence = the estimate's log-weight / score_gain (colour score + the appearance cues'
 //     share); below `lost_score` the target is lost, and the next frames' samples spread over a
 //     region growing by `lost_growth` a frame (re-detection). The filter's response says more:
@@ -97,9 +97,10 @@ struct BoxTrackerConfig {
   // AUC 0.534 -> 0.635 (the colours' preference for a box that takes in the neighbouring pixels
   // of the target's colours no longer sets its size); from the first frame 0.827 -> 0.840.
   double filter_scale_share = 1.0;  // [0, 1]
-  // The estimate's scale from its own search instead (tracking/scale_filter.h, DSST: 33 scales
-  // 2% apart about the estimate's, at its centre), learnt on the frames the filter learns on.
-  bool scale_filter = false;
+  // Then this share of the way towards the scale filter's answer (tracking/scale_filter.h, DSST:
+  // 33 scales 2% apart about the estimate's, at its centre), learnt on the frames the filter
+  // learns on. Off (0) by default: docs/tracking_real_video.md.
+  double scale_filter_share = 0.0;  // [0, 1]
   ScaleFilterConfig scale;
   // Knowing when the estimate is not the target (hidden, or another object in its place): each
   // frame's response map at the best scale gives its peak F_max and its average

@@ -31,6 +31,7 @@ struct ScaleFilterConfig {
   int scales = 33;                 // odd, 3..129
   double scale_step = 0.02;        // (1 + step) between neighbouring scales, 0 < x < 0.5
   double model_area_px = 512.0;    // the patches' common size, pixels (its aspect the target's)
+  double padding = 1.0;            // a sample's side / the target's side (DSST: the target alone)
   int cell_px = 4;                 // 2..16
   int orientations = 9;            // 2..18
   double label_sigma_factor = 0.25;  // > 0

@@ -64,6 +64,8 @@ void BoxTrackerConfig::validate() const {
          " (allowed: 0..1000)");
   if (!(redetect_places >= 1 && redetect_places <= 100))
     fail("redetect_places = " + std::to_string(redetect_places) + " (allowed: 1..100)");
+  if (!(scale_filter_share >= 0.0 && scale_filter_share <= 1.0))
+    fail("scale_filter_share = " + std::to_string(scale_filter_share) + " (allowed: 0..1)");
   if (!(filter_scale_share >= 0.0 && filter_scale_share <= 1.0))
     fail("filter_scale_share = " + std::to_string(filter_scale_share) + " (allowed: 0..1)");
   try {
@@ -170,7 +172,7 @@ void BoxCondensationTracker::init(const cv::Mat& image, const cv::Rect2d& box) {
     template_ = patch(grey, region.tl(), box);
   }
   if (config_.filter_gain > 0.0) filter_.init(image, box);
-  if (config_.scale_filter) {
+  if (config_.scale_filter_share > 0.0) {
     cv::Mat grey = image;
     if (image.channels() == 3) cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
     scale_filter_.init(grey, {box.x + box.width / 2, box.y + box.height / 2}, box.size());
@@ -227,7 +229,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
   FilterMaps filter_maps;
   double peak_now = 0.0, apce_now = 0.0;
   const bool use_filter = config_.filter_gain > 0.0 && filter_.initialized();
-  const bool use_scale_filter = config_.scale_filter && scale_filter_.initialized();
+  const bool use_scale_filter = config_.scale_filter_share > 0.0 && scale_filter_.initialized();
   if (use_filter || use_scale_filter) {
     if (image.channels() == 1)
       grey_image = image;
@@ -341,13 +343,7 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
     mean.log_aspect += weights_[i] * s.log_aspect;
   }
   mean = sw > 0 ? Sample{mean.x / sw, mean.y / sw, mean.log_scale / sw, mean.log_aspect / sw} : b;
-  if (use_scale_filter) {
-    // The scale the scale filter finds at the estimate's centre, about the last estimate's.
-    const Sample last_size{mean.x, mean.y, estimate_.log_scale, mean.log_aspect};
-    const double factor =
-        scale_filter_.estimate(grey_image, {mean.x, mean.y}, boxOf(last_size).size());
-    mean.log_scale = estimate_.log_scale + std::log(factor);
-  } else if (use_filter && config_.filter_scale_share > 0.0) {
+  if (use_filter && config_.filter_scale_share > 0.0) {
     // The scale whose map answers best at the estimate's centre, blended into the samples'.
     double best_response = -1e300, best_log = mean.log_scale;
     for (int k = -config_.filter_scales; k <= config_.filter_scales; ++k) {
@@ -359,6 +355,17 @@ BoxTrackResult BoxCondensationTracker::track(const cv::Mat& image) {
       }
     }
     mean.log_scale += config_.filter_scale_share * (best_log - mean.log_scale);
+  }
+  if (use_scale_filter) {
+    // The scale the scale filter finds at the estimate's centre, about the last estimate's, at
+    // most two sd of the samples' own scale change a frame (scale_noise) from it: a look-alike
+    // pattern at another scale is not a target that grew by a third in a frame.
+    const Sample last_size{mean.x, mean.y, estimate_.log_scale, mean.log_aspect};
+    const double factor =
+        scale_filter_.estimate(grey_image, {mean.x, mean.y}, boxOf(last_size).size());
+    const double bound = 2.0 * config_.scale_noise;
+    const double found = estimate_.log_scale + std::clamp(std::log(factor), -bound, bound);
+    mean.log_scale += config_.scale_filter_share * (found - mean.log_scale);
   }
   if (use_template && config_.scale_search_steps > 0) {
     double best_ncc = -2.0, best_log = mean.log_scale;

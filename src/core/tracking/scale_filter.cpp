@@ -18,6 +18,8 @@ void ScaleFilterConfig::validate() const {
     fail("scale_step = " + std::to_string(scale_step) + " (allowed: 0 < x < 0.5)");
   if (!(model_area_px >= 64.0 && model_area_px <= 65536.0))
     fail("model_area_px = " + std::to_string(model_area_px) + " (allowed: 64..65536)");
+  if (!(padding >= 1.0 && padding <= 5.0))
+    fail("padding = " + std::to_string(padding) + " (allowed: 1..5)");
   if (cell_px < 2 || cell_px > 16)
     fail("cell_px = " + std::to_string(cell_px) + " (allowed: 2..16)");
   if (orientations < 2 || orientations > 18)
@@ -40,10 +42,12 @@ void ScaleFilter::init(const cv::Mat& grey, const cv::Point2d& centre,
     throw std::invalid_argument("ScaleFilter::init: target smaller than a pixel or not finite");
   // The model: the target's aspect at model_area_px, at least two cells a side (a small target is
   // enlarged: at its own size a 10 x 9 px target would have 2 x 2 cells).
-  const double shrink = std::sqrt(config_.model_area_px / target_px.area());
+  const double shrink =
+      std::sqrt(config_.model_area_px / target_px.area()) / config_.padding;
   const int c = config_.cell_px;
   auto cells = [&](double px) { return std::max(2, static_cast<int>(std::lround(px / c))); };
-  model_px_ = {cells(target_px.width * shrink) * c, cells(target_px.height * shrink) * c};
+  model_px_ = {cells(target_px.width * config_.padding * shrink) * c,
+               cells(target_px.height * config_.padding * shrink) * c};
   const int n = config_.scales;
   hann_.create(1, n, CV_32F);
   cv::Mat label(1, n, CV_32F);
@@ -60,7 +64,8 @@ void ScaleFilter::init(const cv::Mat& grey, const cv::Point2d& centre,
 }
 
 cv::Mat ScaleFilter::spectra(const cv::Mat& grey, const cv::Point2d& centre,
-                             const cv::Size2d& target_px) const {
+                             const cv::Size2d& target) const {
+  const cv::Size2d target_px(target.width * config_.padding, target.height * config_.padding);
   const int n = config_.scales, half = (n - 1) / 2;
   // The largest sample's window, read once at the model's resolution (smoothed as it shrinks):
   // each scale is then resampled from it, at most (1 + step)^half (1.37 by default) further.

@@ -34,11 +34,13 @@ const config::Fields<BoxTrackerConfig>& BoxTrackerConfig::fields() {
           .add("box_redetect_after_frames", &C::redetect_after_frames, closed(0, 1000),
                "mode box: after this many frames in a row reported lost, the whole frame is "
                "searched until the target is back (0: off)")
-          .add("box_scale_filter", &C::scale_filter,
-               "mode box: the estimate's scale from a scale filter over 33 scales (DSST), not "
-               "from the correlation filter's few scales")
+          .add("box_scale_filter_share", &C::scale_filter_share, closed(0, 1),
+               "mode box: share of the estimate's log scale taken from a scale filter over 33 "
+               "scales (DSST), the rest from the correlation filter's few (0: off)")
           .add("box_scale_learning_rate", &C::scale, &ScaleFilterConfig::learning_rate,
                closed(0, 1), "mode box: the scale filter's learning rate")
+          .add("box_scale_padding", &C::scale, &ScaleFilterConfig::padding, closed(1, 5),
+               "mode box: the scale filter's sample side / the target's side")
           .add("box_scale_model_area_px", &C::scale, &ScaleFilterConfig::model_area_px,
                closed(64, 65536), "mode box: the scale filter's patches' size (pixels)")
           .add("box_redetect_places", &C::redetect_places, closed(1, 100),

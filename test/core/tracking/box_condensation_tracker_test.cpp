@@ -79,6 +79,12 @@ TEST(BoxTrackerConfig, RejectsBadFieldsByName) {
   c = {};
   c.template_cells = 2;
   EXPECT_TRUE(refusedNaming([&] { c.validate(); }, "template_cells"));
+  c = {};
+  c.scale_filter_share = 1.5;
+  EXPECT_TRUE(refusedNaming([&] { c.validate(); }, "scale_filter_share"));
+  c = {};
+  c.scale.scales = 4;
+  EXPECT_TRUE(refusedNaming([&] { c.validate(); }, "scale.scales"));
 }
 
 TEST(BoxCondensationTracker, RefusesBadImagesAndBoxes) {
@@ -140,6 +146,21 @@ TEST(BoxCondensationTracker, FollowsACameraComingCloserAndTheHandheldScene) {
     r = tracker.track(frame);
   }
   const cv::Rect2d truth(160 - 20 * zoom, 120 - 20 * zoom, 40 * zoom, 40 * zoom);
+  EXPECT_GT(tr::boxIou(r.box, truth), 0.8) << r.box;
+  EXPECT_NEAR(r.box.width / truth.width, 1.0, 0.1);
+  // The same with the scale from the scale filter alone (scale_filter_share 1).
+  tr::BoxTrackerConfig with_scale_filter;
+  with_scale_filter.scale_filter_share = 1.0;
+  tr::BoxCondensationTracker dsst(with_scale_filter, 1);
+  dsst.init(scene, first);
+  zoom = 1.0;
+  for (int k = 1; k <= 60; ++k) {
+    zoom *= 1.01;
+    const cv::Matx23d m(zoom, 0, 160 * (1 - zoom), 0, zoom, 120 * (1 - zoom));
+    cv::Mat frame;
+    cv::warpAffine(scene, frame, cv::Mat(m), scene.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+    r = dsst.track(frame);
+  }
   EXPECT_GT(tr::boxIou(r.box, truth), 0.8) << r.box;
   EXPECT_NEAR(r.box.width / truth.width, 1.0, 0.1);
   // The real-video-like simulated scene (textured background, shake, blur, light ramp).
