@@ -6,11 +6,18 @@
 # floor(SPEED k) +- TOLERANCE), and runs `evaluate_places --reference REF --query LIST
 # --ground_truth GT` with its defaults on each. The frames stay where they are (only lists of their
 # paths are written, to a temporary folder).
-# Prints each run's summary line and a Markdown table; writes results/places_speeds/<dataset>/.
-# Usage: [SPEEDS="0.6 0.73 1 1.37 2"] [TOLERANCE=1] scripts/evaluate_places_speeds.sh REF_DIR QUERY_DIR [EXTRA evaluate_places OPTIONS]
+# Then the drives a real route has beside a steady speed (PROFILES), each at the reference's speed
+# otherwise: `stops` (the query stands still for 15 frames every 100), `slow` (a stretch of a
+# tenth of the route at half speed), `reverse` (it backs up 5% of the route, then drives on over
+# it again), `jump` (a third of the route is skipped: a kidnap). For these the table puts the
+# route filter's recall (--method route) beside the sequence matcher's, from the same run.
+# Prints each run's summary line and Markdown tables; writes results/places_speeds/<dataset>/.
+# Usage: [SPEEDS="0.6 0.73 1 1.37 2"] [PROFILES="stops slow reverse jump"] [TOLERANCE=1]
+#   scripts/evaluate_places_speeds.sh REF_DIR QUERY_DIR [EXTRA evaluate_places OPTIONS]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 SPEEDS="${SPEEDS:-0.6 0.73 1 1.37 2}"
+PROFILES="${PROFILES:-stops slow reverse jump}"
 TOLERANCE="${TOLERANCE:-1}"
 [ "$#" -ge 2 ] || { echo "usage: $0 REF_DIR QUERY_DIR [evaluate_places options]"; exit 2; }
 REF="${1%/}"; QUERY="${2%/}"; shift 2
@@ -38,4 +45,42 @@ for s in $SPEEDS; do
   table+=$'\n'"| $s | $(summary_value "$line" queries) | $(summary_value "$line" recall_at_1) | $(summary_value "$line" recall_at_5) | $(summary_value "$line" pr_auc) | $(summary_value "$line" recall_at_full_precision) |"
 done
 echo "$table" | tee "$OUT/table.md"
+# The drives: the frame query frame k shows, for k = 0, 1, ... (0-based, within 0 .. n - 1).
+profile_frames() {  # profile n
+  awk -v p="$1" -v n="$2" 'BEGIN {
+    if (p == "stops") {
+      for (i = 0; i < n; ++i) { print i; if (i % 100 == 99) for (r = 0; r < 14; ++r) print i }
+    } else if (p == "slow") {
+      a = int(0.45 * n); b = a + int(0.1 * n)
+      for (i = 0; i < a; ++i) print i
+      for (k = 0; a + int(k / 2) < b; ++k) print a + int(k / 2)
+      for (i = b; i < n; ++i) print i
+    } else if (p == "reverse") {
+      a = int(0.5 * n); back = int(0.05 * n)
+      for (i = 0; i <= a; ++i) print i
+      for (i = a - 1; i >= a - back; --i) print i
+      for (i = a - back + 1; i < n; ++i) print i
+    } else if (p == "jump") {
+      a = int(0.3 * n); b = int(0.63 * n)
+      for (i = 0; i < a; ++i) print i
+      for (i = b; i < n; ++i) print i
+    } else { print "unknown profile " p > "/dev/stderr"; exit 1 }
+  }'
+}
+method_recall() { awk -v m="$1" '$1 == m { print $2; exit }' "$2"; }
+ptable="$(md_header "drive" queries "sequence recall@1" "route filter recall@1" "sequence recall@5" "route filter recall@5")"
+for p in $PROFILES; do
+  list="$TMP/query_$p.csv"; gt="$TMP/gt_$p.csv"
+  echo "image_path" > "$list"
+  profile_frames "$p" "$n" | awk -v t="$TOLERANCE" '{ print NR "," $1 + 1 "," t }' > "$gt" || continue
+  awk -F, 'NR == FNR { f[NR - 1] = $0; next } { print f[$2 - 1] }' <(printf '%s\n' "${frames[@]}") "$gt" >> "$list"
+  dir="$OUT/drive_$p"
+  mkdir -p "$dir"
+  "$BIN/evaluate_places" --reference "$REF" --query "$list" --ground_truth "$gt" --output "$dir" "$@" > "$dir/log.txt" 2>&1 \
+    || { echo "evaluate_places_speeds: drive $p failed: $(tail -n 1 "$dir/log.txt")" >&2; continue; }
+  line="$(tail -n 1 "$dir/log.txt")"
+  echo "drive=$p $line"
+  ptable+=$'\n'"| $p | $(summary_value "$line" queries) | $(method_recall sequence "$dir/log.txt") | $(method_recall route "$dir/log.txt") | $(awk '$1 == "sequence" { print $3; exit }' "$dir/log.txt") | $(awk '$1 == "route" { print $3; exit }' "$dir/log.txt") |"
+done
+if [ -n "$PROFILES" ]; then echo "$ptable" | tee "$OUT/drives.md"; fi
 echo "evaluate_places_speeds: tolerance ${TOLERANCE} reference frames; runs in $OUT"

@@ -16,5 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const places::PlaceIndex index = db.loadIndex();
     db.adjacencyLists(index);
     db.loadFrames();
+    // The whole-image descriptors (readDescriptors): as an index and as a reference traversal.
+    db.loadDescriptorIndex(index, places::GlobalDescriptorConfig());
+    db.loadTraversal(places::GlobalDescriptorConfig());
   });
 }

@@ -139,6 +139,35 @@ TEST(RouteFilter, FollowsStopsSpeedChangesLookAlikesAndAKidnap) {
   EXPECT_LE(late_after_kidnap, 15) << "frames to recover after the kidnap";
 }
 
+// A query that backs up: 80 frames forward, 30 frames back at the reference's speed (the state's
+// speed -1), then forward again over the same stretch. The straight-line search cannot bend back;
+// the route filter follows within a few frames of each turn.
+TEST(RouteFilter, FollowsAQueryThatBacksUp) {
+  std::mt19937 rng(5);
+  std::vector<double> truth;
+  double pos = 10.0;
+  for (int t = 0; t < 80; ++t) truth.push_back(pos += 1.0);
+  const size_t turn = truth.size();
+  for (int t = 0; t < 30; ++t) truth.push_back(pos -= 1.0);
+  for (int t = 0; t < 60; ++t) truth.push_back(pos += 1.0);
+  const int n = 300;
+  RouteFilter route;
+  SequenceMatcher sequence;
+  int route_right = 0, sequence_right = 0, route_right_backing = 0;
+  for (size_t t = 0; t < truth.size(); ++t) {
+    const std::vector<float> d = distancesAt(n, truth[t], 2.2, rng);
+    route.add(d);
+    const bool right = std::abs(route.best() - truth[t]) <= 2.0;
+    route_right += right;
+    if (t >= turn + 5 && t < turn + 30) route_right_backing += right;
+    sequence_right += std::abs(argminOf(sequence.add(d)) - truth[t]) <= 2.0;
+  }
+  EXPECT_GE(route_right / static_cast<double>(truth.size()), 0.85)
+      << "route " << route_right << " sequence " << sequence_right;
+  EXPECT_GE(route_right_backing, 20) << "of the 25 frames backing up after the first 5";
+  EXPECT_GT(route_right, sequence_right);
+}
+
 // The posterior mass is a confidence that means something: along a route whose images say little
 // (the true reference 1.2 standard deviations closer than chance), the answers it is sure of are
 // right more often than those it is not.
