@@ -212,6 +212,9 @@ inline void addTraversalOptions(CommandLine& cli, TraversalOptions* o) {
   cli.option("route_jump_probability", &m.route.jump_probability,
              "route filter: probability of a jump anywhere, per query frame")
       ->group(group);
+  cli.option("route_speed_steps", &m.route.speed_steps,
+             "route filter: forward speeds, log-spaced over the filter's speed range")
+      ->group(group);
 }
 
 /// Runs the protocol; `db_path`, `output` and `fusion` as evaluate_places read them.

@@ -9,11 +9,14 @@
 //   fused      the single-image cues combined: each cue's distances to the references turned into
 //              z-scores over the references (so that cues of different scales add), then the
 //              weighted mean with `fusion`'s weights (the words among them when fusion.words > 0);
-//   sequence   (default) SeqSLAM trajectory search (sequence_matcher.h) over the fused distances
-//              of the last sequence.sequence_frames queries;
-//   route      the Bayes filter along the reference traversal (route_filter.h) observing the fused
-//              distances; its scores are the negated posterior and its confidence the posterior's
-//              mass around the best frame.
+//   sequence   SeqSLAM trajectory search (sequence_matcher.h) over the fused distances of the last
+//              sequence.sequence_frames queries;
+//   route      (default) the Bayes filter along the reference traversal (route_filter.h) observing
+//              the fused distances; its scores are the negated posterior and its confidence the
+//              posterior's mass around the best frame. It answers from the first query and
+//              follows stops, speed changes, backing up and jumps, which a straight line cannot:
+//              on Nordland it beats the sequence search at 8 of 9 speeds and drives
+//              (docs/places_across_light.md).
 // The fusion weights are settings chosen once on development data (docs/places_across_light.md
 // gives the measurements), never from the images being recognised. Every method's scores are
 // z-scores over the references (lower = better).
@@ -33,7 +36,7 @@ struct TraversalMatcherConfig {
   GlobalDescriptorConfig descriptor;
   SequenceMatcherConfig sequence;
   RouteFilterConfig route;
-  std::string method = "sequence";  // thumbnail, gradient, chromaticity, words, fused, sequence, route
+  std::string method = "route";  // thumbnail, gradient, chromaticity, words, fused, sequence, route
   FusionWeights fusion;
 
   void validate() const;  // throws std::invalid_argument naming the bad field
