@@ -68,7 +68,13 @@ for log in "${logs[@]}"; do
       if "$BIN/evaluate_slam" --bag "$dir/$log.bag" "${rel_args[@]}" $FLAGS --odom_noise_scale \
           "$scale" --output "$sdir" --name "$log" > "$sdir/log.txt" 2>&1; then
         sline="$(grep '^evaluate_slam:' "$sdir/log.txt" | tail -n 1)"
-        echo "$log,$scale,$(summary_value "$sline" relation_trans_error_m)" >> "$loo_runs"
+        serr="$(summary_value "$sline" relation_trans_error_m)"
+        # Only a run that scored: a missing or non-positive error is never chosen.
+        if awk -v e="$serr" 'BEGIN { exit !(e + 0 > 0) }'; then
+          echo "$log,$scale,$serr" >> "$loo_runs"
+        else
+          echo "evaluate_slam_benchmark: $log at --odom_noise_scale $scale: no relation error"
+        fi
         echo "$log odom_noise_scale=$scale $sline"
       else
         echo "evaluate_slam_benchmark: $log at --odom_noise_scale $scale failed: $(tail -n 1 "$sdir/log.txt")"
@@ -98,7 +104,7 @@ awk -F, 'NR > 1 { e[$1, $2] = $3; logs[$1] = 1; scales[$2] = 1 }
         sum = 0; n = 0; ok = 1
         for (m in logs) {
           if (m == l) continue
-          if (!((m, s) in e) || !((m, 1) in e) || e[m, 1] <= 0) { ok = 0; break }
+          if (!((m, s) in e) || !((m, 1) in e) || e[m, 1] <= 0 || e[m, s] <= 0) { ok = 0; break }
           sum += e[m, s] / e[m, 1]; ++n
         }
         if (!ok || n == 0) continue

@@ -1,5 +1,5 @@
 // libFuzzer target: a frame-correspondence CSV of a traversal pair (io/image_folder.h,
-// readFrameCorrespondences: evaluate_places --correspondences).
+// readFrameCorrespondences: evaluate_places --ground_truth).
 #include <cstdint>
 
 #include "adaptive_perception/io/image_folder.h"

@@ -80,7 +80,7 @@ class RouteFilter {
 
   /// The motion step alone (exposed for tests): `joint[s * P + p]` is the mass at grid position p
   /// (in frame p / subframes) moving at speeds()[s], P positions; returns the joint belief one query
-  /// frame later.
+  /// frame later. Throws std::invalid_argument when joint is not speeds() x positions long.
   std::vector<double> predict(const std::vector<double>& joint, int positions) const;
 
  private:

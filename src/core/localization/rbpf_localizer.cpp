@@ -40,6 +40,7 @@ RbpfConfig RbpfConfig::forCamera(const world::PinholeCamera& camera) const {
   };
   c.likelihood.pixel_stride = scaled(likelihood.pixel_stride);
   c.search.pixel_stride = scaled(search.pixel_stride);
+  c.global.goal_pixel_stride = scaled(global.goal_pixel_stride);
   // The reference: this camera's aspect at the reference width, sampled at the given stride.
   const int ref_h = std::max(1, static_cast<int>(std::lround(camera.height_px / scale)));
   const double ref_count = gridPixelCount(ref_w, ref_h, likelihood.pixel_stride);

@@ -60,6 +60,10 @@ void RouteFilter::reset() {
 
 std::vector<double> RouteFilter::predict(const std::vector<double>& joint, int n) const {
   const int ns = static_cast<int>(speeds_.size());
+  if (n <= 0 || joint.size() != static_cast<std::size_t>(ns) * static_cast<std::size_t>(n))
+    throw std::invalid_argument("RouteFilter::predict: the joint belief has " +
+                                std::to_string(joint.size()) + " entries, not speeds (" +
+                                std::to_string(ns) + ") x positions (" + std::to_string(n) + ")");
   const double change = config_.speed_change_probability, jump = config_.jump_probability;
   double total = 0.0;
   for (double v : joint) total += v;

@@ -66,6 +66,9 @@ void BoxTrackerConfig::validate() const {
     fail("redetect_places = " + std::to_string(redetect_places) + " (allowed: 1..100)");
   if (!(scale_filter_share >= 0.0 && scale_filter_share <= 1.0))
     fail("scale_filter_share = " + std::to_string(scale_filter_share) + " (allowed: 0..1)");
+  if (scale_filter_share > 0.0 && min_side_px < 1.0)
+    fail("min_side_px = " + std::to_string(min_side_px) +
+         " (allowed with scale_filter_share > 0: >= 1, the scale filter's smallest target)");
   if (!(filter_scale_share >= 0.0 && filter_scale_share <= 1.0))
     fail("filter_scale_share = " + std::to_string(filter_scale_share) + " (allowed: 0..1)");
   try {

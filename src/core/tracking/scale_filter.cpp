@@ -32,14 +32,28 @@ void ScaleFilterConfig::validate() const {
     fail("learning_rate = " + std::to_string(learning_rate) + " (allowed: 0..1)");
 }
 
+namespace {
+
+void checkTarget(const char* what, const cv::Mat& grey, const cv::Point2d& centre,
+                 const cv::Size2d& target_px) {
+  if (grey.empty() || grey.type() != CV_8UC1)
+    throw std::invalid_argument(std::string(what) + ": expected a non-empty mono8 image");
+  // (A million pixels a side is beyond any camera; the window's pixel arithmetic is int.)
+  if (!(target_px.width >= 1.0 && target_px.height >= 1.0 && target_px.width <= 1e6 &&
+        target_px.height <= 1e6))
+    throw std::invalid_argument(std::string(what) +
+                                ": target not 1 to 1e6 pixels a side (or not finite)");
+  if (!(std::abs(centre.x) <= 1e6 && std::abs(centre.y) <= 1e6))
+    throw std::invalid_argument(std::string(what) + ": centre not finite or beyond 1e6 pixels");
+}
+
+}  // namespace
+
 ScaleFilter::ScaleFilter(ScaleFilterConfig config) : config_(config) { config_.validate(); }
 
 void ScaleFilter::init(const cv::Mat& grey, const cv::Point2d& centre,
                        const cv::Size2d& target_px) {
-  if (grey.empty() || grey.type() != CV_8UC1)
-    throw std::invalid_argument("ScaleFilter::init: expected a non-empty mono8 image");
-  if (!(target_px.width >= 1.0 && target_px.height >= 1.0 && std::isfinite(target_px.area())))
-    throw std::invalid_argument("ScaleFilter::init: target smaller than a pixel or not finite");
+  checkTarget("ScaleFilter::init", grey, centre, target_px);
   // The model: the target's aspect at model_area_px, at least two cells a side (a small target is
   // enlarged: at its own size a 10 x 9 px target would have 2 x 2 cells).
   const double shrink =
@@ -124,6 +138,7 @@ void ScaleFilter::train(const cv::Mat& f, double rate) {
 double ScaleFilter::estimate(const cv::Mat& grey, const cv::Point2d& centre,
                              const cv::Size2d& target_px) const {
   if (!initialized()) throw std::logic_error("ScaleFilter::estimate before init");
+  checkTarget("ScaleFilter::estimate", grey, centre, target_px);
   const cv::Mat z = spectra(grey, centre, target_px);
   cv::Mat terms;
   cv::mulSpectrums(a_, z, terms, cv::DFT_ROWS);
@@ -152,6 +167,7 @@ double ScaleFilter::estimate(const cv::Mat& grey, const cv::Point2d& centre,
 void ScaleFilter::update(const cv::Mat& grey, const cv::Point2d& centre,
                          const cv::Size2d& target_px) {
   if (!initialized()) throw std::logic_error("ScaleFilter::update before init");
+  checkTarget("ScaleFilter::update", grey, centre, target_px);
   train(spectra(grey, centre, target_px), config_.learning_rate);
 }
 

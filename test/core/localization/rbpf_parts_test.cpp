@@ -241,6 +241,14 @@ TEST(GlobalLocalization, AGoalsProposalsMakeTheirOwnPool) {
   const auto first =
       goal.searchImage(&search, math::SE2(), yuv, lighting, cam, 7, 40, rng, proposals);
   EXPECT_FALSE(goal.poolPending());
+  // The search's window holds the image on the goal's grid, not on the search's own.
+  PoseSearch on_goal_grid(fieldLikelihood(), PoseSearchConfig(), 1), on_own_grid = on_goal_grid;
+  on_goal_grid.pushWindow(math::SE2(), on_goal_grid.coarseImage(yuv, cam, config.goal_pixel_stride),
+                          lighting, cam, true);
+  on_own_grid.pushWindow(math::SE2(), on_own_grid.coarseImage(yuv, cam), lighting, cam, true);
+  const math::SE2 probe(-1.0, 0.5, 0.2);
+  EXPECT_DOUBLE_EQ(search.windowLogLikelihood(probe), on_goal_grid.windowLogLikelihood(probe));
+  EXPECT_NE(search.windowLogLikelihood(probe), on_own_grid.windowLogLikelihood(probe));
   ASSERT_EQ(first.poses.size(), 40u);
   for (const math::SE2& p : first.poses) {
     const bool proposed = std::any_of(proposals.begin(), proposals.end(), [&](const math::SE2& q) {
@@ -257,6 +265,19 @@ TEST(GlobalLocalization, AGoalsProposalsMakeTheirOwnPool) {
   EXPECT_TRUE(uniform.confirming());
   config.goal_pixel_stride = 0;
   EXPECT_THROW(GlobalLocalization{config}, std::invalid_argument);
+}
+
+// Strides are given for an image reference_width_px wide: a camera three times as wide samples
+// every third pixel as far apart, the goal search's grid included.
+TEST(RbpfConfig, ForCameraScalesEveryStrideToTheCamerasWidth) {
+  RbpfConfig config;
+  world::PinholeCamera wide;
+  wide.width_px = 3 * config.likelihood.reference_width_px;
+  wide.height_px = 2 * config.likelihood.reference_width_px;
+  const RbpfConfig c = config.forCamera(wide);
+  EXPECT_EQ(c.likelihood.pixel_stride, 3 * config.likelihood.pixel_stride);
+  EXPECT_EQ(c.search.pixel_stride, 3 * config.search.pixel_stride);
+  EXPECT_EQ(c.global.goal_pixel_stride, 3 * config.global.goal_pixel_stride);
 }
 
 // Interval 1 s at 4 images a second: the check starts on the 4th image, scores `frames` images and

@@ -37,8 +37,9 @@ int argminOf(const std::vector<float>& v) {
 // The motion step against the numbers worked out by hand.
 TEST(RouteFilter, PredictMovesMassAsTheModelSays) {
   RouteFilterConfig whole;
-  whole.subframes = 1;  // positions are frames
-  RouteFilter f(whole);  // speeds -1, 0, 0.5 .. 2 (5, log-spaced); change 0.1; jump 0.001
+  whole.subframes = 1;   // positions are frames
+  whole.speed_steps = 5;  // speeds -1, 0, 0.5 .. 2 (5, log-spaced); change 0.1; jump 0.001
+  RouteFilter f(whole);
   const std::vector<double>& v = f.speeds();
   ASSERT_EQ(v.size(), 7u);
   EXPECT_DOUBLE_EQ(v[0], -1.0);
@@ -74,7 +75,9 @@ TEST(RouteFilter, PredictMovesMassAsTheModelSays) {
   EXPECT_NEAR(at(e, 5, 9), keep * 0.1 + jump, 1e-12);  // slowed to 1.41: 10.41, still the end
   EXPECT_NEAR(std::accumulate(e.begin(), e.end(), 0.0), 1.0, 1e-12);
   // With quarter-frame positions (the default) half a frame is two positions: no split.
-  RouteFilter fine;
+  RouteFilterConfig quarter;
+  quarter.speed_steps = 5;
+  RouteFilter fine(quarter);
   const int p_n = 40;
   std::vector<double> g(ns * p_n, 0.0);
   g[2 * p_n + 8] = 1.0;  // frame 2, speed 0.5
@@ -82,6 +85,8 @@ TEST(RouteFilter, PredictMovesMassAsTheModelSays) {
   const double jump_fine = 0.001 / (p_n * ns);
   EXPECT_NEAR(h[2 * p_n + 10], keep * 0.9 + jump_fine, 1e-12);
   EXPECT_NEAR(h[2 * p_n + 9] + h[2 * p_n + 11], 2 * jump_fine, 1e-12);
+  // A belief of another size is refused.
+  EXPECT_THROW(fine.predict(std::vector<double>(ns * p_n + 1, 0.0), p_n), std::invalid_argument);
 }
 
 TEST(RouteFilter, FirstAnswerIsTheSingleImageOne) {

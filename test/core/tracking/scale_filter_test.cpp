@@ -96,9 +96,13 @@ TEST(ScaleFilter, RefusesBadInputNamingIt) {
   EXPECT_TRUE(refusedNaming([&] { filter.init(cv::Mat(), {10, 10}, {5, 5}); }, "mono8"));
   cv::Mat colour(48, 64, CV_8UC3, cv::Scalar::all(9));
   EXPECT_TRUE(refusedNaming([&] { filter.init(colour, {10, 10}, {5, 5}); }, "mono8"));
-  EXPECT_TRUE(refusedNaming([&] { filter.init(image, {10, 10}, {0.5, 5}); }, "pixel"));
+  EXPECT_TRUE(refusedNaming([&] { filter.init(image, {10, 10}, {0.5, 5}); }, "pixels a side"));
   EXPECT_TRUE(refusedNaming([&] { filter.init(image, {10, 10}, {NAN, 5}); }, "finite"));
   EXPECT_THROW(filter.estimate(image, {10, 10}, {5, 5}), std::logic_error);
+  filter.init(image, {20, 20}, {10, 10});
+  EXPECT_TRUE(refusedNaming([&] { filter.estimate(image, {NAN, 5}, {5, 5}); }, "centre"));
+  EXPECT_TRUE(refusedNaming([&] { filter.update(image, {5, 5}, {1e300, 5}); }, "pixels a side"));
+  EXPECT_TRUE(refusedNaming([&] { filter.estimate(colour, {5, 5}, {5, 5}); }, "mono8"));
   // A target reaching past the image repeats its border: any centre gives a finite factor.
   filter.init(image, {2, 2}, {20, 20});
   const double f = filter.estimate(image, {-30, 70}, {20, 20});
