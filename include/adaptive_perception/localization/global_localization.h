@@ -47,8 +47,8 @@ struct GlobalLocalizationConfig {
   // A pool from a goal lies on a few arcs, not over the whole field: fewer poses cover it, and a
   // finer grid sees the lines that choose where along the arc the robot stands (at the uniform
   // search's stride, 37 px of a 640-wide image, a development point facing the goal head-on ended
-  // on the arc's far side for 2 of 8 seeds; with these, 8 of 8 within 0.1 m, and each image costs
-  // about what the uniform pool's does: docs/field_localization.md).
+  // on its mirror or along the arc for 2 of 8 seeds; with these, 8 of 8 within 0.3 m, and each
+  // image costs about what the uniform pool's does: docs/field_localization.md).
   int goal_pool_size = 15000;
   int goal_pixel_stride = 6;  // px of an ImageLikelihoodConfig::reference_width_px-wide image
   /// Its parameters' names, ranges and docs; defined in rbpf_configs.cpp.
