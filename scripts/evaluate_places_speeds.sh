@@ -29,13 +29,15 @@ mkdir -p "$OUT"
 mapfile -t frames < <(find "$QUERY" -maxdepth 1 -type f \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.bmp' -o -iname '*.ppm' \) | LC_ALL=C sort)
 n="${#frames[@]}"
 [ "$n" -gt 0 ] || { echo "evaluate_places_speeds: no images in $QUERY"; exit 1; }
+# The query frames a ground truth file names, one path a line, in its order.
+list_of() { awk -F, 'NR == FNR { f[NR - 1] = $0; next } { print f[$2 - 1] }' <(printf '%s\n' "${frames[@]}") "$1"; }
 table="$(md_header "query speed (x reference)" queries recall@1 recall@5 "PR AUC" "recall at 100% precision")"
 for s in $SPEEDS; do
   list="$TMP/query_$s.csv"; gt="$TMP/gt_$s.csv"
   echo "image_path" > "$list"; : > "$gt"
   # Query frame k shows frame floor(s k); ground truth counts from 1 (Nordland's convention).
   awk -v s="$s" -v n="$n" -v t="$TOLERANCE" 'BEGIN { for (k = 0; int(s * k) < n; ++k) { i = int(s * k); print k + 1 "," i + 1 "," t } }' > "$gt"
-  awk -F, 'NR == FNR { f[NR - 1] = $0; next } { print f[$2 - 1] }' <(printf '%s\n' "${frames[@]}") "$gt" >> "$list"
+  list_of "$gt" >> "$list"
   dir="$OUT/speed_$s"
   mkdir -p "$dir"
   "$BIN/evaluate_places" --reference "$REF" --query "$list" --ground_truth "$gt" --output "$dir" "$@" > "$dir/log.txt" 2>&1 \
@@ -73,7 +75,7 @@ for p in $PROFILES; do
   list="$TMP/query_$p.csv"; gt="$TMP/gt_$p.csv"
   echo "image_path" > "$list"
   profile_frames "$p" "$n" | awk -v t="$TOLERANCE" '{ print NR "," $1 + 1 "," t }' > "$gt" || continue
-  awk -F, 'NR == FNR { f[NR - 1] = $0; next } { print f[$2 - 1] }' <(printf '%s\n' "${frames[@]}") "$gt" >> "$list"
+  list_of "$gt" >> "$list"
   dir="$OUT/drive_$p"
   mkdir -p "$dir"
   "$BIN/evaluate_places" --reference "$REF" --query "$list" --ground_truth "$gt" --output "$dir" "$@" > "$dir/log.txt" 2>&1 \

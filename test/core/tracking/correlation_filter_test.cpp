@@ -8,25 +8,14 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../refusal.h"
+#include "texture.h"
 #include "adaptive_perception/math/rng.h"
 
 namespace tr = adaptive_perception::tracking;
 using adaptive_perception::test_support::refusedNaming;
+using adaptive_perception::test_support::texture;
 
 namespace {
-
-/// A smooth random texture (grey, 8 bit): blurred uniform noise, stretched to 0..255.
-cv::Mat texture(int cols, int rows, std::uint64_t seed) {
-  adaptive_perception::math::Rng rng(seed);
-  cv::Mat noise(rows, cols, CV_32F);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) noise.at<float>(r, c) = static_cast<float>(rng.uniform(0, 1));
-  cv::GaussianBlur(noise, noise, cv::Size(), 2.0);
-  cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
-  cv::Mat out;
-  noise.convertTo(out, CV_8U);
-  return out;
-}
 
 cv::Mat shifted(const cv::Mat& image, double dx, double dy) {
   cv::Mat out;

@@ -1,7 +1,7 @@
 // tracking::ScaleFilter against scenes zoomed by known factors: the factor found is the one put
 // there (within a quarter of a scale step near the trained size, 90% of it 8-9 steps out), the
-// training image gives 1, a slow zoom is followed
-// over frames with update(), and bad input is refused naming what was wrong.
+// training image gives 1, a slow zoom is followed over frames with update(), and bad input is
+// refused naming what was wrong.
 #include "adaptive_perception/tracking/scale_filter.h"
 
 #include <gtest/gtest.h>
@@ -10,25 +10,14 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../refusal.h"
+#include "texture.h"
 #include "adaptive_perception/math/rng.h"
 
 namespace tr = adaptive_perception::tracking;
 using adaptive_perception::test_support::refusedNaming;
+using adaptive_perception::test_support::texture;
 
 namespace {
-
-/// A smooth random texture (grey, 8 bit): blurred uniform noise, stretched to 0..255.
-cv::Mat texture(int cols, int rows, std::uint64_t seed) {
-  adaptive_perception::math::Rng rng(seed);
-  cv::Mat noise(rows, cols, CV_32F);
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) noise.at<float>(r, c) = static_cast<float>(rng.uniform(0, 1));
-  cv::GaussianBlur(noise, noise, cv::Size(), 2.0);
-  cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
-  cv::Mat out;
-  noise.convertTo(out, CV_8U);
-  return out;
-}
 
 /// The scene zoomed by z about (cx, cy).
 cv::Mat zoomed(const cv::Mat& image, double z, double cx, double cy) {
