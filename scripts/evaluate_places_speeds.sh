@@ -29,21 +29,26 @@ mkdir -p "$OUT"
 mapfile -t frames < <(find "$QUERY" -maxdepth 1 -type f \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.bmp' -o -iname '*.ppm' \) | LC_ALL=C sort)
 n="${#frames[@]}"
 [ "$n" -gt 0 ] || { echo "evaluate_places_speeds: no images in $QUERY"; exit 1; }
-# The query frames a ground truth file names, one path a line, in its order.
-list_of() { awk -F, 'NR == FNR { f[NR - 1] = $0; next } { print f[$2 - 1] }' <(printf '%s\n' "${frames[@]}") "$1"; }
-table="$(md_header "query speed (x reference)" queries recall@1 recall@5 "PR AUC" "recall at 100% precision")"
-for s in $SPEEDS; do
-  list="$TMP/query_$s.csv"; gt="$TMP/gt_$s.csv"
-  echo "image_path" > "$list"; : > "$gt"
-  # Query frame k shows frame floor(s k); ground truth counts from 1 (Nordland's convention).
-  awk -v s="$s" -v n="$n" -v t="$TOLERANCE" 'BEGIN { for (k = 0; int(s * k) < n; ++k) { i = int(s * k); print k + 1 "," i + 1 "," t } }' > "$gt"
-  list_of "$gt" >> "$list"
-  dir="$OUT/speed_$s"
+# One run: the query list the ground truth GT names (its query frames in order), evaluate_places on
+# it in $OUT/NAME; sets `dir` and `line` (the summary line); fails when the tool did.
+run_query() {  # GT NAME [evaluate_places options]
+  local gt="$1" name="$2" list="$TMP/$2.csv"
+  shift 2
+  echo "image_path" > "$list"
+  awk -F, 'NR == FNR { f[NR - 1] = $0; next } { print f[$2 - 1] }' <(printf '%s\n' "${frames[@]}") "$gt" >> "$list"
+  dir="$OUT/$name"
   mkdir -p "$dir"
   "$BIN/evaluate_places" --reference "$REF" --query "$list" --ground_truth "$gt" --output "$dir" "$@" > "$dir/log.txt" 2>&1 \
-    || { echo "evaluate_places_speeds: speed $s failed: $(tail -n 1 "$dir/log.txt")" >&2; continue; }
+    || { echo "evaluate_places_speeds: $name failed: $(tail -n 1 "$dir/log.txt")" >&2; return 1; }
   line="$(tail -n 1 "$dir/log.txt")"
-  echo "speed=$s $line"
+  echo "$name $line"
+}
+table="$(md_header "query speed (x reference)" queries recall@1 recall@5 "PR AUC" "recall at 100% precision")"
+for s in $SPEEDS; do
+  gt="$TMP/gt_$s.csv"
+  # Query frame k shows frame floor(s k); ground truth counts from 1 (Nordland's convention).
+  awk -v s="$s" -v n="$n" -v t="$TOLERANCE" 'BEGIN { for (k = 0; int(s * k) < n; ++k) { i = int(s * k); print k + 1 "," i + 1 "," t } }' > "$gt"
+  run_query "$gt" "speed_$s" "$@" || continue
   table+=$'\n'"| $s | $(summary_value "$line" queries) | $(summary_value "$line" recall_at_1) | $(summary_value "$line" recall_at_5) | $(summary_value "$line" pr_auc) | $(summary_value "$line" recall_at_full_precision) |"
 done
 echo "$table" | tee "$OUT/table.md"
@@ -72,16 +77,9 @@ profile_frames() {  # profile n
 method_recall() { awk -v m="$1" '$1 == m { print $2; exit }' "$2"; }
 ptable="$(md_header "drive" queries "sequence recall@1" "route filter recall@1" "sequence recall@5" "route filter recall@5")"
 for p in $PROFILES; do
-  list="$TMP/query_$p.csv"; gt="$TMP/gt_$p.csv"
-  echo "image_path" > "$list"
+  gt="$TMP/gt_$p.csv"
   profile_frames "$p" "$n" | awk -v t="$TOLERANCE" '{ print NR "," $1 + 1 "," t }' > "$gt" || continue
-  list_of "$gt" >> "$list"
-  dir="$OUT/drive_$p"
-  mkdir -p "$dir"
-  "$BIN/evaluate_places" --reference "$REF" --query "$list" --ground_truth "$gt" --output "$dir" "$@" > "$dir/log.txt" 2>&1 \
-    || { echo "evaluate_places_speeds: drive $p failed: $(tail -n 1 "$dir/log.txt")" >&2; continue; }
-  line="$(tail -n 1 "$dir/log.txt")"
-  echo "drive=$p $line"
+  run_query "$gt" "drive_$p" "$@" || continue
   ptable+=$'\n'"| $p | $(summary_value "$line" queries) | $(method_recall sequence "$dir/log.txt") | $(method_recall route "$dir/log.txt") | $(awk '$1 == "sequence" { print $3; exit }' "$dir/log.txt") | $(awk '$1 == "route" { print $3; exit }' "$dir/log.txt") |"
 done
 if [ -n "$PROFILES" ]; then echo "$ptable" | tee "$OUT/drives.md"; fi
