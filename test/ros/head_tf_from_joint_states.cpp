@@ -59,6 +59,17 @@ TEST(HeadTfFromJointStates, ChainMatchesTheCameraFileAndBadMessagesAreSkipped) {
   while (f.pub.getNumSubscribers() == 0 && ros::WallTime::now() < end)
     ros::WallDuration(0.05).sleep();
   ASSERT_GT(f.pub.getNumSubscribers(), 0u) << "head_tf_publisher did not subscribe to joint_states";
+  // The node subscribing is not the listener hearing /tf: a transform the node publishes before
+  // the listener's connection is up is lost. Resend a warm-up message (stamps 1, 2, ..., far
+  // before the test's) until one arrives, then start.
+  f.t = 0.0;
+  bool heard = false;
+  for (int attempt = 0; attempt < 40 && !heard; ++attempt) {
+    Eigen::Isometry3d warm;
+    heard = f.lookup(f.send({"HeadYaw", "HeadPitch"}, {0.0, 0.0}), 0.5, &warm);
+  }
+  ASSERT_TRUE(heard) << "no transform from head_tf_publisher within 20 s";
+  f.t = 100.0;
 
   // A NAO's message: the head among other joints.
   const ros::Time good = f.send({"LShoulderPitch", "HeadYaw", "HeadPitch"}, {1.2, 0.3, -0.2});
