@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -97,7 +98,8 @@ int main(int argc, char** argv) {
     std::ofstream csv(fs::path(output) / "images.csv");
     const std::string header =
         "image,x_m,y_m,heading_deg,spread_m,cluster_weight,true_x_m,true_y_m,position_error_m,ms,"
-        "goals_seen,camera_pitch_offset_rad,mirror_evidence";
+        "goals_seen,camera_pitch_offset_rad,mirror_evidence,checks,relocalizations,"
+        "max_check_score";
     csv << header << "\n";
     std::cout << header << "\n";
     std::vector<double> errors;
@@ -119,11 +121,20 @@ int main(int argc, char** argv) {
       rbpf.initUniform();
       int goals = -1;
       double pitch_offset = 0.0, mirror_evidence = 0.0;
+      // The relocalization checks that ended (not the global search's second draw), how many found
+      // the particles lost, and the largest margin a uniform pose had over them.
+      int checks = 0, relocalizations = 0;
+      double max_check_score = std::numeric_limits<double>::quiet_NaN();
       for (int k = 0; k < frames; ++k) {
         const auto r = rbpf.step(math::SE2(), k == 0 ? 0.0 : 1.0 / 30.0, yuv, base_to_optical);
         if (r.goal_sightings >= 0) goals = r.goal_sightings;
         mirror_evidence = r.mirror_evidence;
         pitch_offset = r.camera_pitch_offset_rad;
+        if (!r.second_draw && std::isfinite(r.relocalization_score)) {
+          ++checks;
+          relocalizations += r.relocalized;
+          if (!(r.relocalization_score <= max_check_score)) max_check_score = r.relocalization_score;
+        }
       }
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
       ms_total += ms;
@@ -137,12 +148,13 @@ int main(int argc, char** argv) {
       const std::string name = fs::path(item.path).parent_path().filename().string() + "_" +
                                fs::path(item.path).stem().string();
       char line[640];
-      std::snprintf(line, sizeof line, "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f,%d,%.4f,%.2f",
+      std::snprintf(line, sizeof line, "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f,%d,%.4f,%.2f,%d,%d,%.2f",
                     item.path.c_str(), est.pose.x_m, est.pose.y_m, math::radToDeg(est.pose.yaw_rad),
                     est.spread_m, est.cluster_weight,
                     item.truth_xy_m ? std::to_string(item.truth_xy_m->x()).c_str() : "",
                     item.truth_xy_m ? std::to_string(item.truth_xy_m->y()).c_str() : "", error, ms,
-                    goals, pitch_offset, mirror_evidence);
+                    goals, pitch_offset, mirror_evidence, checks, relocalizations,
+                    max_check_score);
       std::cout << line << std::endl;
       csv << line << "\n";
       cv::imwrite((fs::path(output) / (name + ".png")).string(),

@@ -187,10 +187,11 @@ class RbpfLocalizer {
   /// A lighting filter at the priors (the particles' start, and the searches' lighting).
   const color::SwitchingColorFilter& priorLighting() const { return prior_lighting_; }
 
-  /// The global search's goal proposals for this image (its first): poses drawn around the goals
-  /// it shows; sets result->goal_sightings and, with goal_pitch_correction, the pitch offset.
+  /// `count` poses drawn around the goals this image shows (goal_detection.h), shared among the
+  /// sightings; none on a field without goal posts. The sightings go to `seen` when given.
   std::vector<math::SE2> goalProposals(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
-                                       std::uint64_t frame_seed, StepResult* result);
+                                       std::uint64_t frame_seed, int count,
+                                       std::vector<GoalSighting>* seen = nullptr) const;
   /// Adapts the priors to this image (adapt_priors_to_image) when the particles were just placed.
   void adaptPriorsIfPending(const cv::Mat& yuv);
 

@@ -2,8 +2,9 @@
 // The relocalization check of the RBPF: are the particles lost? It recovers from a kidnap, and from
 // a global search that committed to the wrong place.
 //
-// Every interval_s seconds after the particles have committed, pool_size uniform poses (in
-// point-mirrored pairs) and the particles' own poses are scored side by side over the next
+// Every interval_s seconds after the particles have committed, a pool drawn as the global
+// search's is (around a goal in view when the caller proposes poses; else pool_size uniform poses,
+// in point-mirrored pairs) and the particles' own poses are scored side by side over the next
 // GlobalLocalizationConfig::search_frames images, as the global search scores its pool (the
 // search's coarse grid, each pose moved by the odometry, log-likelihoods summed), all under the
 // priors' lighting; the refine_candidates best poses of both sides are refined alike. If the best
@@ -23,6 +24,7 @@
 // Contract: the class holds the check's pool and timer and returns the finished contest; the
 // caller settles it (PoseSearch::settle) and applies the decision.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -50,12 +52,13 @@ class RelocalizationMonitor {
   void reset();
   /// One image after the particles were weighed (and carry this image's motion): on the check's
   /// `frames`-th image, the contest of its uniform poses against `particle_poses`, not yet
-  /// settled. The particles' poses are taken when a check starts.
-  std::optional<PoseContest> observe(PoseSearch* search, const math::SE2& odom_delta, double dt_s,
-                                     const cv::Mat& yuv,
-                                     const color::SwitchingColorFilter& lighting,
-                                     const Eigen::Isometry3d& base_to_optical, std::uint64_t seed,
-                                     int frames, const std::vector<math::SE2>& particle_poses);
+  /// settled. The particles' poses are taken when a check starts, and so is its pool: `propose()`
+  /// (called then only, when given) or, where it gives none, pool_size uniform poses.
+  std::optional<PoseContest> observe(
+      PoseSearch* search, const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv,
+      const color::SwitchingColorFilter& lighting, const Eigen::Isometry3d& base_to_optical,
+      std::uint64_t seed, int frames, const std::vector<math::SE2>& particle_poses,
+      const std::function<std::vector<math::SE2>()>& propose = {});
 
   const RelocalizationConfig& config() const { return config_; }
 

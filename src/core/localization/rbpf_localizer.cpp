@@ -150,19 +150,13 @@ void RbpfLocalizer::setImage(const cv::Mat& yuv) {
 
 std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
                                                     const Eigen::Isometry3d& base_to_optical,
-                                                    std::uint64_t frame_seed,
-                                                    StepResult* result) {
-  const int count = static_cast<int>(config_.global.goal_pool_share * config_.global.goal_pool_size);
-  if ((count < 2 && !config_.goal_pitch_correction) ||
-      likelihood_->map().dimensions().goal_post_diameter_m <= 0.0)
-    return {};
+                                                    std::uint64_t frame_seed, int count,
+                                                    std::vector<GoalSighting>* seen) const {
+  if (likelihood_->map().dimensions().goal_post_diameter_m <= 0.0) return {};
   const color::FieldSegmentation seg =
       color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
   const std::vector<GoalSighting> sightings = detectGoals(
       yuv, seg, likelihood_->camera(), base_to_optical, likelihood_->map(), config_.goals);
-  result->goal_sightings = static_cast<int>(sightings.size());
-  if (config_.goal_pitch_correction && !sightings.empty())
-    pitch_offset_rad_ = sightings.front().pitch_offset_rad;
   // Each sighting gets its share of the proposals (sampled under its own lean: the best's is the
   // one the particles use, and the others are rare).
   std::vector<math::SE2> proposals;
@@ -173,6 +167,7 @@ std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
     for (const math::SE2& p : sampleGoalPoses(s, likelihood_->map(), config_.goals, share, rng))
       proposals.push_back(p);
   }
+  if (seen) *seen = sightings;
   return proposals;
 }
 
@@ -249,7 +244,18 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
   StepResult r;
   // A global search's first image: the goals it shows (and the camera pitch they measure).
   std::vector<math::SE2> proposals;
-  if (global_.poolPending()) proposals = goalProposals(yuv, head_base_to_optical, frame_seed, &r);
+  if (global_.poolPending()) {
+    const int count =
+        static_cast<int>(config_.global.goal_pool_share * config_.global.goal_pool_size);
+    if (count >= 2 || config_.goal_pitch_correction) {
+      std::vector<GoalSighting> sightings;
+      proposals = goalProposals(yuv, head_base_to_optical, frame_seed, count, &sightings);
+      if (likelihood_->map().dimensions().goal_post_diameter_m > 0.0)
+        r.goal_sightings = static_cast<int>(sightings.size());
+      if (config_.goal_pitch_correction && !sightings.empty())
+        pitch_offset_rad_ = sightings.front().pitch_offset_rad;
+    }
+  }
   const Eigen::Isometry3d base_to_optical =
       leanCamera(head_base_to_optical, pitch_offset_rad_);
   r.camera_pitch_offset_rad = pitch_offset_rad_;
@@ -307,9 +313,16 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
           config_.global.confirm_fraction, false, config_.global.refine_candidates, &r);
     }
   } else if (!global_.confirming()) {
-    if (auto contest =
-            relocalization_.observe(&search_, delta, dt_s, yuv, priorLighting(), base_to_optical,
-                                    frame_seed, config_.global.search_frames, poses())) {
+    // The check's pool is drawn as the global search's is: around a goal in view, else uniform.
+    const auto propose = [&] {
+      return config_.global.goal_pool_share > 0.0
+                 ? goalProposals(yuv, base_to_optical, frame_seed,
+                                 config_.relocalization.pool_size)
+                 : std::vector<math::SE2>();
+    };
+    if (auto contest = relocalization_.observe(&search_, delta, dt_s, yuv, priorLighting(),
+                                               base_to_optical, frame_seed,
+                                               config_.global.search_frames, poses(), propose)) {
       const RelocalizationConfig& rc = config_.relocalization;
       r.relocalized = applyContest(std::move(*contest), priorLighting(), frame_seed, rc.margin,
                                    rc.fraction, rc.restart, rc.refine_candidates, &r);

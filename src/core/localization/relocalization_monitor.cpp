@@ -18,7 +18,8 @@ void RelocalizationMonitor::reset() {
 std::optional<PoseContest> RelocalizationMonitor::observe(
     PoseSearch* search, const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv,
     const color::SwitchingColorFilter& lighting, const Eigen::Isometry3d& base_to_optical,
-    std::uint64_t seed, int frames, const std::vector<math::SE2>& particle_poses) {
+    std::uint64_t seed, int frames, const std::vector<math::SE2>& particle_poses,
+    const std::function<std::vector<math::SE2>()>& propose) {
   if (config_.interval_s <= 0.0) return std::nullopt;
   const bool starting = frames_ == 0;
   if (starting) {
@@ -28,10 +29,15 @@ std::optional<PoseContest> RelocalizationMonitor::observe(
   SampledImage image = search->coarseImage(yuv, base_to_optical);
   if (starting) {
     // The particles have this image's motion already; the uniform poses are drawn for it.
-    contest_.candidates = static_cast<std::size_t>(config_.pool_size);
+    std::vector<math::SE2> proposals = propose ? propose() : std::vector<math::SE2>();
+    contest_.candidates =
+        proposals.empty() ? static_cast<std::size_t>(config_.pool_size) : proposals.size();
     contest_.poses.resize(contest_.candidates + particle_poses.size());
     contest_.log_likelihoods.assign(contest_.poses.size(), 0.0);
-    search->fillUniform(&contest_.poses, contest_.candidates, seed ^ 0x2545F4914F6CDD1Dull);
+    if (proposals.empty())
+      search->fillUniform(&contest_.poses, contest_.candidates, seed ^ 0x2545F4914F6CDD1Dull);
+    else
+      std::copy(proposals.begin(), proposals.end(), contest_.poses.begin());
     std::copy(particle_poses.begin(), particle_poses.end(),
               contest_.poses.begin() + static_cast<std::ptrdiff_t>(contest_.candidates));
   }

@@ -306,6 +306,32 @@ TEST(RelocalizationMonitor, ChecksEveryIntervalOverTheSearchsFrames) {
   }
   EXPECT_EQ(ended, (std::vector<int>{6, 12}));
 
+  // A proposal source is asked once per check, on its first image, and its poses are the pool; a
+  // source that proposes nothing leaves the pool uniform.
+  RelocalizationMonitor proposing(config);
+  int asked = 0;
+  bool propose_none = false;
+  const auto propose = [&] {
+    ++asked;
+    return propose_none ? std::vector<math::SE2>()
+                        : std::vector<math::SE2>(7, math::SE2(-2.0, 1.0, 0.5));
+  };
+  std::vector<std::size_t> pools;
+  for (int k = 1; k <= 12; ++k) {
+    propose_none = k > 6;
+    const std::vector<math::SE2> particles(5, math::SE2(0.5, -0.5, 0.3));
+    const auto contest = proposing.observe(&search, math::SE2(), 0.25, yuv, lighting, cam, k, 3,
+                                           particles, propose);
+    if (!contest) continue;
+    pools.push_back(contest->candidates);
+    ASSERT_EQ(contest->poses.size(), contest->candidates + 5);
+    if (contest->candidates == 7) {
+      for (std::size_t i = 0; i < 7; ++i) EXPECT_EQ(contest->poses[i].x_m, -2.0);
+    }
+  }
+  EXPECT_EQ(asked, 2);  // the checks began on images 4 and 10
+  EXPECT_EQ(pools, (std::vector<std::size_t>{7, 50}));
+
   config.interval_s = 0.0;  // off
   RelocalizationMonitor off(config);
   for (int k = 1; k <= 20; ++k)

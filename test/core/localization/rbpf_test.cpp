@@ -7,6 +7,7 @@
 #include "adaptive_perception/localization/motion_model.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
 #include "adaptive_perception/sim/field_simulator.h"
+#include "adaptive_perception/world/robot_camera.h"
 
 using namespace adaptive_perception;
 using namespace adaptive_perception::localization;
@@ -380,6 +381,31 @@ void expectRecoveryFromAWrongStart(bool restart) {
   EXPECT_GT(max_score, cfg.relocalization.margin);
 }
 }  // namespace
+
+// The same on the SPL field with its landmarks and a NAO's top camera, whose goals are posts: the
+// check's pool is drawn around a goal in view (as the global search's is), else uniform. A wrong
+// start is found lost and restarted; a right one is left alone.
+TEST(Rbpf, OnTheNaoFieldTheCheckRecoversAWrongStartAndLeavesARightOne) {
+  Scene s;
+  s.map = world::FieldMap::loadYaml(std::string(AP_SOURCE_DIR) + "/config/field_spl_landmarks.yaml");
+  const world::RobotCamera nao = world::RobotCamera::loadYaml(std::string(AP_SOURCE_DIR) +
+                                                              "/config/cameras/nao_v6_top.yaml");
+  s.cam = nao.camera;
+  s.head = nao.head;
+  sim::FieldSimConfig sc;
+  sc.seed = 1;
+  RbpfConfig cfg;
+  cfg.threads = 2;
+  int relocalizations = 0;
+  double max_score = 0.0;
+  const double found =
+      runFrom(s, sc, cfg, wrongStart(s, sc), 8.0, &relocalizations, &max_score, true);
+  EXPECT_LT(found, 0.3);
+  EXPECT_GE(relocalizations, 1);
+  const double kept = runFrom(s, sc, cfg, trueStart(s, sc), 8.0, &relocalizations, &max_score);
+  EXPECT_LT(kept, 0.3);
+  EXPECT_EQ(relocalizations, 0) << "the largest margin a check's pose had: " << max_score;
+}
 
 TEST(Rbpf, AWrongStartStaysLostWithoutTheRelocalizationCheck) {
   Scene s;
