@@ -203,6 +203,12 @@ inline void addTraversalOptions(CommandLine& cli, TraversalOptions* o) {
   cli.option("route_speed_change_probability", &m.route.speed_change_probability,
              "route filter: probability that the query's speed changes, per frame")
       ->group(group);
+  cli.option("route_stop_probability", &m.route.stop_probability,
+             "route filter: probability that a moving query stands still, per frame")
+      ->group(group);
+  cli.option("route_start_probability", &m.route.start_probability,
+             "route filter: probability that a still query drives off, per frame")
+      ->group(group);
   cli.option("route_hub_prior_queries", &m.route.hub_prior_queries,
              "route filter: prior weight of each reference's distance statistics (0: off)")
       ->group(group);

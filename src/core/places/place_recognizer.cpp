@@ -37,7 +37,11 @@ const config::Fields<PlaceRecognizerConfig>& PlaceRecognizerConfig::fields() {
           .add("route_likelihood_gain", &C::route, &RouteFilterConfig::likelihood_gain,
                config::aboveZero(100), "route filter: likelihood exp(-gain * distance z-score)")
           .add("route_jump_probability", &C::route, &RouteFilterConfig::jump_probability,
-               config::belowOne(), "route filter: chance per image of a jump anywhere (kidnap)");
+               config::belowOne(), "route filter: chance per image of a jump anywhere (kidnap)")
+          .add("route_stop_probability", &C::route, &RouteFilterConfig::stop_probability,
+               closed(0, 1), "route filter: chance per image that a moving robot stands still")
+          .add("route_start_probability", &C::route, &RouteFilterConfig::start_probability,
+               closed(0, 1), "route filter: chance per image that a still robot drives off");
   return f;
 }
 

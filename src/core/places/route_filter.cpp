@@ -23,6 +23,8 @@ void RouteFilterConfig::validate() const {
        "max_speed must be in [min_speed, 100]");
   need(speed_steps >= 1 && speed_steps <= 50, "speed_steps must be in [1, 50]");
   need(probability(speed_change_probability), "speed_change_probability must be in [0, 1]");
+  need(probability(stop_probability), "stop_probability must be in [0, 1]");
+  need(probability(start_probability), "start_probability must be in [0, 1]");
   need(probability(jump_probability) && jump_probability < 1.0,
        "jump_probability must be in [0, 1)");
   need(std::isfinite(likelihood_gain) && likelihood_gain > 0.0 && likelihood_gain <= 100.0,
@@ -78,6 +80,23 @@ std::vector<double> RouteFilter::predict(const std::vector<double>& joint, int n
       mixed[static_cast<size_t>(s) * n + j] += (1.0 - change) * m;
       if (lo) mixed[static_cast<size_t>(s - 1) * n + j] += to_each * m;
       if (hi) mixed[static_cast<size_t>(s + 1) * n + j] += to_each * m;
+    }
+  }
+  // Stopping and starting: a moving query stands still, and a still one drives off at any forward
+  // speed, in one query frame.
+  const double stop = config_.stop_probability, start = config_.start_probability;
+  if ((stop > 0.0 || start > 0.0) && ns > 2) {
+    const double start_each = start / (ns - 2);
+    for (int j = 0; j < n; ++j) {
+      double moving = 0.0;
+      for (int s = 2; s < ns; ++s) moving += mixed[static_cast<size_t>(s) * n + j];
+      const double still = mixed[static_cast<size_t>(n) + j];
+      if (moving == 0.0 && still == 0.0) continue;
+      mixed[static_cast<size_t>(n) + j] = (1.0 - start) * still + stop * moving;
+      for (int s = 2; s < ns; ++s) {
+        double& m = mixed[static_cast<size_t>(s) * n + j];
+        m = (1.0 - stop) * m + start_each * still;
+      }
     }
   }
   // Then each speed moves its mass; a jump spreads a share over every frame and speed.
