@@ -193,13 +193,13 @@ void RbpfLocalizerNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
     ++relocalizations_;
     if (last_.global_search_restarted)
       ROS_WARN(
-          "rbpf_localizer: the relocalization check found the particles lost (a uniform pose beat "
-          "them by %.2f); global search restarted",
+          "rbpf_localizer: the relocalization check found the particles lost (a pose of its pool "
+          "beat them by %.2f); global search restarted",
           last_.relocalization_score);
     else
       ROS_WARN(
-          "rbpf_localizer: the relocalization check found the particles lost (a uniform pose beat "
-          "them by %.2f); part of them redrawn from its poses",
+          "rbpf_localizer: the relocalization check found the particles lost (a pose of its pool "
+          "beat them by %.2f); part of them redrawn from its poses",
           last_.relocalization_score);
   }
   if (last_.second_draw)
@@ -331,7 +331,7 @@ void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
     stat.add("position std of the estimate (m)",
              std::sqrt(e.covariance.topLeftCorner<2, 2>().trace()));
     stat.add("relocalizations", relocalizations_);
-    stat.add("last relocalization check: best uniform minus best particle", last_check_score_);
+    stat.add("last relocalization check: best search pose minus best particle", last_check_score_);
     stat.add("mirror flips", mirror_flips_);
     stat.add("mirror test: evidence for the other half", last_.mirror_evidence);
     stat.add("compute time of the last frame (s)", last_compute_s_);

@@ -121,8 +121,8 @@ int main(int argc, char** argv) {
       rbpf.initUniform();
       int goals = -1;
       double pitch_offset = 0.0, mirror_evidence = 0.0;
-      // The relocalization checks that ended (not the global search's second draw), how many found
-      // the particles lost, and the largest margin a uniform pose had over them.
+      // The relocalization checks that ended, how many found the particles lost, and the largest
+      // margin a pose of a check's pool had over them (nan: no check ended).
       int checks = 0, relocalizations = 0;
       double max_check_score = std::numeric_limits<double>::quiet_NaN();
       for (int k = 0; k < frames; ++k) {
@@ -130,10 +130,11 @@ int main(int argc, char** argv) {
         if (r.goal_sightings >= 0) goals = r.goal_sightings;
         mirror_evidence = r.mirror_evidence;
         pitch_offset = r.camera_pitch_offset_rad;
-        if (!r.second_draw && std::isfinite(r.relocalization_score)) {
+        if (r.relocalization_checked) {
           ++checks;
           relocalizations += r.relocalized;
-          if (!(r.relocalization_score <= max_check_score)) max_check_score = r.relocalization_score;
+          if (!(r.relocalization_score <= max_check_score))
+            max_check_score = r.relocalization_score;
         }
       }
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -148,7 +149,8 @@ int main(int argc, char** argv) {
       const std::string name = fs::path(item.path).parent_path().filename().string() + "_" +
                                fs::path(item.path).stem().string();
       char line[640];
-      std::snprintf(line, sizeof line, "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f,%d,%.4f,%.2f,%d,%d,%.2f",
+      std::snprintf(line, sizeof line,
+                    "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f,%d,%.4f,%.2f,%d,%d,%.2f",
                     item.path.c_str(), est.pose.x_m, est.pose.y_m, math::radToDeg(est.pose.yaw_rad),
                     est.spread_m, est.cluster_weight,
                     item.truth_xy_m ? std::to_string(item.truth_xy_m->x()).c_str() : "",

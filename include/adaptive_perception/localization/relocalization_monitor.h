@@ -2,14 +2,14 @@
 // The relocalization check of the RBPF: are the particles lost? It recovers from a kidnap, and from
 // a global search that committed to the wrong place.
 //
-// Every interval_s seconds after the particles have committed, a pool drawn as the global
-// search's is (around a goal in view when the caller proposes poses; else pool_size uniform poses,
-// in point-mirrored pairs) and the particles' own poses are scored side by side over the next
-// GlobalLocalizationConfig::search_frames images, as the global search scores its pool (the
-// search's coarse grid, each pose moved by the odometry, log-likelihoods summed), all under the
-// priors' lighting; the refine_candidates best poses of both sides are refined alike. If the best
-// uniform pose beats the best particle pose by more than `margin` (tempered log-likelihood summed
-// over those images), the particles are lost: by default (`restart`) the global search starts
+// Every interval_s seconds after the particles have committed, a pool of pool_size poses drawn as
+// the global search's is (uniform, in point-mirrored pairs, the first of them replaced by the
+// caller's proposals: poses around a goal in view) and the particles' own poses are scored side
+// by side over the next GlobalLocalizationConfig::search_frames images, as the global search
+// scores its pool (the search's coarse grid, each pose moved by the odometry, log-likelihoods
+// summed), all under the priors' lighting; the refine_candidates best poses of both sides are
+// refined alike. If the pool's best pose beats the best particle pose by more than `margin`
+// (tempered log-likelihood summed over those images), the particles are lost: by default (`restart`) the global search starts
 // again, with its full pool and its second draw; with restart false, `fraction` of the particles
 // are drawn from the check's poses instead and the rest are kept.
 //
@@ -51,9 +51,10 @@ class RelocalizationMonitor {
   /// Forgets a running check and restarts the interval (the particles were placed anew).
   void reset();
   /// One image after the particles were weighed (and carry this image's motion): on the check's
-  /// `frames`-th image, the contest of its uniform poses against `particle_poses`, not yet
-  /// settled. The particles' poses are taken when a check starts, and so is its pool: `propose()`
-  /// (called then only, when given) or, where it gives none, pool_size uniform poses.
+  /// `frames`-th image, the contest of its pool against `particle_poses`, not yet
+  /// settled. The particles' poses are taken when a check starts, and so is its pool: pool_size
+  /// uniform poses, the first of them replaced by what `propose()` gives (called then only, when
+  /// given; whole mirrored pairs, at most the pool).
   std::optional<PoseContest> observe(
       PoseSearch* search, const math::SE2& odom_delta, double dt_s, const cv::Mat& yuv,
       const color::SwitchingColorFilter& lighting, const Eigen::Isometry3d& base_to_optical,
@@ -61,11 +62,14 @@ class RelocalizationMonitor {
       const std::function<std::vector<math::SE2>()>& propose = {});
 
   const RelocalizationConfig& config() const { return config_; }
+  /// The proposals in the pool of the check running or last started (0: all uniform).
+  std::size_t proposed() const { return proposed_; }
 
  private:
   RelocalizationConfig config_;
   PoseContest contest_;               // the running check's poses
   int frames_ = 0;                    // images scored in the running check (0: none running)
+  std::size_t proposed_ = 0;          // see proposed()
   double seconds_since_check_ = 0.0;  // since the particles were placed or the last check ended
 };
 

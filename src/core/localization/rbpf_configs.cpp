@@ -128,7 +128,8 @@ const config::Fields<GlobalLocalizationConfig>& GlobalLocalizationConfig::fields
           .add("refine_candidates", &C::refine_candidates, config::closed(0, 1000000),
                "best poses refined at the commit and at the second draw")
           .add("global_goal_pool_share", &C::goal_pool_share, config::closed(0, 1),
-               "share of the global search's pool drawn from the goals its first image shows")
+               "share of the global search's pool (and of a relocalization check's) drawn from "
+               "the goals its first image shows")
           .add("global_goal_pool_size", &C::goal_pool_size, config::closed(2, 10000000),
                "poses a global search scores when its first image shows a goal")
           .add("global_goal_pixel_stride", &C::goal_pixel_stride, config::closed(1, 256),
@@ -143,9 +144,9 @@ const config::Fields<RelocalizationConfig>& RelocalizationConfig::fields() {
           .add("relocalization_interval_s", &C::interval_s, config::closed(0, 1e6),
                "a check that the particles are not lost every this many seconds (0: off)")
           .add("relocalization_pool_size", &C::pool_size, config::closed(0, 10000000),
-               "uniform poses a check scores beside the particles")
+               "poses a check scores beside the particles (around a goal in view, else uniform)")
           .add("relocalization_margin", &C::margin, config::closed(-1e6, 1e6),
-               "the best uniform pose must beat the particles' by this (tempered nats)")
+               "the check's best pose must beat the particles' by this (tempered nats)")
           .add("relocalization_fraction", &C::fraction, config::aboveZero(1),
                "share of the particles drawn from the check's poses (relocalization_restart false)")
           .add("relocalization_restart", &C::restart,

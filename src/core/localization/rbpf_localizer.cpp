@@ -313,17 +313,21 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
           config_.global.confirm_fraction, false, config_.global.refine_candidates, &r);
     }
   } else if (!global_.confirming()) {
-    // The check's pool is drawn as the global search's is: around a goal in view, else uniform.
+    // The check's pool is drawn as the global search's is: goal_pool_share of it around a goal
+    // in view (the detection under the head chain's camera, its lean measured anew), the rest
+    // uniform.
     const auto propose = [&] {
-      return config_.global.goal_pool_share > 0.0
-                 ? goalProposals(yuv, base_to_optical, frame_seed,
-                                 config_.relocalization.pool_size)
-                 : std::vector<math::SE2>();
+      const int count =
+          static_cast<int>(config_.global.goal_pool_share * config_.relocalization.pool_size);
+      return count >= 2 ? goalProposals(yuv, head_base_to_optical, frame_seed, count)
+                        : std::vector<math::SE2>();
     };
     if (auto contest = relocalization_.observe(&search_, delta, dt_s, yuv, priorLighting(),
                                                base_to_optical, frame_seed,
                                                config_.global.search_frames, poses(), propose)) {
       const RelocalizationConfig& rc = config_.relocalization;
+      r.relocalization_checked = true;
+      r.relocalization_goal_poses = static_cast<int>(relocalization_.proposed());
       r.relocalized = applyContest(std::move(*contest), priorLighting(), frame_seed, rc.margin,
                                    rc.fraction, rc.restart, rc.refine_candidates, &r);
     }

@@ -28,16 +28,15 @@ std::optional<PoseContest> RelocalizationMonitor::observe(
   }
   SampledImage image = search->coarseImage(yuv, base_to_optical);
   if (starting) {
-    // The particles have this image's motion already; the uniform poses are drawn for it.
-    std::vector<math::SE2> proposals = propose ? propose() : std::vector<math::SE2>();
-    contest_.candidates =
-        proposals.empty() ? static_cast<std::size_t>(config_.pool_size) : proposals.size();
+    // The particles have this image's motion already; the pool is drawn for it: uniform, its
+    // first poses (whole mirrored pairs, at most the pool) replaced by the proposals.
+    const std::vector<math::SE2> proposals = propose ? propose() : std::vector<math::SE2>();
+    contest_.candidates = static_cast<std::size_t>(config_.pool_size);
     contest_.poses.resize(contest_.candidates + particle_poses.size());
     contest_.log_likelihoods.assign(contest_.poses.size(), 0.0);
-    if (proposals.empty())
-      search->fillUniform(&contest_.poses, contest_.candidates, seed ^ 0x2545F4914F6CDD1Dull);
-    else
-      std::copy(proposals.begin(), proposals.end(), contest_.poses.begin());
+    search->fillUniform(&contest_.poses, contest_.candidates, seed ^ 0x2545F4914F6CDD1Dull);
+    proposed_ = std::min(contest_.candidates, proposals.size()) / 2 * 2;
+    std::copy_n(proposals.begin(), proposed_, contest_.poses.begin());
     std::copy(particle_poses.begin(), particle_poses.end(),
               contest_.poses.begin() + static_cast<std::ptrdiff_t>(contest_.candidates));
   }

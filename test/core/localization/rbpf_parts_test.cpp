@@ -306,8 +306,8 @@ TEST(RelocalizationMonitor, ChecksEveryIntervalOverTheSearchsFrames) {
   }
   EXPECT_EQ(ended, (std::vector<int>{6, 12}));
 
-  // A proposal source is asked once per check, on its first image, and its poses are the pool; a
-  // source that proposes nothing leaves the pool uniform.
+  // A proposal source is asked once per check, on its first image; its poses (whole pairs: 6 of
+  // 7) come first in the pool, the rest uniform; a source that proposes nothing leaves it uniform.
   RelocalizationMonitor proposing(config);
   int asked = 0;
   bool propose_none = false;
@@ -316,21 +316,21 @@ TEST(RelocalizationMonitor, ChecksEveryIntervalOverTheSearchsFrames) {
     return propose_none ? std::vector<math::SE2>()
                         : std::vector<math::SE2>(7, math::SE2(-2.0, 1.0, 0.5));
   };
-  std::vector<std::size_t> pools;
+  std::vector<std::size_t> proposed;
   for (int k = 1; k <= 12; ++k) {
     propose_none = k > 6;
     const std::vector<math::SE2> particles(5, math::SE2(0.5, -0.5, 0.3));
     const auto contest = proposing.observe(&search, math::SE2(), 0.25, yuv, lighting, cam, k, 3,
                                            particles, propose);
     if (!contest) continue;
-    pools.push_back(contest->candidates);
-    ASSERT_EQ(contest->poses.size(), contest->candidates + 5);
-    if (contest->candidates == 7) {
-      for (std::size_t i = 0; i < 7; ++i) EXPECT_EQ(contest->poses[i].x_m, -2.0);
-    }
+    proposed.push_back(proposing.proposed());
+    EXPECT_EQ(contest->candidates, 50u);
+    ASSERT_EQ(contest->poses.size(), 55u);
+    for (std::size_t i = 0; i < proposing.proposed(); ++i) EXPECT_EQ(contest->poses[i].x_m, -2.0);
+    for (std::size_t i = proposing.proposed(); i < 50; ++i) EXPECT_NE(contest->poses[i].x_m, -2.0);
   }
   EXPECT_EQ(asked, 2);  // the checks began on images 4 and 10
-  EXPECT_EQ(pools, (std::vector<std::size_t>{7, 50}));
+  EXPECT_EQ(proposed, (std::vector<std::size_t>{6, 0}));
 
   config.interval_s = 0.0;  // off
   RelocalizationMonitor off(config);
