@@ -398,36 +398,30 @@ Scene naoScene() {
   return s;
 }
 
-// The simulator's route, head and light as for the AIBO.
-sim::FieldSimConfig naoRoute() {
+// The simulated NAO (seed 1; route, head and light as for the AIBO) from the wrong start or the
+// true one, 8 s with the defaults; the final error (or to the truth's mirror, from the wrong start).
+double runOnNaoField(bool wrong, int* relocalizations, double* max_score) {
+  const Scene s = naoScene();
   sim::FieldSimConfig sc;
   sc.seed = 1;
-  return sc;
+  RbpfConfig cfg;
+  cfg.threads = 2;
+  return runFrom(s, sc, cfg, wrong ? wrongStart(s, sc) : trueStart(s, sc), 8.0, relocalizations,
+                 max_score, wrong);
 }
 }  // namespace
 
 TEST(Rbpf, OnTheNaoFieldTheCheckRecoversAWrongStart) {
-  const Scene s = naoScene();
-  const sim::FieldSimConfig sc = naoRoute();
-  RbpfConfig cfg;
-  cfg.threads = 2;
   int relocalizations = 0;
   double max_score = 0.0;
-  const double found =
-      runFrom(s, sc, cfg, wrongStart(s, sc), 8.0, &relocalizations, &max_score, true);
-  EXPECT_LT(found, 0.3);
+  EXPECT_LT(runOnNaoField(true, &relocalizations, &max_score), 0.3);
   EXPECT_GE(relocalizations, 1);
 }
 
 TEST(Rbpf, OnTheNaoFieldTheCheckLeavesARightStartAlone) {
-  const Scene s = naoScene();
-  const sim::FieldSimConfig sc = naoRoute();
-  RbpfConfig cfg;
-  cfg.threads = 2;
   int relocalizations = 0;
   double max_score = 0.0;
-  const double kept = runFrom(s, sc, cfg, trueStart(s, sc), 8.0, &relocalizations, &max_score);
-  EXPECT_LT(kept, 0.3);
+  EXPECT_LT(runOnNaoField(false, &relocalizations, &max_score), 0.3);
   EXPECT_EQ(relocalizations, 0) << "the largest margin a check's pose had: " << max_score;
 }
 
