@@ -130,10 +130,8 @@ class RbpfLocalizer {
     // search starts again (RelocalizationConfig::restart), otherwise part of the particles were
     // drawn from the check's poses.
     bool relocalized = false;
-    // A relocalization check ended with this image, and the poses of its pool that were drawn
-    // around a goal in view (0: its pool was uniform).
+    // A relocalization check ended with this image.
     bool relocalization_checked = false;
-    int relocalization_goal_poses = 0;
     bool global_search_restarted = false;
     // The global search's second draw replaced part of the particles.
     bool second_draw = false;

@@ -9,9 +9,10 @@
 // scores its pool (the search's coarse grid, each pose moved by the odometry, log-likelihoods
 // summed), all under the priors' lighting; the refine_candidates best poses of both sides are
 // refined alike. If the pool's best pose beats the best particle pose by more than `margin`
-// (tempered log-likelihood summed over those images), the particles are lost: by default (`restart`) the global search starts
-// again, with its full pool and its second draw; with restart false, `fraction` of the particles
-// are drawn from the check's poses instead and the rest are kept.
+// (tempered log-likelihood summed over those images), the particles are lost: by default
+// (`restart`) the global search starts again, with its full pool and its second draw; with
+// restart false, `fraction` of the particles are drawn from the check's poses instead and the
+// rest are kept.
 //
 // Why a likelihood ratio against the rest of the field and not the likelihood's level: the level
 // swings with what the camera sees and with the light, and falls as far when the head turns to a

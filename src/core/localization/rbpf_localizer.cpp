@@ -327,7 +327,6 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
                                                config_.global.search_frames, poses(), propose)) {
       const RelocalizationConfig& rc = config_.relocalization;
       r.relocalization_checked = true;
-      r.relocalization_goal_poses = static_cast<int>(relocalization_.proposed());
       r.relocalized = applyContest(std::move(*contest), priorLighting(), frame_seed, rc.margin,
                                    rc.fraction, rc.restart, rc.refine_candidates, &r);
     }
