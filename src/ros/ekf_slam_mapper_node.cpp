@@ -582,6 +582,9 @@ void EkfSlamMapperNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   stat.add("loop closures", slam_->loopCloser().loopClosures());
   stat.add("wide search", config_.loop.wide_search ? "on" : "off");
   stat.add("wide loops confirmed (two edges each)", slam_->loopCloser().wideConfirmed());
+  stat.add("wide matches dropped: ambiguous in rotation", slam_->loopCloser().wideAmbiguous());
+  stat.add("wide matches dropped: beyond the joined node's window",
+           slam_->loopCloser().wideBeyondWindow());
   stat.add("graph nodes", slam_->loopCloser().nodes());
   stat.add("chain edges from the front end (EKF jumped)", slam_->loopCloser().chainEdgesReplaced());
   stat.add("update time last (ms)", last_update_ms_);

@@ -19,7 +19,8 @@
 // --wide_search 1 (default): loops the estimate has drifted metres from are searched for by branch
 // and bound (LoopClosingConfig::wide_search; summary keys wide_attempts, wide_matches,
 // wide_confirmed, wide_ambiguous: matches dropped as ambiguous in rotation, wide_budget_cut:
-// searches the time bound cut short).
+// searches the time bound cut short, wide_beyond_window: matches beyond the window of the node
+// they join).
 // `--front_end 0 --loop_closing 0` is the paper's filter alone, on the wheel odometry with
 // --odom_noise_scale times its noise model (the simulator's consistency checks run it so).
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
@@ -449,7 +450,7 @@ int main(int argc, char** argv) {
         "front_end_matched=%.3f front_end_weak_matches=%ld loop_closures=%d graph_nodes=%d "
         "ekf_relation_trans_error_m=%.4f chain_edges_replaced=%d loops_rejected_free_space=%ld "
         "wide_attempts=%ld wide_matches=%ld wide_confirmed=%ld wide_ambiguous=%ld "
-        "wide_budget_cut=%ld wide_s=%.1f "
+        "wide_budget_cut=%ld wide_beyond_window=%ld wide_s=%.1f "
         "grid_cells=%dx%d "
         "grid_s=%.1f\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
@@ -470,7 +471,7 @@ int main(int argc, char** argv) {
         slam.loopCloser().chainEdgesReplaced(), slam.loopCloser().freeSpaceRejections(),
         slam.loopCloser().wideAttempts(), slam.loopCloser().wideMatches(),
         slam.loopCloser().wideConfirmed(), slam.loopCloser().wideAmbiguous(),
-        slam.loopCloser().wideBudgetCut(),
+        slam.loopCloser().wideBudgetCut(), slam.loopCloser().wideBeyondWindow(),
         slam.loopCloser().wideSeconds(), grid.width, grid.height,
         grid_s);
   } catch (const std::exception& e) {

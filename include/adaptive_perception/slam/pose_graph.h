@@ -126,7 +126,10 @@ struct LoopClosingConfig {
   // search_radius_m + wide_drift_per_m * (the chain's length from k) + wide_sigmas * sigma_xy(k),
   // at most wide_max_xy_m; the window is the largest r_k taken, and in yaw coarse_search_yaw_rad +
   // wide_sigmas * the largest sigma_yaw(k), at most a full turn (pi either way); a match ambiguous
-  // in rotation is dropped (wide_ambiguity_ratio). A pose scoring at least wide_min_score is then
+  // in rotation is dropped (wide_ambiguity_ratio), and so is one beyond r_k (or k's own yaw
+  // window) of the member k it joins: one search covers every member's window, but a member
+  // matched at a shift only an older one's uncertainty allows is a look-alike place (a second
+  // wing of the same plan), not a loop. A pose scoring at least wide_min_score is then
   // matched and checked as a local candidate is (min_loop_score), against the stretch of the chain
   // within max_range_m (along it) of the member nearest that pose: one traversal, consistent in
   // itself, which sees what the new scan sees even where the nearest node looked the other way
@@ -236,6 +239,9 @@ class LoopClosingMapper {
   /// budget cut short (wide_max_bounds; such a search's match counts as ambiguous).
   long wideAmbiguous() const { return wide_ambiguous_; }
   long wideBudgetCut() const { return wide_budget_cut_; }
+  /// Wide matches dropped because they lie beyond the window of the node they join (see
+  /// LoopClosingConfig::wide_search).
+  long wideBeyondWindow() const { return wide_beyond_window_; }
   /// Wall-clock seconds spent in the wide search (its cost, for the tools' summaries).
   double wideSeconds() const { return wide_seconds_; }
 
@@ -289,7 +295,7 @@ class LoopClosingMapper {
   std::optional<WideHypothesis> wide_pending_;
   int last_wide_node_ = -1000000;
   long wide_attempts_ = 0, wide_matches_ = 0, wide_confirmed_ = 0, wide_ambiguous_ = 0;
-  long wide_budget_cut_ = 0;
+  long wide_budget_cut_ = 0, wide_beyond_window_ = 0;
   double wide_seconds_ = 0.0;
   struct ScanRef {
     int node;

@@ -338,6 +338,7 @@ bool LoopClosingMapper::tryWide(int n) {
   // The older nodes that could hold the scan, and the window.
   double window_m = 0.0, sigma_yaw = 0.0;
   std::vector<int> members;
+  std::vector<std::pair<double, double>> member_window;  // r_k and its yaw window, m and rad
   for (int k = 0; k + config_.min_node_gap <= n; ++k) {
     const double along = nodes_[n].path_m - nodes_[k].path_m;
     if (along < config_.wide_min_loop_m) continue;
@@ -348,6 +349,8 @@ bool LoopClosingMapper::tryWide(int n) {
     const math::SE2 xk = graph_.node(k);
     if (std::hypot(xk.x_m - xn.x_m, xk.y_m - xn.y_m) > r + config_.max_range_m) continue;
     members.push_back(k);
+    member_window.emplace_back(
+        r, std::min(M_PI, config_.coarse_search_yaw_rad + config_.wide_sigmas * s_yaw));
     window_m = std::max(window_m, r);
     sigma_yaw = std::max(sigma_yaw, s_yaw);
   }
@@ -404,13 +407,15 @@ bool LoopClosingMapper::tryWide(int n) {
   // as far as max_range_m along it either way (one traversal, so consistent in itself; a single
   // node's submap may have looked the other way along a corridor); the edge to that member.
   int k = -1;
+  size_t k_index = 0;
   double best_d = 1e18;
-  for (int m : members) {
-    const math::SE2 xm = graph_.node(m);
+  for (size_t i = 0; i < members.size(); ++i) {
+    const math::SE2 xm = graph_.node(members[i]);
     const double d = std::hypot(xm.x_m - wide->pose.x_m, xm.y_m - wide->pose.y_m);
     if (d < best_d) {
       best_d = d;
-      k = m;
+      k = members[i];
+      k_index = i;
     }
   }
   if (k < 0) return false;
@@ -426,6 +431,15 @@ bool LoopClosingMapper::tryWide(int n) {
   const auto v = verify(n, k, xk.inverse() * wide->pose, submap,
                         config_.wide_max_free_space_violations, false);
   if (!v) return false;
+  // The search ran over the widest member's window; the loop found must lie within the window of
+  // the member it joins (its own accumulated uncertainty): a recent member matched at the shift
+  // only an older one could explain is a look-alike place, not a loop.
+  const math::SE2 implied = xk * v->n_in_k;
+  if (std::hypot(implied.x_m - xn.x_m, implied.y_m - xn.y_m) > member_window[k_index].first ||
+      std::fabs(math::wrapAngle(implied.yaw_rad - xn.yaw_rad)) > member_window[k_index].second) {
+    ++wide_beyond_window_;
+    return false;
+  }
   ++wide_matches_;
   const WideHypothesis h{n, k, *v, (xk * v->n_in_k) * xn.inverse()};
   if (wide_pending_) {

@@ -61,7 +61,7 @@ TEST(LaserSimulator, DeterministicAndDrivesTheRoute) {
 }
 
 TEST(LaserWorld, ShippedWorldsLoadAndBadFilesAreNamed) {
-  for (const char* name : {"office", "loop"}) {
+  for (const char* name : {"office", "loop", "rings_and_hall"}) {
     const auto w = sim::LaserWorld::loadYaml(std::string(AP_SOURCE_DIR) + "/config/worlds/" + name + ".yaml");
     EXPECT_GT(w.walls.size(), 4u);
     EXPECT_GE(w.route.size(), 4u);
