@@ -126,11 +126,12 @@ struct LoopClosingConfig {
   // search_radius_m + wide_drift_per_m * (the chain's length from k) + wide_sigmas * sigma_xy(k),
   // at most wide_max_xy_m; the window is the largest r_k taken, and in yaw coarse_search_yaw_rad +
   // wide_sigmas * the largest sigma_yaw(k), at most a full turn (pi either way); a match ambiguous
-  // in rotation is dropped (wide_ambiguity_ratio), and so is one beyond r_k (or k's own yaw
-  // window) of the member k it joins: one search covers every member's window, but a member
-  // matched at a shift only an older one's uncertainty allows is a look-alike place (a second
-  // wing of the same plan), not a loop. A pose scoring at least wide_min_score is then
-  // matched and checked as a local candidate is (min_loop_score), against the stretch of the chain
+  // in rotation is dropped (wide_ambiguity_ratio), and so is one farther than r_k (a circle) or
+  // k's own yaw window from the estimate, k the member nearest the match, the one it joins: one
+  // search covers every member's window, but a member matched at a shift only an older one's
+  // uncertainty allows is a look-alike place (a second wing of the same plan), not a loop. A
+  // pose scoring at least wide_min_score is then matched and checked as a local candidate is
+  // (min_loop_score), against the stretch of the chain
   // within max_range_m (along it) of the member nearest that pose: one traversal, consistent in
   // itself, which sees what the new scan sees even where the nearest node looked the other way
   // along a corridor. Its free-space check is against that node's own submap and allows
@@ -138,10 +139,11 @@ struct LoopClosingConfig {
   // and looked at) had 0.06-0.53 of their points in front of some old return (people, doors,
   // halls), the wrong ones 0.09-1, most above 0.5: the check alone cannot tell them apart. So a
   // wide loop is believed only once a second one, found within wide_confirm_nodes nodes, moves the
-  // estimate the same way (within wide_confirm_m and wide_confirm_rad, plus the drift and
-  // wide_sigmas of the chain's accumulated uncertainty between the two nodes): evidence whose
-  // strength does not depend on the window's size. Both edges then enter the graph without the
-  // robust loss, which would otherwise discount a correction of hundreds of stds.
+  // estimate the same way (the two corrections put the second node within wide_confirm_m and
+  // wide_confirm_rad of each other, plus wide_drift_per_m times and wide_sigmas of the chain's
+  // accumulated uncertainty between the two nodes): evidence whose strength does not depend on
+  // the window's size. Both edges then enter the graph without the robust loss, which would
+  // otherwise discount a correction of hundreds of stds.
   bool wide_search = true;
   int wide_every_nodes = 8;  // every 4 nodes cost mit-csail 16% of its speed (28 -> 24x)
   // The accumulated uncertainty: each scan's motion since the one before adds the local
@@ -156,10 +158,12 @@ struct LoopClosingConfig {
   // default here is the generic wheel-odometry model (MotionModelConfig's own defaults).
   localization::MotionModelConfig chain_noise;
   double wide_sigmas = 3.0;      // the window's half-width in accumulated stds
-  // Plus, in translation, a drift that grows with the chain's length rather than its square root:
-  // a laser odometry's scale and heading biases are not a random walk (fr-clinic's estimate was
-  // 40 m off after 1.3 km, 3%; its accumulated std there is about 7 m).
-  double wide_drift_per_m = 0.05;
+  // Plus, in translation, an allowance for drift that grows with the chain's length rather than
+  // its square root (a bias). 0: the accumulated std already covers the drift seen (fr-clinic's
+  // confirmed wide loop moved the estimate 6.6 m where 3 sigma_xy is 53 m; mit-csail's heading
+  // drifted 0.16 rad where sigma_yaw is 0.24), and a term growing with the length widens every
+  // window in a building whose corridors repeat (docs/slam_real_logs.md, 2026-12-06 night).
+  double wide_drift_per_m = 0.0;
   double wide_max_xy_m = 60.0;   // the largest translation window: the cost bound (the
                                  // matched map's extent and the top level's size)
   // The time bound of one search (BranchAndBoundWindow::max_bounds): bounds computed, its top

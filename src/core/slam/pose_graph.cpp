@@ -444,13 +444,16 @@ bool LoopClosingMapper::tryWide(int n) {
   const WideHypothesis h{n, k, *v, (xk * v->n_in_k) * xn.inverse()};
   if (wide_pending_) {
     // The two corrections agree within the tolerance plus the uncertainty accumulated between
-    // the two nodes.
-    const math::SE2 d = wide_pending_->correction.inverse() * h.correction;
+    // the two nodes: both applied to this node's pose, they put it in the same place (compared
+    // there, not as transforms about the map's origin, where a small turn between them would
+    // read as a shift growing with the distance from the origin).
+    const math::SE2 by_first = wide_pending_->correction * xn, by_second = h.correction * xn;
     const auto [s_yaw, s_xy] = accumulatedStd(wide_pending_->n, n);
     const double between_m = nodes_[n].path_m - nodes_[wide_pending_->n].path_m;
-    if (std::hypot(d.x_m, d.y_m) <= config_.wide_confirm_m + config_.wide_drift_per_m * between_m +
-                                        config_.wide_sigmas * s_xy &&
-        std::fabs(math::wrapAngle(d.yaw_rad)) <=
+    if (std::hypot(by_first.x_m - by_second.x_m, by_first.y_m - by_second.y_m) <=
+            config_.wide_confirm_m + config_.wide_drift_per_m * between_m +
+                config_.wide_sigmas * s_xy &&
+        std::fabs(math::wrapAngle(by_first.yaw_rad - by_second.yaw_rad)) <=
             config_.wide_confirm_rad + config_.wide_sigmas * s_yaw) {
       const WideHypothesis first = *wide_pending_;
       for (const WideHypothesis* e : {&first, &h}) {
