@@ -12,7 +12,11 @@
 //                         background) wandering and growing and shrinking by a third, seen by a
 //                         panning, shaking camera over a textured scene, in light that ramps from
 //                         dim to bright and back (its colour warming as it dims), with motion blur
-//                         along the camera's motion.
+//                         along the camera's motion;
+//   team                  a narrow upright player (14 x 48 px at 320 x 240) among three
+//                         teammates in the same kit (only skin and hair differ a little), one of
+//                         them crossing in front of the target in the run's middle half: the
+//                         unseen benchmark sequences' collapse (a player among players).
 // All scenes have a cluttered static background (boxes and blobs of muted colours) and camera
 // noise. The ground truth is the target's axis-aligned bounding box. The same seed gives the same
 // frames.
@@ -26,10 +30,10 @@
 
 namespace adaptive_perception::sim {
 
-enum class TrackingScenario { kCircles, kLambertianRectangle, kDistractor, kHandheld };
-/// "circles" | "lambertian_rectangle" | "distractor" | "handheld"; throws std::invalid_argument
-/// naming them.
-/// The scenarios' words: "circles", "lambertian_rectangle", "distractor", "handheld".
+enum class TrackingScenario { kCircles, kLambertianRectangle, kDistractor, kHandheld, kTeam };
+/// "circles" | "lambertian_rectangle" | "distractor" | "handheld" | "team"; throws
+/// std::invalid_argument naming them.
+/// The scenarios' words: "circles", "lambertian_rectangle", "distractor", "handheld", "team".
 const config::EnumNames<TrackingScenario>& trackingScenarios();
 TrackingScenario parseTrackingScenario(const std::string& name);
 std::string trackingScenarioName(TrackingScenario s);
@@ -83,6 +87,10 @@ class TrackingScene {
   cv::Mat world_, card_;
   cv::Point2d pan_, pan_vel_, shake_;
   SceneFrame handheld(int k);
+  /// team: one player of half height `half_height` centred at `centre`, legs at walking phase
+  /// `phase` (rad); returns the player's bounding box.
+  cv::Rect2d drawPlayer(cv::Mat* bgr, const cv::Point2d& centre, double half_height,
+                        const cv::Scalar& skin, double phase);
 };
 
 }  // namespace adaptive_perception::sim

@@ -14,7 +14,8 @@ const config::EnumNames<TrackingScenario>& trackingScenarios() {
       "scenario", {{TrackingScenario::kCircles, "circles"},
                    {TrackingScenario::kLambertianRectangle, "lambertian_rectangle"},
                    {TrackingScenario::kDistractor, "distractor"},
-                   {TrackingScenario::kHandheld, "handheld"}});
+                   {TrackingScenario::kHandheld, "handheld"},
+                   {TrackingScenario::kTeam, "team"}});
   return names;
 }
 
@@ -68,6 +69,27 @@ TrackingScene::TrackingScene(TrackingSceneConfig config, std::uint64_t seed)
     // The square enters from the right and crosses the whole image in the run's middle half.
     const double speed = (w + 4 * r) / (0.5 * config_.frames);
     distractor_ = {{w + 2 * r - speed * (-0.25 * config_.frames), h * 0.5}, {-speed, 0.0}, r * 0.9};
+  }
+  if (config_.scenario == TrackingScenario::kTeam) {
+    // A narrow player (14 x 48 px at 320 x 240) and three teammates in the same kit; only the
+    // skin and hair differ a little. The first teammate crosses the whole image in the run's
+    // middle half, in front of the target; the others wander.
+    const double half_height = 24 * s;
+    target_ = {{w * 0.3, h * 0.6}, {rng_.uniform(-1, 1) * s, 0.0}, half_height};
+    target_rgb_ = {170, 125, 95};  // the target's skin (r, g, b)
+    const double speed = (w + 4 * half_height) / (0.5 * config_.frames);
+    others_.push_back(
+        {{w + 2 * half_height + speed * 0.25 * config_.frames, h * 0.6}, {-speed, 0.0},
+         half_height});
+    for (int i = 0; i < 2; ++i) {
+      const double x = rng_.uniform(0.5, 0.9) * w;
+      const double y = rng_.uniform(0.4, 0.8) * h;
+      others_.push_back({{x, y}, {rng_.uniform(-1, 1) * s, 0.0}, half_height});
+    }
+    for (int i = 0; i < 3; ++i) {
+      const double r = rng_.uniform(150, 190);
+      other_colors_.push_back(cv::Scalar(r * 0.55, r * 0.72, r));  // skin (b, g, r)
+    }
   }
   if (config_.scenario == TrackingScenario::kHandheld) {
     // A textured scene twice the frame: fine blurred noise under blobs of a small palette that
@@ -166,6 +188,32 @@ SceneFrame TrackingScene::handheld(int k) {
   return f;
 }
 
+cv::Rect2d TrackingScene::drawPlayer(cv::Mat* bgr, const cv::Point2d& centre, double half_height,
+                                     const cv::Scalar& skin, double phase) {
+  // Head (hair on top), shirt, shorts, two legs swinging with the walk, shoes: the team's kit.
+  const cv::Scalar shirt(30, 190, 235), shorts(110, 40, 25), hair(30, 30, 40), shoe(20, 20, 20);
+  const double H = 2 * half_height, W = 0.3 * H, top = centre.y - half_height;
+  auto rect = [&](double x0, double y0, double x1, double y1, const cv::Scalar& c) {
+    cv::rectangle(*bgr, cv::Point(static_cast<int>(std::lround(x0)), static_cast<int>(std::lround(y0))),
+                  cv::Point(static_cast<int>(std::lround(x1)), static_cast<int>(std::lround(y1))),
+                  c, cv::FILLED, cv::LINE_AA);
+  };
+  const cv::Point head(static_cast<int>(std::lround(centre.x)),
+                       static_cast<int>(std::lround(top + 0.1 * H)));
+  const int head_r = std::max(1, static_cast<int>(std::lround(0.1 * H)));
+  cv::circle(*bgr, head, head_r, skin, cv::FILLED, cv::LINE_AA);
+  cv::ellipse(*bgr, head, cv::Size(head_r, head_r), 0, 180, 360, hair, cv::FILLED, cv::LINE_AA);
+  const double swing = 0.06 * H * std::sin(phase);
+  for (int side = -1; side <= 1; side += 2) {
+    const double x = centre.x + side * 0.22 * W + side * swing;
+    rect(x - 0.13 * W, top + 0.7 * H, x + 0.13 * W, top + 0.95 * H, skin);
+    rect(x - 0.16 * W, top + 0.95 * H, x + 0.16 * W, top + H, shoe);
+  }
+  rect(centre.x - 0.5 * W, top + 0.2 * H, centre.x + 0.5 * W, top + 0.58 * H, shirt);
+  rect(centre.x - 0.45 * W, top + 0.58 * H, centre.x + 0.45 * W, top + 0.72 * H, shorts);
+  return {centre.x - 0.5 * W, top, W, H};
+}
+
 cv::Point2d TrackingScene::drawPoint(double sd) {
   const double y = rng_.gaussian(0, sd);  // y first: the order the scenes were made in
   const double x = rng_.gaussian(0, sd);
@@ -199,6 +247,31 @@ SceneFrame TrackingScene::next() {
     case TrackingScenario::kHandheld:
       f = handheld(k);
       break;
+    case TrackingScenario::kTeam: {
+      move(&target_, 2.0 * s);
+      target_.vel.y *= 0.5;  // players run across the image more than up and down it
+      others_[0].pos += others_[0].vel;  // the crossing one, a little nearer than the target
+      others_[0].pos.y += 0.1 * (target_.pos.y + 4 * s - others_[0].pos.y);
+      for (size_t i = 1; i < others_.size(); ++i) {
+        move(&others_[i], 2.0 * s);
+        others_[i].vel.y *= 0.5;
+      }
+      // Nearer players (lower in the image) are drawn last, over the others.
+      std::vector<std::pair<double, int>> order{{target_.pos.y, -1}};
+      for (size_t i = 0; i < others_.size(); ++i)
+        order.emplace_back(others_[i].pos.y, static_cast<int>(i));
+      std::sort(order.begin(), order.end());
+      const double phase = 0.35 * k;
+      for (const auto& [y, i] : order) {
+        if (i < 0) {
+          f.truth = drawPlayer(&f.bgr, target_.pos, target_.radius,
+                               cv::Scalar(target_rgb_[2], target_rgb_[1], target_rgb_[0]), phase);
+        } else {
+          drawPlayer(&f.bgr, others_[i].pos, others_[i].radius, other_colors_[i], phase + i);
+        }
+      }
+      break;
+    }
     case TrackingScenario::kCircles: {
       for (size_t i = 0; i < others_.size(); ++i) {
         move(&others_[i], 3.0 * s);

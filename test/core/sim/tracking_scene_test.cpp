@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "../refusal.h"
 
@@ -87,4 +88,23 @@ TEST(TrackingScene, HandheldRampsTheLightAndSwingsTheCardsSize) {
   EXPECT_NEAR(f[50].truth.width / f[150].truth.width, 2.0, 0.1);
   // The camera moves: the background at a fixed pixel changes between frames.
   EXPECT_GT(cv::norm(f[10].bgr(cv::Rect(0, 0, 20, 20)), f[11].bgr(cv::Rect(0, 0, 20, 20))), 0.0);
+}
+
+TEST(TrackingScene, TeamPutsANarrowPlayerAmongTeammatesInTheSameKit) {
+  TrackingSceneConfig c;
+  c.scenario = TrackingScenario::kTeam;
+  c.noise_sd = 0.0;
+  TrackingScene scene(c, 1);
+  const SceneFrame f = scene.next();
+  // 14.4 x 48 px at 320 x 240: a narrow, upright target.
+  EXPECT_NEAR(f.truth.width, 14.4, 1e-9);
+  EXPECT_NEAR(f.truth.height, 48.0, 1e-9);
+  // The kit's shirt colour (bgr 30, 190, 235) is inside the target's box and, as much again at
+  // least, outside it: the colour alone does not single the target out.
+  cv::Mat shirt;
+  cv::inRange(f.bgr, cv::Scalar(25, 185, 230), cv::Scalar(35, 195, 240), shirt);
+  const cv::Rect box = cv::Rect(f.truth) & cv::Rect(0, 0, c.width, c.height);
+  const int inside = cv::countNonZero(shirt(box)), all = cv::countNonZero(shirt);
+  EXPECT_GT(inside, 100);
+  EXPECT_GE(all - inside, 2 * inside);
 }
