@@ -16,7 +16,10 @@
 //   team                  a narrow upright player (14 x 48 px at 320 x 240) among three
 //                         teammates in the same kit (only skin and hair differ a little), one of
 //                         them crossing in front of the target in the run's middle half: the
-//                         unseen benchmark sequences' collapse (a player among players).
+//                         unseen benchmark sequences' collapse (a player among players);
+//   sprint                runners in the same kit in neighbouring lanes, a little faster or
+//                         slower than the target, passing it; the camera pans after the target
+//                         (lagging, shaking, motion blur) over a scene four frames wide.
 // All scenes have a cluttered static background (boxes and blobs of muted colours) and camera
 // noise. The ground truth is the target's axis-aligned bounding box. The same seed gives the same
 // frames.
@@ -30,10 +33,10 @@
 
 namespace adaptive_perception::sim {
 
-enum class TrackingScenario { kCircles, kLambertianRectangle, kDistractor, kHandheld, kTeam };
-/// "circles" | "lambertian_rectangle" | "distractor" | "handheld" | "team"; throws
+enum class TrackingScenario { kCircles, kLambertianRectangle, kDistractor, kHandheld, kTeam,
+                              kSprint };
+/// "circles" | "lambertian_rectangle" | "distractor" | "handheld" | "team" | "sprint"; throws
 /// std::invalid_argument naming them.
-/// The scenarios' words: "circles", "lambertian_rectangle", "distractor", "handheld", "team".
 const config::EnumNames<TrackingScenario>& trackingScenarios();
 TrackingScenario parseTrackingScenario(const std::string& name);
 std::string trackingScenarioName(TrackingScenario s);
@@ -87,6 +90,10 @@ class TrackingScene {
   cv::Mat world_, card_;
   cv::Point2d pan_, pan_vel_, shake_;
   SceneFrame handheld(int k);
+  /// sprint: the runners move on, the camera pans after the target.
+  SceneFrame sprint(int k);
+  /// Motion blur along the camera's motion in the frame (0.8 of it: the exposure's share).
+  static void blurAlong(cv::Mat* bgr, const cv::Point2d& camera_motion);
   /// team: one player of half height `half_height` centred at `centre`, legs at walking phase
   /// `phase` (rad); returns the player's bounding box.
   cv::Rect2d drawPlayer(cv::Mat* bgr, const cv::Point2d& centre, double half_height,

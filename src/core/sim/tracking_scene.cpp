@@ -15,7 +15,8 @@ const config::EnumNames<TrackingScenario>& trackingScenarios() {
                    {TrackingScenario::kLambertianRectangle, "lambertian_rectangle"},
                    {TrackingScenario::kDistractor, "distractor"},
                    {TrackingScenario::kHandheld, "handheld"},
-                   {TrackingScenario::kTeam, "team"}});
+                   {TrackingScenario::kTeam, "team"},
+                   {TrackingScenario::kSprint, "sprint"}});
   return names;
 }
 
@@ -91,6 +92,27 @@ TrackingScene::TrackingScene(TrackingSceneConfig config, std::uint64_t seed)
       other_colors_.push_back(cv::Scalar(r * 0.55, r * 0.72, r));  // skin (b, g, r)
     }
   }
+  if (config_.scenario == TrackingScenario::kSprint) {
+    // The scene the camera pans along: the background and its mirror image, four frames wide.
+    cv::Mat flipped;
+    cv::flip(background_, flipped, 1);
+    cv::hconcat(std::vector<cv::Mat>{background_, flipped, background_, flipped}, world_);
+    const double half_height = 24 * s;
+    const double speed = 3.5 * s;  // px a frame: 105 px/s at 30 Hz
+    target_ = {{w * 0.5, h * 0.6}, {speed, 0.0}, half_height};
+    target_rgb_ = {170, 125, 95};
+    // Three runners in the next lanes, a little faster or slower: they pass and are passed.
+    const double lane[3] = {-14, 12, -26}, start[3] = {-60, 40, -120}, pace[3] = {1.08, 0.94, 1.12};
+    for (int i = 0; i < 3; ++i) {
+      others_.push_back({{target_.pos.x + start[i] * s, target_.pos.y + lane[i] * s},
+                         {speed * pace[i], 0.0}, half_height});
+      const double r = rng_.uniform(150, 190);
+      other_colors_.push_back(cv::Scalar(r * 0.55, r * 0.72, r));
+    }
+    pan_ = {target_.pos.x - 0.5 * w, 0.0};
+    pan_vel_ = {0, 0};
+    shake_ = {0, 0};
+  }
   if (config_.scenario == TrackingScenario::kHandheld) {
     // A textured scene twice the frame: fine blurred noise under blobs of a small palette that
     // the card shares, so that its colours alone do not single it out.
@@ -160,21 +182,7 @@ SceneFrame TrackingScene::handheld(int k) {
   const cv::Rect inside = at & cv::Rect(0, 0, w, h);
   if (!inside.empty()) scaled(inside - at.tl()).copyTo(f.bgr(inside));
   f.truth = cv::Rect2d(at);
-  // Motion blur along the camera's motion this frame (the exposure's share of it).
-  const double length = 0.8 * std::hypot(camera_motion.x, camera_motion.y);
-  if (length > 1.5) {
-    const int n = static_cast<int>(std::ceil(length)) | 1;
-    cv::Mat kernel = cv::Mat::zeros(n, n, CV_32F);
-    const double a = std::atan2(camera_motion.y, camera_motion.x);
-    cv::line(kernel,
-             cv::Point(static_cast<int>(n / 2 - std::cos(a) * n / 2),
-                       static_cast<int>(n / 2 - std::sin(a) * n / 2)),
-             cv::Point(static_cast<int>(n / 2 + std::cos(a) * n / 2),
-                       static_cast<int>(n / 2 + std::sin(a) * n / 2)),
-             cv::Scalar(1.0));
-    kernel /= std::max(1e-9, cv::sum(kernel)[0]);
-    cv::filter2D(f.bgr, f.bgr, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_REFLECT);
-  }
+  blurAlong(&f.bgr, camera_motion);
   // The light: from 0.4 of full up to 1.15 and back over the run, warmer (less blue) when dim.
   const double light = 0.4 + 0.75 * (0.5 - 0.5 * std::cos(2 * M_PI * k / config_.frames));
   const double warm = 1.0 - light;
@@ -185,6 +193,58 @@ SceneFrame TrackingScene::handheld(int k) {
   ch[1].convertTo(ch[1], CV_8U, light * (1.0 - 0.1 * warm));
   ch[2].convertTo(ch[2], CV_8U, light);
   cv::merge(ch, f.bgr);
+  return f;
+}
+
+void TrackingScene::blurAlong(cv::Mat* bgr, const cv::Point2d& camera_motion) {
+  // Motion blur along the camera's motion this frame (the exposure's share of it).
+  const double length = 0.8 * std::hypot(camera_motion.x, camera_motion.y);
+  if (length <= 1.5) return;
+  const int n = static_cast<int>(std::ceil(length)) | 1;
+  cv::Mat kernel = cv::Mat::zeros(n, n, CV_32F);
+  const double a = std::atan2(camera_motion.y, camera_motion.x);
+  cv::line(kernel,
+           cv::Point(static_cast<int>(n / 2 - std::cos(a) * n / 2),
+                     static_cast<int>(n / 2 - std::sin(a) * n / 2)),
+           cv::Point(static_cast<int>(n / 2 + std::cos(a) * n / 2),
+                     static_cast<int>(n / 2 + std::sin(a) * n / 2)),
+           cv::Scalar(1.0));
+  kernel /= std::max(1e-9, cv::sum(kernel)[0]);
+  cv::filter2D(*bgr, *bgr, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_REFLECT);
+}
+
+SceneFrame TrackingScene::sprint(int k) {
+  const int w = config_.width, h = config_.height;
+  const double s = std::min(w, h) / 240.0;
+  // The runners: steady paces with a little jitter, no turning back.
+  target_.pos += target_.vel + drawPoint(0.3 * s);
+  target_.pos.y = std::clamp(target_.pos.y, 0.45 * h, 0.75 * h);
+  for (Mover& m : others_) {
+    m.pos += m.vel + drawPoint(0.3 * s);
+    m.pos.y = std::clamp(m.pos.y, 0.35 * h, 0.8 * h);
+  }
+  // The camera pans after the target, lagging, with a hand's shake.
+  const cv::Point2d before = pan_ + shake_;
+  pan_.x += 0.15 * (target_.pos.x - 0.5 * w - pan_.x);
+  pan_.x = std::clamp(pan_.x, 0.0, static_cast<double>(world_.cols - w));
+  shake_ = 0.6 * shake_ + drawPoint(1.0 * s);
+  const cv::Point2d view = pan_ + shake_;
+  SceneFrame f;
+  const cv::Matx23d m(1, 0, -view.x, 0, 1, -view.y);
+  cv::warpAffine(world_, f.bgr, cv::Mat(m), cv::Size(w, h), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  std::vector<std::pair<double, int>> order{{target_.pos.y, -1}};
+  for (size_t i = 0; i < others_.size(); ++i) order.emplace_back(others_[i].pos.y, int(i));
+  std::sort(order.begin(), order.end());
+  const double phase = 0.6 * k;  // a runner's stride
+  for (const auto& [y, i] : order) {
+    if (i < 0) {
+      f.truth = drawPlayer(&f.bgr, target_.pos - view, target_.radius,
+                           cv::Scalar(target_rgb_[2], target_rgb_[1], target_rgb_[0]), phase);
+    } else {
+      drawPlayer(&f.bgr, others_[i].pos - view, others_[i].radius, other_colors_[i], phase + i);
+    }
+  }
+  blurAlong(&f.bgr, view - before);
   return f;
 }
 
@@ -246,6 +306,9 @@ SceneFrame TrackingScene::next() {
   switch (config_.scenario) {
     case TrackingScenario::kHandheld:
       f = handheld(k);
+      break;
+    case TrackingScenario::kSprint:
+      f = sprint(k);
       break;
     case TrackingScenario::kTeam: {
       move(&target_, 2.0 * s);

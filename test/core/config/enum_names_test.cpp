@@ -46,7 +46,7 @@ TEST(EnumNames, RefusesAnUnknownWordListingTheAllowedOnes) {
 TEST(EnumNames, TheProjectsTablesReadTheirOwnNamesBack) {
   for (const std::string& s : sim::trackingScenarioNames())
     EXPECT_EQ(sim::trackingScenarioName(sim::parseTrackingScenario(s)), s);
-  EXPECT_EQ(sim::trackingScenarioNames().size(), 5u);
+  EXPECT_EQ(sim::trackingScenarioNames().size(), 6u);
   for (const std::string s : {"night", "cloudy", "sunny"})
     EXPECT_EQ(sim::indoorLightingName(sim::parseIndoorLighting(s)), s);
   for (const std::string s : {"standard", "anchor", "external"})

@@ -108,3 +108,20 @@ TEST(TrackingScene, TeamPutsANarrowPlayerAmongTeammatesInTheSameKit) {
   EXPECT_GT(inside, 100);
   EXPECT_GE(all - inside, 2 * inside);
 }
+
+TEST(TrackingScene, SprintPansAfterARunnerAmongRunners) {
+  TrackingSceneConfig c;
+  c.scenario = TrackingScenario::kSprint;
+  c.frames = 60;
+  TrackingScene scene(c, 1);
+  std::vector<SceneFrame> f;
+  while (!scene.done()) f.push_back(scene.next());
+  // The camera follows the runner: 60 frames at 3.5 px a frame move it 210 px in the scene, but
+  // it stays within the middle half of the image, while the background streams past.
+  for (const SceneFrame& frame : f) {
+    const double cx = frame.truth.x + frame.truth.width / 2;
+    EXPECT_GT(cx, 0.25 * c.width);
+    EXPECT_LT(cx, 0.75 * c.width);
+  }
+  EXPECT_GT(cv::norm(f[30].bgr(cv::Rect(0, 0, 40, 40)), f[31].bgr(cv::Rect(0, 0, 40, 40))), 0.0);
+}
