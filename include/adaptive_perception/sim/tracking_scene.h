@@ -98,6 +98,9 @@ class TrackingScene {
   /// `phase` (rad); returns the player's bounding box.
   cv::Rect2d drawPlayer(cv::Mat* bgr, const cv::Point2d& centre, double half_height,
                         const cv::Scalar& skin, double phase);
+  /// team, sprint: the target and the others, nearer (lower) ones over farther ones, seen from
+  /// `view` (the camera's offset in the scene); returns the target's box.
+  cv::Rect2d drawPlayers(cv::Mat* bgr, const cv::Point2d& view, double phase);
 };
 
 }  // namespace adaptive_perception::sim

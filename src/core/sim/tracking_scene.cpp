@@ -232,20 +232,27 @@ SceneFrame TrackingScene::sprint(int k) {
   SceneFrame f;
   const cv::Matx23d m(1, 0, -view.x, 0, 1, -view.y);
   cv::warpAffine(world_, f.bgr, cv::Mat(m), cv::Size(w, h), cv::INTER_LINEAR, cv::BORDER_REFLECT);
-  std::vector<std::pair<double, int>> order{{target_.pos.y, -1}};
-  for (size_t i = 0; i < others_.size(); ++i) order.emplace_back(others_[i].pos.y, int(i));
-  std::sort(order.begin(), order.end());
-  const double phase = 0.6 * k;  // a runner's stride
-  for (const auto& [y, i] : order) {
-    if (i < 0) {
-      f.truth = drawPlayer(&f.bgr, target_.pos - view, target_.radius,
-                           cv::Scalar(target_rgb_[2], target_rgb_[1], target_rgb_[0]), phase);
-    } else {
-      drawPlayer(&f.bgr, others_[i].pos - view, others_[i].radius, other_colors_[i], phase + i);
-    }
-  }
+  f.truth = drawPlayers(&f.bgr, view, 0.6 * k);  // a runner's stride
   blurAlong(&f.bgr, view - before);
   return f;
+}
+
+cv::Rect2d TrackingScene::drawPlayers(cv::Mat* bgr, const cv::Point2d& view, double phase) {
+  // Nearer players (lower in the image) are drawn last, over the others.
+  std::vector<std::pair<double, int>> order{{target_.pos.y, -1}};
+  for (size_t i = 0; i < others_.size(); ++i)
+    order.emplace_back(others_[i].pos.y, static_cast<int>(i));
+  std::sort(order.begin(), order.end());
+  cv::Rect2d truth;
+  for (const auto& [y, i] : order) {
+    if (i < 0) {
+      truth = drawPlayer(bgr, target_.pos - view, target_.radius,
+                         cv::Scalar(target_rgb_[2], target_rgb_[1], target_rgb_[0]), phase);
+    } else {
+      drawPlayer(bgr, others_[i].pos - view, others_[i].radius, other_colors_[i], phase + i);
+    }
+  }
+  return truth;
 }
 
 cv::Rect2d TrackingScene::drawPlayer(cv::Mat* bgr, const cv::Point2d& centre, double half_height,
@@ -253,13 +260,12 @@ cv::Rect2d TrackingScene::drawPlayer(cv::Mat* bgr, const cv::Point2d& centre, do
   // Head (hair on top), shirt, shorts, two legs swinging with the walk, shoes: the team's kit.
   const cv::Scalar shirt(30, 190, 235), shorts(110, 40, 25), hair(30, 30, 40), shoe(20, 20, 20);
   const double H = 2 * half_height, W = 0.3 * H, top = centre.y - half_height;
+  auto px = [](double v) { return static_cast<int>(std::lround(v)); };
   auto rect = [&](double x0, double y0, double x1, double y1, const cv::Scalar& c) {
-    cv::rectangle(*bgr, cv::Point(static_cast<int>(std::lround(x0)), static_cast<int>(std::lround(y0))),
-                  cv::Point(static_cast<int>(std::lround(x1)), static_cast<int>(std::lround(y1))),
-                  c, cv::FILLED, cv::LINE_AA);
+    cv::rectangle(*bgr, cv::Point(px(x0), px(y0)), cv::Point(px(x1), px(y1)), c, cv::FILLED,
+                  cv::LINE_AA);
   };
-  const cv::Point head(static_cast<int>(std::lround(centre.x)),
-                       static_cast<int>(std::lround(top + 0.1 * H)));
+  const cv::Point head(px(centre.x), px(top + 0.1 * H));
   const int head_r = std::max(1, static_cast<int>(std::lround(0.1 * H)));
   cv::circle(*bgr, head, head_r, skin, cv::FILLED, cv::LINE_AA);
   cv::ellipse(*bgr, head, cv::Size(head_r, head_r), 0, 180, 360, hair, cv::FILLED, cv::LINE_AA);
@@ -319,20 +325,7 @@ SceneFrame TrackingScene::next() {
         move(&others_[i], 2.0 * s);
         others_[i].vel.y *= 0.5;
       }
-      // Nearer players (lower in the image) are drawn last, over the others.
-      std::vector<std::pair<double, int>> order{{target_.pos.y, -1}};
-      for (size_t i = 0; i < others_.size(); ++i)
-        order.emplace_back(others_[i].pos.y, static_cast<int>(i));
-      std::sort(order.begin(), order.end());
-      const double phase = 0.35 * k;
-      for (const auto& [y, i] : order) {
-        if (i < 0) {
-          f.truth = drawPlayer(&f.bgr, target_.pos, target_.radius,
-                               cv::Scalar(target_rgb_[2], target_rgb_[1], target_rgb_[0]), phase);
-        } else {
-          drawPlayer(&f.bgr, others_[i].pos, others_[i].radius, other_colors_[i], phase + i);
-        }
-      }
+      f.truth = drawPlayers(&f.bgr, {0.0, 0.0}, 0.35 * k);  // a walker's stride
       break;
     }
     case TrackingScenario::kCircles: {
