@@ -19,8 +19,8 @@
 // written: head_tf_publisher makes it from joint_states, as on a NAO without a URDF. Frame ids:
 // camera_optical_frame, odom, base_link. Consecutive images of the list follow each other with no
 // gap, so a list of several places is a robot carried from one to the next.
-// The bag is written to BAG.tmp and renamed when complete; an existing BAG is kept unless
-// --overwrite is given. Last line:
+// The bag is written to a temporary file beside BAG and renamed when complete; an existing BAG is
+// kept unless --overwrite is given. Last line:
 //   field_images_to_bag: output=.. images=.. frames=.. duration_s=.. bytes=..
 #include <nav_msgs/Odometry.h>
 #include <ros/time.h>

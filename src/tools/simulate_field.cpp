@@ -8,9 +8,8 @@
 // camera/camera_info, camera/labels (mono8 class ids, 255 = background), odom + tf odom ->
 // base_link, joint_states + tf of the head chain (tf_static for the fixed links, latched),
 // ground_truth/pose (PoseStamped of base_link in map), lighting/state
-// (adaptive_perception/LightingState). The bag is written to FILE.bag.tmp and renamed when
-// complete; an existing FILE.bag is kept unless
-// --overwrite is given.
+// (adaptive_perception/LightingState). The bag is written to a temporary file beside FILE.bag and
+// renamed when complete; an existing FILE.bag is kept unless --overwrite is given.
 #include <nav_msgs/Odometry.h>
 #include <ros/time.h>
 #include <rosbag/bag.h>

@@ -27,7 +27,9 @@
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <set>
+#include <sstream>
 
+#include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/ros/bag_writer.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
@@ -106,12 +108,9 @@ int main(int argc, char** argv) {
 
     std::unique_ptr<ros_bag::BagWriter> bag;
     if (!output.empty()) bag = std::make_unique<ros_bag::BagWriter>(output, overwrite);
-    std::ofstream csv;
-    std::string csv_tmp;
+    std::ostringstream csv;  // written atomically at the end (io::writeTextFileAtomically)
     if (!images_out.empty()) {
       fs::create_directories(images_out);
-      csv_tmp = (fs::path(images_out) / "images.csv.tmp").string();
-      csv.open(csv_tmp);
       csv << "image_path,place\n";
     }
     const ros::Time t0(1.6e9);
@@ -188,7 +187,7 @@ int main(int argc, char** argv) {
         label.data = place_name;
         bag->write("/" + std::string(T::kGroundTruthPlace), stamp, label);
       }
-      if (csv.is_open()) {
+      if (!images_out.empty()) {
         char name[32];
         std::snprintf(name, sizeof(name), "%05ld.png", images);
         if (!cv::imwrite((fs::path(images_out) / name).string(), image))
@@ -197,9 +196,8 @@ int main(int argc, char** argv) {
       }
       ++images;
     }
-    if (csv.is_open()) {
-      csv.close();
-      fs::rename(csv_tmp, fs::path(images_out) / "images.csv");
+    if (!images_out.empty()) {
+      io::writeTextFileAtomically((fs::path(images_out) / "images.csv").string(), csv.str());
     }
     if (bag) bag->close();
     std::string counts;

@@ -16,7 +16,9 @@
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
+#include <sstream>
 
+#include "adaptive_perception/io/atomic_file.h"
 #include "adaptive_perception/ros/bag_writer.h"
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/topics.h"
@@ -63,7 +65,7 @@ int main(int argc, char** argv) {
     sim::TrackingScene scene(cfg, seed);
     std::unique_ptr<ros_bag::BagWriter> bag;
     std::unique_ptr<cv::VideoWriter> writer;
-    std::ofstream csv;
+    std::ostringstream csv;  // written atomically at the end (io::writeTextFileAtomically)
     const std::string video_tmp = video.empty() ? "" : video + ".tmp.avi";
     if (!output.empty()) bag = std::make_unique<ros_bag::BagWriter>(output, overwrite);
     if (!video.empty()) {
@@ -71,8 +73,6 @@ int main(int argc, char** argv) {
                                                  cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
                                                  cfg.rate_hz, cv::Size(cfg.width, cfg.height));
       if (!writer->isOpened()) throw std::runtime_error(video + ": cannot write the video");
-      csv.open(truth_csv + ".tmp");
-      if (!csv) throw std::runtime_error(truth_csv + ": cannot write");
       csv << "frame,x,y,w,h\n";
     }
     const ros::Time t0(1.6e9);
@@ -122,9 +122,8 @@ int main(int argc, char** argv) {
     if (bag) bag->close();
     if (writer) {
       writer->release();
-      csv.close();
+      io::writeTextFileAtomically(truth_csv, csv.str());
       fs::rename(video_tmp, video);
-      fs::rename(truth_csv + ".tmp", truth_csv);
     }
     std::printf("simulate_tracking: scenario=%s frames=%d output=%s\n",
                 sim::trackingScenarioName(cfg.scenario).c_str(), cfg.frames,

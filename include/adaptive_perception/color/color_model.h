@@ -88,7 +88,7 @@ struct LightingPrior {
 
   /// Loads a prior; throws std::runtime_error naming the file (and line) on any problem.
   static LightingPrior loadYaml(const std::string& path);
-  /// Writes to path.tmp, then renames over path.
+  /// Writes atomically (io::writeTextFileAtomically: a temporary beside path, renamed over it).
   void saveYaml(const std::string& path) const;
   /// The same prior with every cross-colour covariance block set to zero.
   LightingPrior independent() const;

@@ -12,6 +12,12 @@ namespace adaptive_perception::io {
 /// existing `path` is left as it was.
 void writeTextFileAtomically(const std::string& path, const std::string& text);
 
+/// Creates a new, empty file of a unique name beside `path` (`.NAME.XXXXXX` in its folder, by
+/// mkstemp: never an existing file, never through a symlink) with the usual mode under the umask,
+/// and returns its name, for a writer that fills it and then renames it over `path`. Throws
+/// std::runtime_error naming `path` and the reason when it cannot be created.
+std::string createTemporaryBeside(const std::string& path);
+
 /// The absolute, normalised form of `path` (relative to the current directory), for messages
 /// that must say where a file went. Never throws.
 std::string absolutePath(const std::string& path);

@@ -1,6 +1,9 @@
 #pragma once
-// Writing a bag the safe way for the tools: to FILE.tmp, renamed over FILE only when complete (a
-// failed run leaves the user's FILE untouched and removes the temporary), lz4 by default, and
+// Writing a bag the safe way for the tools: to a new file of a unique name beside FILE
+// (io::createTemporaryBeside: `.FILE.XXXXXX`, so a user's own FILE.tmp, or a symlink of that name,
+// is never touched, and two runs writing the same FILE do not write into each other), renamed over
+// FILE only when complete (a failed run leaves the user's FILE untouched and removes the
+// temporary), lz4 by default, and
 // latched topics (tf_static) written with the connection header that makes `rosbag play` latch
 // them.
 #include <ros/message_traits.h>
@@ -11,6 +14,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "adaptive_perception/io/atomic_file.h"
+
 namespace adaptive_perception::ros_bag {
 
 class BagWriter {
@@ -18,10 +23,17 @@ class BagWriter {
   /// Throws std::runtime_error when `path` exists and `overwrite` is false, or it cannot be
   /// written.
   BagWriter(const std::string& path, bool overwrite, bool compress = true)
-      : path_(path), tmp_(path + ".tmp") {
+      : path_(path) {
     if (std::filesystem::exists(path) && !overwrite)
       throw std::runtime_error("'" + path + "' exists; pass --overwrite to replace it");
-    bag_.open(tmp_, rosbag::bagmode::Write);
+    tmp_ = io::createTemporaryBeside(path);
+    try {
+      bag_.open(tmp_, rosbag::bagmode::Write);
+    } catch (...) {
+      std::error_code ec;
+      std::filesystem::remove(tmp_, ec);
+      throw;
+    }
     if (compress) bag_.setCompression(rosbag::compression::LZ4);
   }
   ~BagWriter() {
@@ -51,6 +63,8 @@ class BagWriter {
     (*header)["callerid"] = callerid;
     bag_.write(topic, t, msg, header);
   }
+  /// The temporary file the bag is written to until close().
+  const std::string& temporaryPath() const { return tmp_; }
   /// Finishes the bag and moves it into place; returns its size in bytes.
   std::uintmax_t close() {
     bag_.close();

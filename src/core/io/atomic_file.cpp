@@ -20,9 +20,9 @@ std::runtime_error failure(const std::string& path, const std::string& what, int
   return std::runtime_error(path + ": " + what + ": " + std::strerror(err));
 }
 
-}  // namespace
-
-void writeTextFileAtomically(const std::string& path, const std::string& text) {
+// A new file of a unique name beside `path` (mkstemp), its mode the usual one under the umask;
+// returns its descriptor and sets `tmp` to its name.
+int temporaryBeside(const std::string& path, std::string* tmp) {
   if (path.empty()) throw std::runtime_error("empty file name: nothing written");
   const fs::path target(path);
   const std::string name = target.filename().string();
@@ -37,21 +37,42 @@ void writeTextFileAtomically(const std::string& path, const std::string& text) {
   // The temporary name stays short enough whatever the target's length (mkstemp adds 7 bytes).
   const std::string stem = name.substr(0, std::min<std::size_t>(name.size(), 200));
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string tmp = (folder / ("." + stem + ".XXXXXX")).string();
-  std::vector<char> buf(tmp.begin(), tmp.end());
+  *tmp = (folder / ("." + stem + ".XXXXXX")).string();
+  std::vector<char> buf(tmp->begin(), tmp->end());
   buf.push_back('\0');
   const int fd = ::mkstemp(buf.data());
   if (fd < 0) throw failure(path, "cannot create a file in its folder", errno);
-  tmp.assign(buf.data());
+  tmp->assign(buf.data());
+  // mkstemp makes the file 0600; a saved map or prior gets the usual mode under the umask.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
+  return fd;
+}
+
+}  // namespace
+
+std::string createTemporaryBeside(const std::string& path) {
+  std::string tmp;
+  const int fd = temporaryBeside(path, &tmp);
+  if (::close(fd) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw failure(path, "cannot close a new file in its folder", err);
+  }
+  return tmp;
+}
+
+void writeTextFileAtomically(const std::string& path, const std::string& text) {
+  std::string tmp;
+  const int fd = temporaryBeside(path, &tmp);
+  const fs::path folder =
+      fs::path(path).has_parent_path() ? fs::path(path).parent_path() : fs::path(".");
   auto abandon = [&](const std::string& what, int err) {
     ::close(fd);
     ::unlink(tmp.c_str());
     return failure(path, what, err);
   };
-  // mkstemp makes the file 0600; a saved map or prior gets the usual mode under the umask.
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
   const char* p = text.data();
   std::size_t left = text.size();
   while (left > 0) {
