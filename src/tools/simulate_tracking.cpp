@@ -69,6 +69,8 @@ int main(int argc, char** argv) {
     const std::string video_tmp = video.empty() ? "" : video + ".tmp.avi";
     if (!output.empty()) bag = std::make_unique<ros_bag::BagWriter>(output, overwrite);
     if (!video.empty()) {
+      // The ground truth's folder is writable (checked now, not after the whole video).
+      fs::remove(io::createTemporaryBeside(truth_csv));
       writer = std::make_unique<cv::VideoWriter>(video_tmp, cv::CAP_OPENCV_MJPEG,
                                                  cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
                                                  cfg.rate_hz, cv::Size(cfg.width, cfg.height));

@@ -13,17 +13,12 @@
 #include <iterator>
 #include <string>
 
+#include "../core/scratch_dir.h"
+
 namespace fs = std::filesystem;
 using adaptive_perception::ros_bag::BagWriter;
 
 namespace {
-
-fs::path freshFolder(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("bag_writer_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 std::string readText(const fs::path& p) {
   std::ifstream in(p);
@@ -52,7 +47,8 @@ size_t entries(const fs::path& dir) {
 }  // namespace
 
 TEST(BagWriter, LeavesAUsersTmpFileAndASymlinkOfThatNameAlone) {
-  const fs::path dir = freshFolder("tmp_names");
+  const adaptive_perception::test_support::ScratchDir scratch("bag_writer");
+  const fs::path dir = scratch.path();
   const fs::path bag = dir / "out.bag";
   std::ofstream(dir / "out.bag.tmp") << "the user's own notes";
   std::ofstream(dir / "elsewhere.txt") << "a file a symlink points at";
@@ -73,7 +69,8 @@ TEST(BagWriter, LeavesAUsersTmpFileAndASymlinkOfThatNameAlone) {
 }
 
 TEST(BagWriter, TwoWritersOfOneFileDoNotWriteIntoEachOther) {
-  const fs::path dir = freshFolder("two_writers");
+  const adaptive_perception::test_support::ScratchDir scratch("bag_writer");
+  const fs::path dir = scratch.path();
   const fs::path bag = dir / "out.bag";
   {
     BagWriter a(bag.string(), true), b(bag.string(), true);
@@ -90,7 +87,8 @@ TEST(BagWriter, TwoWritersOfOneFileDoNotWriteIntoEachOther) {
 }
 
 TEST(BagWriter, AWriterNotClosedLeavesNothingAndTheOldFileAsItWas) {
-  const fs::path dir = freshFolder("abandoned");
+  const adaptive_perception::test_support::ScratchDir scratch("bag_writer");
+  const fs::path dir = scratch.path();
   const fs::path bag = dir / "out.bag";
   {
     BagWriter w(bag.string(), false);

@@ -67,9 +67,15 @@ class BagWriter {
   const std::string& temporaryPath() const { return tmp_; }
   /// Finishes the bag and moves it into place; returns its size in bytes.
   std::uintmax_t close() {
-    bag_.close();
-    std::filesystem::rename(tmp_, path_);
-    closed_ = true;
+    closed_ = true;  // whatever happens below, the destructor has nothing left to close
+    try {
+      bag_.close();
+      std::filesystem::rename(tmp_, path_);
+    } catch (...) {
+      std::error_code ec;
+      std::filesystem::remove(tmp_, ec);
+      throw;
+    }
     return std::filesystem::file_size(path_);
   }
 
