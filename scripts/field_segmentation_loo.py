@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""Leave-one-image-out check of evaluate_field_segmentation's defaults: runs the tool over a small
-grid of the settings the defaults were chosen from, then for each image picks the grid point best
-on the OTHER images (mean of field and line IoU) and scores it on the held-out image. Prints the
-per-image choice and a last line `field_segmentation_loo: images=.. field_iou=.. line_iou=..
-default_field_iou=.. default_line_iou=..` (the defaults' own figures beside).
+"""Leave-one-venue-out check of evaluate_field_segmentation's defaults: runs the tool over a small
+grid of the settings the defaults were chosen from, then for each venue picks the grid point best
+on the OTHER venues' images (mean of field and line IoU) and scores it on the held-out venue's
+images. A venue is an image's name without its trailing frame number (`opx_frame005575` and
+`opx_frame005620` are one recording). Prints the per-venue choice and a last line
+`field_segmentation_loo: images=.. venues=.. field_iou=.. line_iou=.. default_field_iou=..
+default_line_iou=..` (means over images; the defaults' own figures beside).
 
 usage: field_segmentation_loo.py TOOL IMAGES_DIR MASKS_DIR OUTPUT_DIR
 (TOOL: the evaluate_field_segmentation executable; OUTPUT_DIR receives one folder per grid point)
@@ -11,15 +13,21 @@ usage: field_segmentation_loo.py TOOL IMAGES_DIR MASKS_DIR OUTPUT_DIR
 import csv
 import itertools
 import os
+import re
 import subprocess
 import sys
 
 GRID = {
-    "boundary_line_weight": ["0", "-0.5", "-1"],
-    "boundary_min_width_share": ["0", "0.1"],
-    "line_window_share": ["0.03", "0.05"],
-    "line_contrast_sigma": ["1", "1.5", "2"],
+    "seed_luma_share": ["0.3", "0.5", "0.8"],
+    "line_object_window_share": ["0.03", "0.06", "0.1"],
+    "line_max_object_share": ["0.05", "0.1", "0.2", "1"],
+    "dark_chroma_sigma": ["2", "3", "5"],
 }
+
+
+def venue(name):
+    stem = os.path.splitext(name)[0]
+    return re.sub(r"_?\d+(_copy)?$", "", stem) or stem
 
 
 def run(tool, images, masks, out, settings):
@@ -41,19 +49,23 @@ def main():
         scores.append(run(tool, images, masks, os.path.join(out, "grid%02d" % i), p))
     default = run(tool, images, masks, os.path.join(out, "default"), ())
     names = sorted(scores[0])
+    venues = sorted({venue(n) for n in names})
     field = line = 0.0
-    for held in names:
+    for held in venues:
         def others(s):
-            return sum(s[n][0] + s[n][1] for n in names if n != held)
+            return sum(s[n][0] + s[n][1] for n in names if venue(n) != held)
         best = max(range(len(points)), key=lambda i: others(scores[i]))
-        f, l = scores[best][held]
+        mine = [n for n in names if venue(n) == held]
+        f = sum(scores[best][n][0] for n in mine)
+        l = sum(scores[best][n][1] for n in mine)
         field += f
         line += l
-        print("%s: %s -> field_iou=%.3f line_iou=%.3f" % (
-            held, " ".join("%s=%s" % kv for kv in points[best]), f, l))
+        print("%s (%d images): %s -> field_iou=%.3f line_iou=%.3f" % (
+            held, len(mine), " ".join("%s=%s" % kv for kv in points[best]), f / len(mine),
+            l / len(mine)))
     n = len(names)
-    print("field_segmentation_loo: images=%d field_iou=%.3f line_iou=%.3f default_field_iou=%.3f "
-          "default_line_iou=%.3f" % (n, field / n, line / n,
+    print("field_segmentation_loo: images=%d venues=%d field_iou=%.3f line_iou=%.3f "
+          "default_field_iou=%.3f default_line_iou=%.3f" % (n, len(venues), field / n, line / n,
                                      sum(default[k][0] for k in names) / n,
                                      sum(default[k][1] for k in names) / n))
 

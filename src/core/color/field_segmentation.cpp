@@ -19,6 +19,8 @@ const config::Fields<FieldSegmentationConfig>& FieldSegmentationConfig::fields()
       config::Fields<C>()
           .add("seed_region_share", &C::seed_region_share, config::aboveZero(1),
                "share of the image height, from the bottom, where the carpet's chroma is sought")
+          .add("seed_luma_share", &C::seed_luma_share, config::aboveZero(1),
+               "the carpet's seed keeps this central share of its pixels' luma")
           .add("em_iterations", &C::em_iterations, closed(0, 100),
                "EM iterations of the colour mixture (carpet, line paint, other)")
           .add("em_stride_px", &C::em_stride_px, closed(1, 64),
@@ -42,6 +44,15 @@ const config::Fields<FieldSegmentationConfig>& FieldSegmentationConfig::fields()
                "(px)")
           .add("line_min_area_share", &C::line_min_area_share, closed(0, 1),
                "line strokes smaller than this share of the image are grass texture")
+          .add("line_object_window_share", &C::line_object_window_share, config::aboveZero(0.5),
+               "window about a line pixel where objects on the field are counted, as a share of "
+               "the image width")
+          .add("line_max_object_share", &C::line_max_object_share, closed(0, 1),
+               "a line pixel has at most this share of object pixels (dark_chroma_sigma) among "
+               "the field's pixels of its window; 1 = off")
+          .add("dark_chroma_sigma", &C::dark_chroma_sigma, closed(0, 100),
+               "a pixel darker than the carpet and more than this many of the carpet's chroma "
+               "standard deviations (Mahalanobis) from its chroma is an object on the field")
           .add("line_contrast_sigma", &C::line_contrast_sigma, closed(0, 100),
                "a line pixel stands this many carpet luma standard deviations above its "
                "surroundings");
@@ -114,6 +125,20 @@ bool seedCarpet(const cv::Mat& yuv, const FieldSegmentationConfig& cfg, Gauss* c
       if (std::abs((p[1] >> kShift) - bu) <= 1 && std::abs((p[2] >> kShift) - bv) <= 1)
         xs.push_back({double(p[0]), double(p[1]), double(p[2])});
     }
+  {
+    // The central seed_luma_share of their luma: a wall or a floor of the carpet's chroma in the
+    // seed region must not widen the carpet's class (an interquartile estimate by default).
+    const double keep = cfg.seed_luma_share;
+    std::vector<double> ys;
+    for (const auto& x : xs) ys.push_back(x[0]);
+    std::sort(ys.begin(), ys.end());
+    const double lo = ys[static_cast<size_t>((0.5 - keep / 2) * (ys.size() - 1))];
+    const double hi = ys[static_cast<size_t>((0.5 + keep / 2) * (ys.size() - 1))];
+    std::vector<Eigen::Vector3d> kept;
+    for (const auto& x : xs)
+      if (x[0] >= lo && x[0] <= hi) kept.push_back(x);
+    xs.swap(kept);
+  }
   moments(xs, carpet);
   return true;
 }
@@ -209,7 +234,9 @@ FieldSegmentation segmentFieldYuv(const cv::Mat& yuv, const FieldSegmentationCon
     }
 
   // 3. The boundary: b_c maximising sum_c [S_c(b_c) - lambda |b_c - b_(c-1)|], S_c(b) the running
-  // sum from the bottom of column c up to row b (+1 carpet, boundary_line_weight paint, -1 other);
+  // sum from the bottom of column c up to row b (+1 carpet, boundary_line_weight paint, -1 other),
+  // restarted from zero wherever it fell below: the best run of rows from b down, so that an
+  // occluder at the image's bottom (the robot's own arm or feet) does not cancel the carpet above;
   // b_c = rows: no field in the column. Dynamic programming over the columns, the L1 step by the
   // two-pass distance transform.
   const int states = rows + 1;
@@ -220,6 +247,7 @@ FieldSegmentation segmentFieldYuv(const cv::Mat& yuv, const FieldSegmentationCon
     run[rows] = 0.0f;
     for (int r = rows - 1; r >= 0; --r) {
       const int k = cls.at<std::uint8_t>(r, c);
+      s = std::max(s, 0.0);  // the best run of rows from here down, not the whole column
       s += k == kCarpet ? 1.0 : k == kPaint ? cfg.boundary_line_weight : -cfg.boundary_other_weight;
       run[r] = static_cast<float>(s);
     }
@@ -296,12 +324,42 @@ FieldSegmentation segmentFieldYuv(const cv::Mat& yuv, const FieldSegmentationCon
   cv::morphologyEx(y, tophat, cv::MORPH_TOPHAT,
                    cv::getStructuringElement(cv::MORPH_ELLIPSE, {win, win}));
   const double carpet_chroma = std::hypot(g[kCarpet].mean[1] - 128.0, g[kCarpet].mean[2] - 128.0);
+  // Paler than the carpet: chroma over luma, since a tinted light gives white paint a chroma
+  // that grows with its brightness (warm light: paint brighter and more chromatic than the grass).
+  const double carpet_pale = carpet_chroma / std::max(1.0, g[kCarpet].mean[0]);
+  auto pale = [&](const cv::Vec3b& p) {
+    return std::hypot(p[1] - 128.0, p[2] - 128.0) <= carpet_pale * std::max<double>(1.0, p[0]);
+  };
   const double min_contrast = cfg.line_contrast_sigma * std::sqrt(g[kCarpet].cov(0, 0));
+  // Objects on the field (below the boundary, darker than the carpet and of another chroma: a
+  // robot's joints, the ball's patches, a leg) and the field's pixels, counted over a window about
+  // each pixel.
+  cv::Mat object_count, field_count;
+  {
+    const Eigen::Matrix2d chroma_inv = g[kCarpet].cov.bottomRightCorner<2, 2>().inverse();
+    const double dark_m2 = cfg.dark_chroma_sigma * cfg.dark_chroma_sigma;
+    auto chromaM2 = [&](const cv::Vec3b& q) {
+      const Eigen::Vector2d d(q[1] - g[kCarpet].mean[1], q[2] - g[kCarpet].mean[2]);
+      return d.dot(chroma_inv * d);
+    };
+    cv::Mat object(rows, cols, CV_32F, cv::Scalar(0)), field(rows, cols, CV_32F, cv::Scalar(0));
+    for (int c = 0; c < cols; ++c)
+      for (int r = boundary[c]; r < rows; ++r) {
+        field.at<float>(r, c) = 1.0f;
+        const cv::Vec3b& q = yuv.at<cv::Vec3b>(r, c);
+        if (q[0] < g[kCarpet].mean[0] && chromaM2(q) > dark_m2) object.at<float>(r, c) = 1.0f;
+      }
+    const int ow =
+        std::max(3, static_cast<int>(std::lround(cfg.line_object_window_share * cols)) | 1);
+    cv::boxFilter(object, object_count, CV_32F, {ow, ow}, {-1, -1}, false);
+    cv::boxFilter(field, field_count, CV_32F, {ow, ow}, {-1, -1}, false);
+  }
   for (int c = 0; c < cols; ++c)
     for (int r = boundary[c]; r < rows; ++r) {
       const cv::Vec3b& p = yuv.at<cv::Vec3b>(r, c);
-      const double chroma = std::hypot(p[1] - 128.0, p[2] - 128.0);
-      const bool line = chroma <= carpet_chroma && tophat.at<std::uint8_t>(r, c) >= min_contrast;
+      const bool on_carpet = object_count.at<float>(r, c) <=
+                             cfg.line_max_object_share * field_count.at<float>(r, c);
+      const bool line = pale(p) && on_carpet && tophat.at<std::uint8_t>(r, c) >= min_contrast;
       out.labels.at<std::uint8_t>(r, c) = line ? world::kWhite : world::kGreen;
     }
   // Grass texture leaves specks; a painted line is a long stroke.

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "../refusal.h"
@@ -79,6 +80,79 @@ TEST(FieldSegmentation, FindsTheBoundaryBehindARobotAndThePaintedLines) {
   EXPECT_NEAR(seg.carpet_mean_yuv[0], 98.0, 5.0);
   EXPECT_LT(seg.carpet_mean_yuv[1], 115.0);
   EXPECT_LT(seg.carpet_mean_yuv[2], 115.0);
+}
+
+// YUV (BT.601 full range) with grass-like noise of `sd` levels on every channel.
+cv::Mat noisyYuv(const cv::Mat& yuv, double sd, int seed) {
+  cv::Mat noise(yuv.size(), CV_16SC3), out;
+  cv::RNG rng(seed);
+  rng.fill(noise, cv::RNG::NORMAL, 0, sd);
+  yuv.convertTo(out, CV_16SC3);
+  out += noise;
+  out.convertTo(out, CV_8UC3);
+  return out;
+}
+
+TEST(FieldSegmentation, AWallOfTheCarpetsChromaInTheLowerHalfIsNotField) {
+  // A dark carpet (Y 50) below row 150 and, between rows 100 and 150, a pale wall of the same
+  // chroma but three times as bright (a goal's back wall under a green-tinted light); grey above.
+  // The wall fills a quarter of the image's lower half, where the carpet's seed is taken.
+  cv::Mat yuv(kH, kW, CV_8UC3, cv::Scalar(180, 128, 128));
+  yuv(cv::Rect(0, 100, kW, 50)).setTo(cv::Scalar(150, 110, 122));
+  yuv(cv::Rect(0, 150, kW, kH - 150)).setTo(cv::Scalar(50, 110, 122));
+  const auto seg = ap::color::segmentFieldYuv(noisyYuv(yuv, 3.0, 11), {});
+  int off = 0;
+  for (int c = 0; c < kW; ++c)
+    if (std::abs(seg.boundary_row.at<int>(0, c) - 150) > 2) ++off;
+  EXPECT_EQ(off, 0);
+  EXPECT_NEAR(seg.carpet_mean_yuv[0], 50.0, 5.0);
+}
+
+TEST(FieldSegmentation, FindsPaintMoreChromaticThanADarkCarpet) {
+  // Under a warm light white paint takes the light's tint in proportion to its brightness: here
+  // its chroma (about 28 levels) exceeds the dark carpet's (about 21), yet relative to its luma it
+  // is far paler (0.15 against 0.42).
+  cv::Mat yuv(kH, kW, CV_8UC3, cv::Scalar(180, 128, 128));
+  yuv(cv::Rect(0, kBoundary, kW, kH - kBoundary)).setTo(cv::Scalar(50, 110, 140));
+  cv::Mat lines = cv::Mat::zeros(kH, kW, CV_8UC1);
+  cv::rectangle(lines, cv::Rect(0, 170, kW, 4), 255, cv::FILLED);
+  yuv.setTo(cv::Scalar(185, 108, 148), lines);
+  const auto seg = ap::color::segmentFieldYuv(noisyYuv(yuv, 3.0, 12), {});
+  const cv::Mat found = seg.labels == ap::world::kWhite;
+  EXPECT_GT(double(cv::countNonZero(found & lines)) / cv::countNonZero(lines), 0.9);
+}
+
+TEST(FieldSegmentation, ABallOnTheCarpetIsNotALine) {
+  // A white ball of radius 10 px with five black patches on the carpet, beside a painted line:
+  // between its patches the ball is as thin and bright as paint, but its patches are dark.
+  Scene s = drawScene();
+  const cv::Point centre(60, 130);
+  cv::circle(s.bgr, centre, 10, cv::Scalar(235, 235, 235), cv::FILLED);
+  for (int k = 0; k < 5; ++k) {
+    const double a = 2.0 * M_PI * k / 5.0;
+    const cv::Point patch(std::lround(6 * std::cos(a)), std::lround(6 * std::sin(a)));
+    cv::circle(s.bgr, centre + patch, 3, cv::Scalar(20, 20, 20), cv::FILLED);
+  }
+  const auto seg = ap::color::segmentField(s.bgr, {});
+  cv::Mat ball = cv::Mat::zeros(kH, kW, CV_8UC1);
+  cv::circle(ball, centre, 13, 255, cv::FILLED);
+  EXPECT_EQ(cv::countNonZero((seg.labels == ap::world::kWhite) & ball), 0);
+  // The painted lines are still found.
+  const cv::Mat found = seg.labels == ap::world::kWhite;
+  EXPECT_GT(double(cv::countNonZero(found & s.lines)) / cv::countNonZero(s.lines), 0.9);
+}
+
+TEST(FieldSegmentation, TheRobotsOwnArmAtTheBottomDoesNotHideTheCarpetAboveIt) {
+  // The robot's own arm (grey-blue) fills the bottom 100 rows of the image's left 80 columns,
+  // taller than the 50 rows of carpet above it there: the whole column holds more arm than
+  // carpet, yet the field's boundary is where the carpet begins.
+  Scene s = drawScene();
+  s.bgr(cv::Rect(0, 140, 80, kH - 140)).setTo(cv::Scalar(150, 110, 90));
+  const auto seg = ap::color::segmentField(s.bgr, {});
+  int off = 0;
+  for (int c = 0; c < 80; ++c)
+    if (std::abs(seg.boundary_row.at<int>(0, c) - kBoundary) > 2) ++off;
+  EXPECT_EQ(off, 0);
 }
 
 TEST(FieldSegmentation, AnImageWithoutGreenHasNoField) {
