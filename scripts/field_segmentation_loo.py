@@ -13,7 +13,6 @@ usage: field_segmentation_loo.py TOOL IMAGES_DIR MASKS_DIR OUTPUT_DIR
 import csv
 import itertools
 import os
-import re
 import subprocess
 import sys
 
@@ -26,8 +25,12 @@ GRID = {
 
 
 def venue(name):
+    """As evaluate_color_priors' venueOf: the name without its extension, a trailing "_copy" and
+    the trailing frame number (digits, '_' and '-'); a name that is all number is its own venue."""
     stem = os.path.splitext(name)[0]
-    return re.sub(r"_?\d+(_copy)?$", "", stem) or stem
+    v = stem[:-5] if len(stem) > 5 and stem.endswith("_copy") else stem
+    v = v.rstrip("0123456789_-")
+    return v or stem
 
 
 def run(tool, images, masks, out, settings):

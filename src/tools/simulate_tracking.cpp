@@ -61,16 +61,19 @@ int main(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     cli.fail(e.what());
   }
+  std::string video_tmp;  // the video's temporary while it is written
   try {
     sim::TrackingScene scene(cfg, seed);
     std::unique_ptr<ros_bag::BagWriter> bag;
     std::unique_ptr<cv::VideoWriter> writer;
     std::ostringstream csv;  // written atomically at the end (io::writeTextFileAtomically)
-    const std::string video_tmp = video.empty() ? "" : video + ".tmp.avi";
     if (!output.empty()) bag = std::make_unique<ros_bag::BagWriter>(output, overwrite);
     if (!video.empty()) {
       // The ground truth's folder is writable (checked now, not after the whole video).
       fs::remove(io::createTemporaryBeside(truth_csv));
+      // A new file of a unique name beside the video (the writer takes the container from its
+      // extension), renamed over it when complete: nothing of the user's is touched on a failure.
+      video_tmp = io::createTemporaryBeside(video, ".avi");
       writer = std::make_unique<cv::VideoWriter>(video_tmp, cv::CAP_OPENCV_MJPEG,
                                                  cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
                                                  cfg.rate_hz, cv::Size(cfg.width, cfg.height));
@@ -126,11 +129,16 @@ int main(int argc, char** argv) {
       writer->release();
       io::writeTextFileAtomically(truth_csv, csv.str());
       fs::rename(video_tmp, video);
+      video_tmp.clear();
     }
     std::printf("simulate_tracking: scenario=%s frames=%d output=%s\n",
                 sim::trackingScenarioName(cfg.scenario).c_str(), cfg.frames,
                 (output.empty() ? video : output).c_str());
   } catch (const std::exception& e) {
+    if (!video_tmp.empty()) {
+      std::error_code ignored;
+      fs::remove(video_tmp, ignored);
+    }
     std::cerr << "simulate_tracking: error: " << e.what() << "\n";
     return 1;
   }

@@ -329,6 +329,25 @@ TEST(Tools, FieldImagesToBagChecksEveryImageBeforeWriting) {
   EXPECT_TRUE(fs::exists(bag));
 }
 
+// simulate_tracking --video writes the video to a temporary of a unique name beside it and renames
+// it when complete: a user's file named as the old fixed temporary (VIDEO.tmp.avi) is left alone.
+TEST(Tools, SimulateTrackingVideoLeavesAUsersFilesAlone) {
+  ScratchDir dir("simulate_tracking_video");
+  const fs::path video = dir.path() / "clip.avi", mine = dir.path() / "clip.avi.tmp.avi";
+  std::ofstream(mine) << "the user's own file\n";
+  std::string out;
+  const std::string tool = std::string(AP_TOOL_DIR) + "/simulate_tracking --frames 5 --video ";
+  ASSERT_EQ(run(tool + video.string(), &out), 0) << out;
+  EXPECT_GT(fs::file_size(video), 0u);
+  EXPECT_TRUE(fs::exists(dir.path() / "clip.csv"));
+  std::ifstream in(mine);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "the user's own file");
+  // Nothing else beside them: no temporary left.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), {}), 3);
+}
+
 // evaluate_color_priors names an image that has no mask, before any work.
 TEST(Tools, EvaluateColorPriorsNamesAnImageWithoutAMask) {
   ScratchDir dir("evaluate_color_priors");

@@ -18,18 +18,19 @@
 //      (theta ~ N(seed, prior_std^2 I), pixel ~ N(theta, nu)).
 //   3. The field's boundary: in each column the row below which carpet outweighs the rest (the
 //      running sum from the bottom of +1 per carpet pixel, -boundary_other_weight per other pixel,
-//      boundary_line_weight per paint pixel, restarted from zero where it falls below: the robot's
-//      own arm at the image's bottom does not cancel the carpet above it), chosen for all columns
-//      at once by dynamic programming with a cost per row of step between neighbouring columns; then peaks narrower than
+//      boundary_line_weight per paint pixel, restarted from zero where it falls below until carpet
+//      first leads: the robot's own arm covering the image's bottom does not cancel the carpet
+//      above it), chosen for all columns at once by dynamic programming with a cost per row of
+//      step between neighbouring columns; then peaks narrower than
 //      boundary_min_width_share removed (something field-coloured above the field: grass seen
 //      through a goal's net), then the upper convex hull of the rows, since anything standing on
 //      the field can only hide the boundary, never raise it, and the field seen from inside it is
 //      convex in the image.
 //   4. Lines: inside the field, pixels paler than the carpet (chroma over luma) that are thin and
 //      bright (a white top-hat of the smoothed luma with a window wider than a line, at least
-//      line_contrast_sigma carpet standard deviations), with few objects (dark, of another chroma)
-//      about them, in strokes larger than line_min_area_share of the image (grass texture leaves
-//      specks).
+//      line_contrast_sigma carpet standard deviations), with few objects (darker than the carpet
+//      and of another chroma) about them, in strokes larger than line_min_area_share of the image
+//      (grass texture leaves specks).
 //
 // The defaults and the measurements that chose them: docs/field_segmentation.md.
 #include <opencv2/core.hpp>
@@ -43,7 +44,9 @@ struct FieldSegmentationConfig {
   double seed_region_share = 0.5;
   /// The seed keeps the central share of its pixels' luma (0.5: the interquartile range), so that
   /// a wall or a floor of the carpet's chroma seen in the seed region does not widen the carpet's
-  /// class (a goal's back wall took the carpet with it: field IoU 0.37 -> 0.81 on one image).
+  /// class (a goal's back wall took the carpet with it: field IoU 0.37 -> 0.81 on one image). The
+  /// seed's luma spread is then that of the central share (about 0.14 of the variance for a
+  /// Gaussian at 0.5); EM widens it to the carpet's (with em_iterations 0 it stays narrow).
   double seed_luma_share = 0.5;
   /// EM iterations of the colour mixture.
   int em_iterations = 8;
@@ -76,7 +79,8 @@ struct FieldSegmentationConfig {
   /// pixels are objects: darker than the carpet's mean and more than dark_chroma_sigma of the
   /// carpet's chroma standard deviations (Mahalanobis, U and V) from its chroma (3: the usual
   /// three sigma). A white robot, the ball and a shirt are bright and thin in places, as paint
-  /// is, but never without dark or coloured parts beside them. line_max_object_share 1 turns it
+  /// is, but rarely without dark parts of another colour than the carpet's beside them (joints,
+  /// panels, hair, trousers). line_max_object_share 1 turns it
   /// off.
   double line_object_window_share = 0.06;
   double line_max_object_share = 0.1;

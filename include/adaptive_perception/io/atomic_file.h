@@ -14,9 +14,11 @@ void writeTextFileAtomically(const std::string& path, const std::string& text);
 
 /// Creates a new, empty file of a unique name beside `path` (`.NAME.XXXXXX` in its folder, by
 /// mkstemp: never an existing file, never through a symlink) with the usual mode under the umask,
-/// and returns its name, for a writer that fills it and then renames it over `path`. Throws
-/// std::runtime_error naming `path` and the reason when it cannot be created.
-std::string createTemporaryBeside(const std::string& path);
+/// and returns its name, for a writer that fills it and then renames it over `path`. `suffix`
+/// ends the name (`.NAME.XXXXXX.avi` for a writer that chooses its format by the extension; at
+/// most 16 bytes, no '/': std::invalid_argument otherwise). Throws std::runtime_error naming
+/// `path` and the reason when it cannot be created.
+std::string createTemporaryBeside(const std::string& path, const std::string& suffix = "");
 
 /// The absolute, normalised form of `path` (relative to the current directory), for messages
 /// that must say where a file went. Never throws.

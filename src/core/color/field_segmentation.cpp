@@ -50,7 +50,7 @@ const config::Fields<FieldSegmentationConfig>& FieldSegmentationConfig::fields()
           .add("line_max_object_share", &C::line_max_object_share, closed(0, 1),
                "a line pixel has at most this share of object pixels (dark_chroma_sigma) among "
                "the field's pixels of its window; 1 = off")
-          .add("dark_chroma_sigma", &C::dark_chroma_sigma, closed(0, 100),
+          .add("dark_chroma_sigma", &C::dark_chroma_sigma, config::aboveZero(100),
                "a pixel darker than the carpet and more than this many of the carpet's chroma "
                "standard deviations (Mahalanobis) from its chroma is an object on the field")
           .add("line_contrast_sigma", &C::line_contrast_sigma, closed(0, 100),
@@ -234,20 +234,22 @@ FieldSegmentation segmentFieldYuv(const cv::Mat& yuv, const FieldSegmentationCon
     }
 
   // 3. The boundary: b_c maximising sum_c [S_c(b_c) - lambda |b_c - b_(c-1)|], S_c(b) the running
-  // sum from the bottom of column c up to row b (+1 carpet, boundary_line_weight paint, -1 other),
-  // restarted from zero wherever it fell below: the best run of rows from b down, so that an
-  // occluder at the image's bottom (the robot's own arm or feet) does not cancel the carpet above;
+  // sum from the bottom of column c up to row b (+1 carpet, boundary_line_weight paint, -1 other);
   // b_c = rows: no field in the column. Dynamic programming over the columns, the L1 step by the
   // two-pass distance transform.
   const int states = rows + 1;
   std::vector<float> score(states), prev(states), run(states);
   std::vector<int> from(static_cast<size_t>(states) * cols), arg(states);
+  // An occluder joined to the image's bottom (the robot's own arm or feet) does not cancel the
+  // carpet above it: until carpet first leads, the sum restarts at zero wherever it falls below.
   for (int c = 0; c < cols; ++c) {
     double s = 0.0;
+    bool bottom = true;  // still in what covers the image's bottom row (the robot's own body)
     run[rows] = 0.0f;
     for (int r = rows - 1; r >= 0; --r) {
       const int k = cls.at<std::uint8_t>(r, c);
-      s = std::max(s, 0.0);  // the best run of rows from here down, not the whole column
+      if (bottom) s = std::max(s, 0.0);
+      if (s > 0.0) bottom = false;
       s += k == kCarpet ? 1.0 : k == kPaint ? cfg.boundary_line_weight : -cfg.boundary_other_weight;
       run[r] = static_cast<float>(s);
     }

@@ -22,7 +22,7 @@ std::runtime_error failure(const std::string& path, const std::string& what, int
 
 // A new file of a unique name beside `path` (mkstemp), its mode the usual one under the umask;
 // returns its descriptor and sets `tmp` to its name.
-int temporaryBeside(const std::string& path, std::string* tmp) {
+int temporaryBeside(const std::string& path, std::string* tmp, const std::string& suffix = "") {
   if (path.empty()) throw std::runtime_error("empty file name: nothing written");
   const fs::path target(path);
   const std::string name = target.filename().string();
@@ -37,10 +37,10 @@ int temporaryBeside(const std::string& path, std::string* tmp) {
   // The temporary name stays short enough whatever the target's length (mkstemp adds 7 bytes).
   const std::string stem = name.substr(0, std::min<std::size_t>(name.size(), 200));
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  *tmp = (folder / ("." + stem + ".XXXXXX")).string();
+  *tmp = (folder / ("." + stem + ".XXXXXX" + suffix)).string();
   std::vector<char> buf(tmp->begin(), tmp->end());
   buf.push_back('\0');
-  const int fd = ::mkstemp(buf.data());
+  const int fd = ::mkstemps(buf.data(), static_cast<int>(suffix.size()));
   if (fd < 0) throw failure(path, "cannot create a file in its folder", errno);
   tmp->assign(buf.data());
   // mkstemp makes the file 0600; a saved map or prior gets the usual mode under the umask.
@@ -52,9 +52,12 @@ int temporaryBeside(const std::string& path, std::string* tmp) {
 
 }  // namespace
 
-std::string createTemporaryBeside(const std::string& path) {
+std::string createTemporaryBeside(const std::string& path, const std::string& suffix) {
+  if (suffix.find('/') != std::string::npos || suffix.size() > 16)
+    throw std::invalid_argument("createTemporaryBeside: suffix '" + suffix +
+                                "' (allowed: at most 16 bytes, no '/')");
   std::string tmp;
-  const int fd = temporaryBeside(path, &tmp);
+  const int fd = temporaryBeside(path, &tmp, suffix);
   if (::close(fd) != 0) {
     const int err = errno;
     ::unlink(tmp.c_str());

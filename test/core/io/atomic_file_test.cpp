@@ -50,6 +50,23 @@ TEST_F(AtomicFileTest, AUsersTmpFileBesideTheTargetIsNotTouched) {
   EXPECT_EQ(filesInDir(), 2u);
 }
 
+TEST_F(AtomicFileTest, ATemporaryWithASuffixIsUniqueAndEndsWithIt) {
+  const fs::path video = dir_ / "clip.avi";
+  const std::string a = ap::io::createTemporaryBeside(video.string(), ".avi");
+  const std::string b = ap::io::createTemporaryBeside(video.string(), ".avi");
+  EXPECT_NE(a, b);
+  for (const std::string& t : {a, b}) {
+    const std::string name = fs::path(t).filename().string();
+    EXPECT_EQ(name.rfind(".clip.avi.", 0), 0u) << name;
+    EXPECT_EQ(name.substr(name.size() - 4), ".avi") << name;
+    EXPECT_EQ(fs::file_size(t), 0u);
+    EXPECT_EQ(fs::path(t).parent_path(), dir_);
+  }
+  EXPECT_FALSE(fs::exists(video));
+  EXPECT_THROW(ap::io::createTemporaryBeside(video.string(), "/x"), std::invalid_argument);
+  EXPECT_EQ(filesInDir(), 2u);
+}
+
 TEST_F(AtomicFileTest, ANameTooLongIsRefusedWithAMessageAndNothingIsWritten) {
   const fs::path x = dir_ / (std::string(300, 'm') + ".yaml");
   try {
