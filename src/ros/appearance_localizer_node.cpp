@@ -10,6 +10,7 @@
 #include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -208,5 +209,8 @@ void AppearanceLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapp
   stat.add("images dropped (bad)", gate_.badImages());
   stat.add("last room", last_room_);
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<AppearanceLocalizerNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

@@ -4,6 +4,7 @@
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -40,5 +41,8 @@ void CameraPreviewNode::onLabels(const sensor_msgs::ImageConstPtr& msg) {
     ROS_ERROR_THROTTLE(10.0, "camera_preview: labels dropped: %s", e.what());
   }
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<CameraPreviewNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

@@ -9,6 +9,7 @@
 #include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -270,5 +271,8 @@ void ColorEstimatorNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& s
   input_.diagnose(stat);
   stat.add("last log likelihood", last_log_likelihood_);
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<ColorEstimatorNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

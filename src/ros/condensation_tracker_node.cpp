@@ -9,6 +9,7 @@
 #include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -324,5 +325,8 @@ void CondensationTrackerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapp
   stat.add("confidence", confidence_);
   stat.add("bad images", gate_.badImages());
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<CondensationTrackerNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

@@ -13,6 +13,7 @@
 #include "adaptive_perception/ros/topics.h"
 #include "adaptive_perception/slam/map_io.h"
 #include "adaptive_perception/world/camera_model.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -603,5 +604,8 @@ void EkfSlamMapperNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   stat.add("lines without their scan (not in the grid)", scans_without_laser_scan_);
   stat.add("readings taken for no returns below range_max", no_returns_marked_);
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<EkfSlamMapperNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

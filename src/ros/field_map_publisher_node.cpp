@@ -3,6 +3,7 @@
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -123,5 +124,8 @@ FieldMapPublisherNode::FieldMapPublisherNode(ros::NodeHandle nh, ros::NodeHandle
   ROS_INFO("field_map_publisher: published %s (%.2f x %.2f m field) in frame '%s'", file.c_str(),
            map.dimensions().field_length_m, map.dimensions().field_width_m, frame.c_str());
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<FieldMapPublisherNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

@@ -3,6 +3,7 @@
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -69,5 +70,8 @@ void GroundTruthTfNode::callback(const geometry_msgs::PoseStampedConstPtr& truth
     path_pub_.publish(path_);
   }
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<GroundTruthTfNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

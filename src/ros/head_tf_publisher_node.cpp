@@ -6,6 +6,7 @@
 #include "adaptive_perception/ros/msg_conversion.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -101,5 +102,8 @@ void HeadTfNode::check(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("head transforms published", published_);
   stat.add("joint_states skipped", skipped_);
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<HeadTfNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

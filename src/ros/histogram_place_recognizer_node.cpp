@@ -9,6 +9,7 @@
 #include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -394,5 +395,8 @@ void HistogramPlaceRecognizerNode::diagnose(diagnostic_updater::DiagnosticStatus
     stat.add("accuracy against ground_truth/place", static_cast<double>(window_right_) / labelled_);
   stat.add("mode", train_mode_ ? "train" : "recognise");
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<HistogramPlaceRecognizerNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

@@ -6,6 +6,7 @@
 #include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -131,5 +132,8 @@ void LineExtractorNode::onScan(const ros::MessageEvent<const sensor_msgs::LaserS
   diagnostics_.tick();
   diagnostics_.update();
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<LineExtractorNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

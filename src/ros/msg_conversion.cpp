@@ -7,7 +7,6 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/math/gaussian.h"
 #include "adaptive_perception/world/camera_model.h"
 #include "adaptive_perception/world/color_class.h"
@@ -16,82 +15,23 @@ namespace adaptive_perception::ros_conv {
 
 namespace enc = sensor_msgs::image_encodings;
 
-namespace {
-/// Sizes in 64 bits: width x bytes per pixel and step x height cannot wrap (a bgr8 width of
-/// 1431655766 is 4294967298 bytes a row, 2 in 32 bits).
-void checkBuffer(const sensor_msgs::Image& msg, int bytes_per_pixel, std::int64_t max_pixels) {
-  const std::string size = std::to_string(msg.width) + "x" + std::to_string(msg.height);
-  if (msg.width == 0 || msg.height == 0) throw ImageFormatError("image is empty (" + size + ")");
-  const std::uint64_t pixels = static_cast<std::uint64_t>(msg.width) * msg.height;
-  if (max_pixels < 0 || pixels > static_cast<std::uint64_t>(max_pixels))
-    throw ImageFormatError("image " + size + " has " + std::to_string(pixels) +
-                           " pixels, more than the limit of " + std::to_string(max_pixels));
-  const std::uint64_t row = static_cast<std::uint64_t>(msg.width) * bytes_per_pixel;
-  if (msg.step < row || msg.data.size() < static_cast<std::uint64_t>(msg.step) * msg.height)
-    throw ImageFormatError("image buffer too small for " + size + " " + msg.encoding + " (step " +
-                           std::to_string(msg.step) + ", " + std::to_string(msg.data.size()) +
-                           " bytes)");
+io::ImageBuffer imageBuffer(const sensor_msgs::Image& msg) {
+  io::ImageBuffer buffer;
+  buffer.encoding = msg.encoding;
+  buffer.width_px = msg.width;
+  buffer.height_px = msg.height;
+  buffer.step_bytes = msg.step;
+  buffer.data = msg.data.data();
+  buffer.size_bytes = msg.data.size();
+  return buffer;
 }
-}  // namespace
 
 cv::Mat imageToYuv(const sensor_msgs::Image& msg, std::int64_t max_pixels) {
-  if (msg.encoding == enc::YUV422) {
-    checkBuffer(msg, 2, max_pixels);
-    if (msg.width % 2 != 0)
-      throw ImageFormatError("yuv422 image of odd width " + std::to_string(msg.width));
-    const cv::Mat uyvy(msg.height, msg.width, CV_8UC2, const_cast<std::uint8_t*>(msg.data.data()),
-                       msg.step);
-    return color::unpackUyvy(uyvy);
-  }
-  if (msg.encoding == enc::BGR8 || msg.encoding == enc::RGB8) {
-    checkBuffer(msg, 3, max_pixels);
-    const cv::Mat view(msg.height, msg.width, CV_8UC3, const_cast<std::uint8_t*>(msg.data.data()),
-                       msg.step);
-    if (msg.encoding == enc::BGR8) return color::bgrToYuv(view);
-    cv::Mat bgr;
-    cv::cvtColor(view, bgr, cv::COLOR_RGB2BGR);
-    return color::bgrToYuv(bgr);
-  }
-  throw ImageFormatError("unsupported image encoding '" + msg.encoding +
-                         "' (accepted: yuv422, bgr8, rgb8)");
+  return io::bufferToYuv(imageBuffer(msg), max_pixels);
 }
 
 cv::Mat imageToBgr8(const sensor_msgs::Image& msg, std::int64_t max_pixels) {
-  if (msg.encoding == enc::BGR8 || msg.encoding == enc::RGB8) {
-    checkBuffer(msg, 3, max_pixels);
-    const cv::Mat view(msg.height, msg.width, CV_8UC3, const_cast<std::uint8_t*>(msg.data.data()),
-                       msg.step);
-    cv::Mat out;
-    if (msg.encoding == enc::BGR8)
-      out = view.clone();
-    else
-      cv::cvtColor(view, out, cv::COLOR_RGB2BGR);
-    return out;
-  }
-  if (msg.encoding == enc::MONO8) {  // grey: the three channels equal
-    checkBuffer(msg, 1, max_pixels);
-    const cv::Mat view(msg.height, msg.width, CV_8UC1, const_cast<std::uint8_t*>(msg.data.data()),
-                       msg.step);
-    cv::Mat out;
-    cv::cvtColor(view, out, cv::COLOR_GRAY2BGR);
-    return out;
-  }
-  if (msg.encoding == enc::YUV422) {
-    const cv::Mat yuv = imageToYuv(msg, max_pixels);
-    cv::Mat out(yuv.size(), CV_8UC3);
-    for (int r = 0; r < yuv.rows; ++r) {
-      const cv::Vec3b* s = yuv.ptr<cv::Vec3b>(r);
-      cv::Vec3b* o = out.ptr<cv::Vec3b>(r);
-      for (int c = 0; c < yuv.cols; ++c) {
-        const Eigen::Vector3d rgb = color::yuvToRgb(Eigen::Vector3d(s[c][0], s[c][1], s[c][2]));
-        for (int k = 0; k < 3; ++k)
-          o[c][2 - k] = static_cast<std::uint8_t>(std::clamp(std::lround(rgb[k]), 0L, 255L));
-      }
-    }
-    return out;
-  }
-  throw ImageFormatError("unsupported image encoding '" + msg.encoding +
-                         "' (accepted: bgr8, rgb8, mono8, yuv422)");
+  return io::bufferToBgr8(imageBuffer(msg), max_pixels);
 }
 
 sensor_msgs::Image uyvyToImage(const cv::Mat& uyvy, const std_msgs::Header& header) {
@@ -107,12 +47,7 @@ sensor_msgs::Image bgr8ToImage(const cv::Mat& bgr, const std_msgs::Header& heade
 }
 
 cv::Mat imageToMono8(const sensor_msgs::Image& msg, std::int64_t max_pixels) {
-  if (msg.encoding != enc::MONO8 && msg.encoding != enc::TYPE_8UC1)
-    throw ImageFormatError("expected a mono8 image, got encoding '" + msg.encoding + "'");
-  checkBuffer(msg, 1, max_pixels);
-  return cv::Mat(msg.height, msg.width, CV_8UC1, const_cast<std::uint8_t*>(msg.data.data()),
-                 msg.step)
-      .clone();
+  return io::bufferToMono8(imageBuffer(msg), max_pixels);
 }
 
 sensor_msgs::CameraInfo toCameraInfo(const world::PinholeCamera& c,

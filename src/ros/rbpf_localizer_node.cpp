@@ -15,6 +15,7 @@
 #include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -341,5 +342,8 @@ void RbpfLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   input_.diagnose(stat);
   stat.add("re-initialisations", resets_);
 }
+
+// The node's main (src/nodes, ros/node_main.h) links this one instance.
+template int runNode<RbpfLocalizerNode>(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

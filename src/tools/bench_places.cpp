@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   std::string space_name = "hsv";
   std::vector<std::string> spaces;
   for (int i = 0; i < places::kNumSpaces; ++i) spaces.push_back(places::spaceName(i));
-  cli.option("space", &space_name, "colour space of the queries")->check(CLI::IsMember(spaces));
+  cli.option("space", &space_name, "colour space of the queries")->oneOf(spaces);
   long bins = 256;
   cli.option("bins", &bins, config::closed(2, 256), "histogram bins");
   const double& seconds = cli.measurementSeconds(1.0);

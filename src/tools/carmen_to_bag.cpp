@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
   cli.option("odometry", &odometry,
              "odometry source: the lasers' robot poses unless they never change (auto), or "
              "either forced")
-      ->check(CLI::IsMember({"auto", "odom_lines", "laser_poses"}));
+      ->oneOf({"auto", "odom_lines", "laser_poses"});
   // The reader's default timestamp range, [0, 2^32 - 1] s, is what ros::Time holds: a line stamped
   // outside it is skipped and reported by the reader, where ros::Time would throw and stop the
   // conversion.

@@ -36,10 +36,10 @@ int main(int argc, char** argv) {
   const std::string& bag = cli.inputBag("field bag with true labels");
   std::string filter = "switching";
   cli.option("filter", &filter, "one mode per prior in --modes, or one Kalman filter (--single)")
-      ->check(CLI::IsMember({"switching", "single"}));
+      ->oneOf({"switching", "single"});
   std::string prior_kind = "joint";
   cli.option("prior", &prior_kind, "the priors as learned, or with cross-colour covariances zeroed")
-      ->check(CLI::IsMember({"joint", "independent"}));
+      ->oneOf({"joint", "independent"});
   std::string unobserved;
   cli.option("unobserved", &unobserved,
              "a colour whose observations are withheld from the filter (still scored)");

@@ -56,12 +56,12 @@ int main(int argc, char** argv) {
   const std::string& bag = cli.inputBag("field bag with ground truth");
   std::string filter = "switching";
   cli.option("filter", &filter, "lighting filter: switching (one mode per prior) or single")
-      ->check(CLI::IsMember({"switching", "single"}));
+      ->oneOf({"switching", "single"});
   cli.option("threads", &cfg.threads, "threads (the result is the same for any count)");
   cli.seed(&cfg.seed);
   std::string init = "global";
   cli.option("init", &init, "start: uniform over the field (global) or at the true pose")
-      ->check(CLI::IsMember({"global", "truth"}));
+      ->oneOf({"global", "truth"});
   std::string priors_dir = "config/color_priors";
   cli.option("priors_dir", &priors_dir, "folder of the lighting priors");
   std::string field = "config/field_4legged.yaml";

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   cli.option("list", &list, "CSV list of labelled test images");
   std::string mode = "single";
   cli.option("mode", &mode, "every image alone (single) or the appearance Monte Carlo localizer")
-      ->check(CLI::IsMember({"single", "mcl"}));
+      ->oneOf({"single", "mcl"});
   // The room classifier's and the localizer's parameters (the same names and ranges as
   // appearance_localizer's and histogram_place_recognizer's).
   places::RoomClassifierConfig cfg;

@@ -246,7 +246,7 @@ int main(int argc, char** argv) {
   cli.option("init", &init_arg, "first box x,y,w,h in px (empty: the ground truth's)");
   std::string mode = "box";
   cli.option("mode", &mode, "our tracker")
-      ->check(CLI::IsMember({"box", "condensation", "ellipse"}));
+      ->oneOf({"box", "condensation", "ellipse"});
   std::string peers_arg = "csrt,kcf,camshift";
   cli.option("peers", &peers_arg, "peers run beside it: comma-separated, or none");
   std::string dynamics;

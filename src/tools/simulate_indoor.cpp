@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   cli.option("images_out", &images_out, "folder for PNGs and images.csv");
   std::string camera_name = "perspective";
   cli.option("camera", &camera_name, "camera model")
-      ->check(CLI::IsMember({"perspective", "omni"}));
+      ->oneOf({"perspective", "omni"});
   double camera_rate = 2.0;
   cli.option("camera_rate_hz", &camera_rate, config::aboveZero(30), "camera rate, Hz");
   double odom_rate = 20.0;

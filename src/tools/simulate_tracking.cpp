@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   cli.option("output", &output, "the bag to write");
   std::string encoding = "bgr8";
   cli.option("encoding", &encoding, "the bag's image encoding")
-      ->check(CLI::IsMember({"bgr8", "rgb8", "mono8"}));
+      ->oneOf({"bgr8", "rgb8", "mono8"});
   std::string video;
   cli.option("video", &video, "the video to write (instead of a bag)");
   std::string truth_csv;

@@ -50,13 +50,13 @@ int main(int argc, char** argv) {
   // A new database takes these; an existing one keeps its own and refuses explicit ones that
   // differ.
   long bins = 256;
-  CLI::Option* bins_opt =
+  tools::CommandLine::Option* bins_opt =
       cli.option("bins", &bins, "histogram bins per channel (a new database)");
   std::string spaces = "all";
-  CLI::Option* spaces_opt =
-      cli.option("spaces", &spaces, "colour spaces (a new database): all or a comma-separated list");
+  tools::CommandLine::Option* spaces_opt = cli.option(
+      "spaces", &spaces, "colour spaces (a new database): all or a comma-separated list");
   std::string mask = "none";
-  CLI::Option* mask_opt =
+  tools::CommandLine::Option* mask_opt =
       cli.option("mask", &mask, "image mask (a new database): none, auto or ring:cx,cy,r_in,r_out");
   bool no_adjacency = false;
   cli.flag("no_adjacency", &no_adjacency,

@@ -119,19 +119,19 @@ TEST(CompressedTransport, RefusesMorePixelsThanTheLimitBeforeDecoding) {
   std::vector<std::uint8_t> jpeg, png;
   cv::imencode(".jpg", testBgr(), jpeg);
   cv::imencode(".png", testBgr(), png);
-  ASSERT_TRUE(ros_conv::encodedImageSize(jpeg));
-  EXPECT_EQ(*ros_conv::encodedImageSize(jpeg), cv::Size(80, 60));
-  ASSERT_TRUE(ros_conv::encodedImageSize(png));
-  EXPECT_EQ(*ros_conv::encodedImageSize(png), cv::Size(80, 60));
-  EXPECT_FALSE(ros_conv::encodedImageSize({0xff, 0xd8, 0xff}));  // a truncated JPEG
+  ASSERT_TRUE(io::encodedImageSize(jpeg));
+  EXPECT_EQ(*io::encodedImageSize(jpeg), cv::Size(80, 60));
+  ASSERT_TRUE(io::encodedImageSize(png));
+  EXPECT_EQ(*io::encodedImageSize(png), cv::Size(80, 60));
+  EXPECT_FALSE(io::encodedImageSize({0xff, 0xd8, 0xff}));  // a truncated JPEG
   // FF 00 is no marker: a reader that took its next bytes as a segment length could land on a
   // small frame hidden in the data while the decoder finds the real, large one.
   const std::uint8_t head[6] = {0xff, 0xd8, 0xff, 0x00, 0x00, 0x04};
   std::vector<std::uint8_t> stuffed(jpeg.size() + 4);
   std::copy(head, head + 6, stuffed.begin());
   std::copy(jpeg.begin() + 2, jpeg.end(), stuffed.begin() + 6);
-  EXPECT_FALSE(ros_conv::encodedImageSize(stuffed));
-  EXPECT_FALSE(ros_conv::encodedImageSize({}));
+  EXPECT_FALSE(io::encodedImageSize(stuffed));
+  EXPECT_FALSE(io::encodedImageSize({}));
 
   sensor_msgs::CompressedImage bomb;
   bomb.format = "mono8; png compressed mono8";
@@ -142,7 +142,7 @@ TEST(CompressedTransport, RefusesMorePixelsThanTheLimitBeforeDecoding) {
     bomb.data[k + 2] = 0x80;
     bomb.data[k + 3] = 0x00;
   }
-  EXPECT_EQ(*ros_conv::encodedImageSize(bomb.data), cv::Size(32768, 32768));
+  EXPECT_EQ(*io::encodedImageSize(bomb.data), cv::Size(32768, 32768));
   try {
     ros_conv::decompressImage(bomb);
     FAIL() << "decoded a PNG declaring 32768 x 32768 pixels";

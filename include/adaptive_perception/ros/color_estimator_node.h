@@ -32,7 +32,7 @@ class ColorEstimatorNode {
  public:
   /// Throws ros_params::ParamError / std::runtime_error (bad prior file) with a clear message.
   ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh);
-  /// Callbacks that may run at once (node_main.h): the state is locked, so tf and camera_info
+  /// Callbacks that may run at once (node_run.h): the state is locked, so tf and camera_info
   /// are taken while an image is classified.
   static constexpr int kCallbackThreads = 2;
   /// Every private parameter the node reads (its doc page's table).

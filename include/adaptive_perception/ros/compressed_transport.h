@@ -18,7 +18,6 @@
 
 #include <cstdint>
 #include <opencv2/core.hpp>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,14 +35,9 @@ struct CompressionConfig {
 /// config (naming the field).
 sensor_msgs::CompressedImage compressImage(const sensor_msgs::Image& image,
                                            const CompressionConfig& config);
-/// The width and height a PNG (its IHDR chunk) or JPEG (its first start-of-frame segment) file
-/// declares, read from its header without decoding; nullopt for anything else, a truncated header,
-/// or a zero size.
-std::optional<cv::Size> encodedImageSize(const std::vector<std::uint8_t>& data);
-/// The image a CompressedImage holds (bgr8, or mono8 for a grey one), with its header. Its size is
-/// read from the file's header first (a 130 kB PNG can declare 32768 x 32768 pixels, 3 GiB once
-/// decoded): throws ImageFormatError, before decoding, when the data is not a JPEG or PNG file or
-/// declares more than `max_pixels` pixels, and when decoding fails.
+/// The image a CompressedImage holds (bgr8, or mono8 for a grey one), with its header
+/// (io::decodeImage: its size read from the file's header before decoding); throws
+/// ImageFormatError naming the message's format and what was wrong.
 sensor_msgs::ImagePtr decompressImage(const sensor_msgs::CompressedImage& compressed,
                                       std::int64_t max_pixels = kDefaultMaxImagePixels);
 

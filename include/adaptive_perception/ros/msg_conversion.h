@@ -20,6 +20,7 @@
 #include "adaptive_perception/ColorModel.h"
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/color/switching_color_filter.h"
+#include "adaptive_perception/io/image_buffer.h"
 #include "adaptive_perception/laser/line_evaluation.h"
 #include "adaptive_perception/laser/line_extraction.h"
 #include "adaptive_perception/math/se2.h"
@@ -27,24 +28,18 @@
 
 namespace adaptive_perception::ros_conv {
 
-/// Thrown for an image the project cannot read; the message names the encoding or size problem.
-class ImageFormatError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+/// Thrown for an image the project cannot read (io/image_buffer.h); names what was wrong.
+using ImageFormatError = io::ImageFormatError;
+/// The most pixels an image may have before a node refuses it, unless its ~max_image_pixels says
+/// otherwise (io/image_buffer.h gives the reason).
+constexpr std::int64_t kDefaultMaxImagePixels = io::kDefaultMaxImagePixels;
 
-/// The most pixels (width x height) an image may have before a node refuses it, unless its
-/// ~max_image_pixels says otherwise: 50 megapixels, above any robot camera (8K UHD is 33.2 MP)
-/// while a bgr8 copy stays under 150 MB. Written once here; the camera nodes' parameter, the
-/// compressed transport's decoder and the image readers take it.
-constexpr std::int64_t kDefaultMaxImagePixels = 50'000'000;
-
-/// The image as per-pixel YUV (CV_8UC3, channels Y U V, BT.601 full range). Accepts `yuv422`
-/// (UYVY), `bgr8` and `rgb8`; throws ImageFormatError naming any other encoding, a malformed
-/// buffer (sizes computed in 64 bits) or more than `max_pixels` pixels.
+/// The message's pixels as io::ImageBuffer sees them (a view of its data).
+io::ImageBuffer imageBuffer(const sensor_msgs::Image& msg);
+/// The image as per-pixel YUV (io::bufferToYuv): yuv422, bgr8, rgb8; throws ImageFormatError
+/// naming any other encoding, a malformed buffer or more than `max_pixels` pixels.
 cv::Mat imageToYuv(const sensor_msgs::Image& msg, std::int64_t max_pixels = kDefaultMaxImagePixels);
-/// The image as bgr8 (CV_8UC3, its own memory). Accepts `bgr8`, `rgb8`, `mono8` (the three
-/// channels equal) and `yuv422` (UYVY, BT.601 full range); throws ImageFormatError as imageToYuv.
+/// The image as bgr8 (io::bufferToBgr8): bgr8, rgb8, mono8, yuv422; throws as imageToYuv.
 cv::Mat imageToBgr8(const sensor_msgs::Image& msg,
                     std::int64_t max_pixels = kDefaultMaxImagePixels);
 /// UYVY (CV_8UC2) as a `yuv422` image message.

@@ -1,50 +1,20 @@
 #pragma once
-// The shared main() of every node: init, construct the Node class from the public and private node
-// handles, spin with callbackThreads<Node>() threads; a construction error (bad parameter, bad
-// file) is reported with ROS_FATAL and exit status 1. ros/node_nodelet.h runs the same classes as
-// nodelets.
+// The shared main() of every node (src/nodes/<node>.cpp, eight lines each):
 //
-// `lifetime` outlives the node's handles on purpose: roscpp shuts the node down (rosconsole
-// included) when the last NodeHandle is destroyed, so without it the ROS_FATAL of a constructor
-// that threw printed nothing.
-#include <ros/ros.h>
-
-#include <exception>
-#include <type_traits>
-
+//   namespace adaptive_perception { class ColorEstimatorNode; }
+//   int main(int argc, char** argv) {
+//     return adaptive_perception::runNode<adaptive_perception::ColorEstimatorNode>(
+//         argc, argv, "color_estimator");
+//   }
+//
+// Only declared here, so that a main parses no ROS header: runNode is defined in ros/node_run.h
+// (init, the Node class built from the public and private node handles, spin; a construction error
+// is reported with ROS_FATAL and exit status 1) and instantiated once per node class at the end of
+// its source file in the ROS library (`template int runNode<ColorEstimatorNode>(...);`).
 namespace adaptive_perception {
 
-/// How many of a node's callbacks may run at once: Node::kCallbackThreads where the Node class
-/// declares it (a node that locks its own state, so that a slow image does not hold up tf or a
-/// service), else 1 (callbacks one at a time).
-template <typename Node, typename = void>
-struct CallbackThreads : std::integral_constant<int, 1> {};
+/// Runs `Node` as this process's ROS node `name` until shutdown; returns the exit status.
 template <typename Node>
-struct CallbackThreads<Node, std::void_t<decltype(Node::kCallbackThreads)>>
-    : std::integral_constant<int, Node::kCallbackThreads> {};
-template <typename Node>
-constexpr int callbackThreads() {
-  return CallbackThreads<Node>::value;
-}
-
-template <typename Node>
-int runNode(int argc, char** argv, const char* name) {
-  ros::init(argc, argv, name);
-  ros::NodeHandle lifetime;
-  try {
-    Node node(ros::NodeHandle(), ros::NodeHandle("~"));
-    if (callbackThreads<Node>() <= 1) {
-      ros::spin();
-    } else {
-      ros::AsyncSpinner spinner(callbackThreads<Node>());
-      spinner.start();
-      ros::waitForShutdown();
-    }
-  } catch (const std::exception& e) {
-    ROS_FATAL("%s: %s", name, e.what());
-    return 1;
-  }
-  return 0;
-}
+int runNode(int argc, char** argv, const char* name);
 
 }  // namespace adaptive_perception

@@ -10,7 +10,7 @@
 #include <exception>
 #include <memory>
 
-#include "adaptive_perception/ros/node_main.h"
+#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 

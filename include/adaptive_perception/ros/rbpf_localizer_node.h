@@ -33,7 +33,7 @@ class RbpfLocalizerNode {
   /// Throws ros_params::ParamError / std::runtime_error (bad prior or field file) with a clear
   /// message.
   RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh);
-  /// Callbacks that may run at once (node_main.h): the state is locked, so tf and camera_info
+  /// Callbacks that may run at once (node_run.h): the state is locked, so tf and camera_info
   /// are taken while an image is weighed.
   static constexpr int kCallbackThreads = 2;
   /// Every private parameter the node reads, with its default, range and doc (the table of
