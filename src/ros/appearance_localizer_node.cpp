@@ -16,24 +16,24 @@ namespace adaptive_perception {
 
 namespace {
 // The node's own parameters' defaults (the algorithm's are in its two configs).
-constexpr char kDefaultDatabase[] = "places.sqlite";
-constexpr double kMaxRate_hz = 5.0, kTransformTolerance_s = 0.1;
+constexpr char kAppearanceDefaultDatabase[] = "places.sqlite";
+constexpr double kAppearanceMaxRate_hz = 5.0, kAppearanceTransformTolerance_s = 0.1;
 }  // namespace
 
 std::vector<config::ParameterDoc> AppearanceLocalizerNode::parameters() {
   return ros_params::joinRows(
-      {{{"database", "string", kDefaultDatabase, "",
+      {{{"database", "string", kAppearanceDefaultDatabase, "",
          "a place database with SIFT training frames and their poses (train_places --features)"}},
        config::describe(places::RoomClassifierConfig::fields(), places::RoomClassifierConfig()),
        config::describe(localization::AppearanceMclConfig::fields(),
                         localization::AppearanceMclConfig()),
        {{"use_odom", "bool", "true", "",
          "move the particles by odom; else by the training run's average step"},
-        {"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
+        {"max_rate_hz", "double", config::formatReal(kAppearanceMaxRate_hz), "[0.01, 1000]",
          "images processed per second of image time at most"},
         {"publish_tf", "bool", "false", "", "broadcast map -> odom (needs odom)"},
-        {"transform_tolerance", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
-         "map -> odom is stamped this far after its image (s), as amcl does"},
+        {"transform_tolerance", "double", config::formatReal(kAppearanceTransformTolerance_s),
+         "[0, 10]", "map -> odom is stamped this far after its image (s), as amcl does"},
         ros_params::frameParameter("map"),
         ros_params::frameParameter("odom"),
         ros_params::seedParameter()},
@@ -43,17 +43,18 @@ std::vector<config::ParameterDoc> AppearanceLocalizerNode::parameters() {
 AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : diagnostics_(nh, "appearance_localizer", 0.1, 100.0) {
   namespace P = ros_params;
-  const std::string path = P::getName(pnh, "database", kDefaultDatabase);
+  const std::string path = P::getName(pnh, "database", kAppearanceDefaultDatabase);
   P::loadFields(pnh, places::RoomClassifierConfig::fields(), &classifier_config_);
   localization::AppearanceMclConfig m;
   P::loadFields(pnh, localization::AppearanceMclConfig::fields(), &m);
   use_odom_ = P::get<bool>(pnh, "use_odom", true);
-  gate_ = ros_conv::ImageGate("appearance_localizer",
-                              P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
-                              P::loadImageIntake(pnh));
+  gate_ =
+      ros_conv::ImageGate("appearance_localizer",
+                          P::getInRange(pnh, "max_rate_hz", kAppearanceMaxRate_hz, 0.01, 1000.0),
+                          P::loadImageIntake(pnh));
   publish_tf_ = P::get<bool>(pnh, "publish_tf", false);
   transform_tolerance_s_ =
-      P::getInRange(pnh, "transform_tolerance", kTransformTolerance_s, 0.0, 10.0);
+      P::getInRange(pnh, "transform_tolerance", kAppearanceTransformTolerance_s, 0.0, 10.0);
   map_frame_ = P::getFrameId(pnh, "map_frame", ros_topics::kMapFrame);
   odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   const std::uint64_t seed = P::loadSeed(pnh);

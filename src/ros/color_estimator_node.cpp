@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 namespace {
 // The node's own parameters' defaults (the algorithm's are in color::ColorEstimatorConfig, the
 // observation noise's and the mixing's too).
-constexpr double kTfTimeout_s = 0.1;
+constexpr double kColorTfTimeout_s = 0.1;
 }  // namespace
 
 std::vector<config::ParameterDoc> ColorEstimatorNode::parameters() {
@@ -32,11 +32,11 @@ std::vector<config::ParameterDoc> ColorEstimatorNode::parameters() {
         P::wordParameter("mixing", color::modeMixings(), c.switching.mixing,
                          "best_mode: only the mode that best explains the image is updated (the "
                          "paper); imm")},
-       ros_conv::FieldCameraInput::parameters(kTfTimeout_s, "map -> camera")});
+       ros_conv::FieldCameraInput::parameters(kColorTfTimeout_s, "map -> camera")});
 }
 
 ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : input_("color_estimator", pnh, kTfTimeout_s),
+    : input_("color_estimator", pnh, kColorTfTimeout_s),
       diagnostics_(nh, "color_estimator", 0.5, 100.0, &mutex_) {
   namespace P = ros_params;
   P::loadFields(pnh, color::ColorEstimatorConfig::fields(), &config_);

@@ -15,13 +15,13 @@ namespace adaptive_perception {
 
 namespace {
 // The node's own parameters' defaults (the trackers' are in their configs).
-constexpr char kDefaultMode[] = "box";
-constexpr double kMaxRate_hz = 30.0;
+constexpr char kTrackerDefaultMode[] = "box";
+constexpr double kTrackerMaxRate_hz = 30.0;
 }  // namespace
 
 std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
   return ros_params::joinRows(
-      {{{"mode", "string", kDefaultMode, "box, condensation, ellipse",
+      {{{"mode", "string", kTrackerDefaultMode, "box, condensation, ellipse",
          "box: CONDENSATION over the target's box (colours against the surroundings and a "
          "correlation filter; the tracker for real video); condensation: CONDENSATION + affine "
          "snake (the paper's 3.3); ellipse: the paper's 3.2 alone"}},
@@ -36,7 +36,7 @@ std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
          "YAML of A1, A0, d, B from learn_tracking_dynamics; empty: the default model"},
         {"initial_roi", "list", "[]", "",
          "[x, y, w, h] pixels in the first image; empty: wait for ~set_target or the target topic"},
-        {"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
+        {"max_rate_hz", "double", config::formatReal(kTrackerMaxRate_hz), "[0.01, 1000]",
          "images faster than this (by stamp) are skipped"},
         {"publish_overlay", "bool", "true", "",
          "condensation_tracker/overlay (only computed with a subscriber)"},
@@ -47,7 +47,7 @@ std::vector<config::ParameterDoc> CondensationTrackerNode::parameters() {
 CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : diagnostics_(nh, "condensation_tracker", 1.0, 1000.0) {
   namespace P = ros_params;
-  const std::string mode = P::get<std::string>(pnh, "mode", kDefaultMode);
+  const std::string mode = P::get<std::string>(pnh, "mode", kTrackerDefaultMode);
   if (mode != "box" && mode != "condensation" && mode != "ellipse")
     throw P::ParamError("parameter " + pnh.resolveName("mode") + " = '" + mode +
                         "' must be box, condensation or ellipse");
@@ -67,7 +67,7 @@ CondensationTrackerNode::CondensationTrackerNode(ros::NodeHandle nh, ros::NodeHa
   ellipse_config_.validate();
   publish_overlay_ = P::get<bool>(pnh, "publish_overlay", true);
   gate_ = ros_conv::ImageGate("condensation_tracker",
-                              P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
+                              P::getInRange(pnh, "max_rate_hz", kTrackerMaxRate_hz, 0.01, 1000.0),
                               P::loadImageIntake(pnh));
   seed_ = P::loadSeed(pnh);
   const std::vector<double> roi = P::getNumbers(pnh, "initial_roi", {});

@@ -24,8 +24,8 @@ namespace {
 // The node's own parameters' defaults (the algorithm's are in slam::LaserSlamConfig, the variant's
 // and the association's too).
 constexpr char kDefaultMapFile[] = "line_map.yaml";
-const std::vector<double> kInitialPoseStd = {1e-3, 1e-3, 1e-3};
-constexpr double kExternalGate = 0.999, kTransformTolerance_s = 0.1, kTfTimeout_s = 0.2;
+const std::vector<double> kMapperInitialPoseStd = {1e-3, 1e-3, 1e-3};
+constexpr double kExternalGate = 0.999, kMapperTransformTolerance_s = 0.1, kMapperTfTimeout_s = 0.2;
 constexpr double kMapUpdateInterval_s = 5.0;
 constexpr double kGridKeyframeDistance_m = 0.1, kGridKeyframeAngle_rad = 0.1;
 constexpr int kPathMaxPoses = 20000;
@@ -47,7 +47,7 @@ std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
          "off); empty: map"},
         {"initial_pose", "list", "[]", "",
          "[x_m, y_m, yaw_rad] at the first scan; empty: the origin"},
-        {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
+        {"initial_pose_std", "list", config::formatList(kMapperInitialPoseStd), "",
          "its standard deviations (m, m, rad)"},
         {"external_gate_probability", "double", config::formatReal(kExternalGate),
          "[0.5, 0.999999]",
@@ -56,9 +56,9 @@ std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
         ros_params::frameParameter("odom"),
         ros_params::frameParameter("base"),
         {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
-        {"transform_tolerance_s", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
-         "map -> odom is future-dated by this (s), as amcl does"},
-        ros_conv::MeasurementTf::parameter(kTfTimeout_s, "odom -> base_link -> laser"),
+        {"transform_tolerance_s", "double", config::formatReal(kMapperTransformTolerance_s),
+         "[0, 10]", "map -> odom is future-dated by this (s), as amcl does"},
+        ros_conv::MeasurementTf::parameter(kMapperTfTimeout_s, "odom -> base_link -> laser"),
         {"map_file", "string", kDefaultMapFile, "",
          "~save_map's default path (relative to the node's working directory)"},
         {"path_max_poses", "int", std::to_string(kPathMaxPoses), "[1, 10000000]",
@@ -77,14 +77,14 @@ std::vector<config::ParameterDoc> EkfSlamMapperNode::parameters() {
 }
 
 EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : tf_("ekf_slam_mapper", pnh, kTfTimeout_s),
+    : tf_("ekf_slam_mapper", pnh, kMapperTfTimeout_s),
       diagnostics_(nh, "ekf_slam_mapper", 1.0, 100.0, &mutex_) {
   namespace P = ros_params;
   P::loadFields(pnh, slam::LaserSlamConfig::fields(), &config_);
   slam::LineEkfSlamConfig& c = config_.ekf;
   c.variant = P::getWord(pnh, "variant", slam::variants(), c.variant);
   c.association.method = P::getWord(pnh, "association", slam::associations(), c.association.method);
-  P::loadInitialPose(pnh, kInitialPoseStd, &initial_pose_, &initial_cov_);
+  P::loadInitialPose(pnh, kMapperInitialPoseStd, &initial_pose_, &initial_cov_);
   initial_map_ = P::get<std::string>(pnh, "initial_map", "");
   if (!initial_map_.empty()) {
     try {
@@ -101,7 +101,7 @@ EkfSlamMapperNode::EkfSlamMapperNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   base_frame_ = P::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
   publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
   transform_tolerance_s_ =
-      P::getInRange(pnh, "transform_tolerance_s", kTransformTolerance_s, 0.0, 10.0);
+      P::getInRange(pnh, "transform_tolerance_s", kMapperTransformTolerance_s, 0.0, 10.0);
   stamp_order_ = ros_conv::StampOrder("ekf_slam_mapper", "lines", P::loadStampOrder(pnh));
   map_file_ = P::get<std::string>(pnh, "map_file", kDefaultMapFile);
   path_max_poses_ = P::getInRange(pnh, "path_max_poses", kPathMaxPoses, 1, 10000000);

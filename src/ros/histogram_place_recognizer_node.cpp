@@ -15,20 +15,20 @@ namespace adaptive_perception {
 
 namespace {
 // The node's own parameters' defaults (the recognizer's are in places::PlaceRecognizerConfig).
-constexpr char kDefaultDatabase[] = "places.sqlite", kDefaultMode[] = "recognise";
+constexpr char kPlacesDefaultDatabase[] = "places.sqlite", kPlacesDefaultMode[] = "recognise";
 constexpr char kDefaultSpaces[] = "all", kDefaultMask[] = "none";
-constexpr double kMaxRate_hz = 5.0;
+constexpr double kPlacesMaxRate_hz = 5.0;
 constexpr int kTrainBatch = 15, kTrainEveryN = 1;
 }  // namespace
 
 std::vector<config::ParameterDoc> HistogramPlaceRecognizerNode::parameters() {
   const places::PlaceRecognizerConfig rc;
   return ros_params::joinRows(
-      {{{"database", "string", kDefaultDatabase, "",
+      {{{"database", "string", kPlacesDefaultDatabase, "",
          "the SQLite place database (train_places builds one)"},
         {"create_if_missing", "bool", "true", "",
          "start an empty database when the file is missing"},
-        {"mode", "string", kDefaultMode, "recognise, train",
+        {"mode", "string", kPlacesDefaultMode, "recognise, train",
          "train: images labelled by ground_truth/place are stored"},
         {"bins", "int", std::to_string(places::HistogramConfig().bins), "[2, 256]",
          "a new database's histogram bins per band (an existing one must match when set)"},
@@ -41,7 +41,7 @@ std::vector<config::ParameterDoc> HistogramPlaceRecognizerNode::parameters() {
         {"method", "string", rc.method, "",
          "histogram cue: auto (the most confident of chi_square, jeffrey, ks) or one distance"}},
        config::describe(places::PlaceRecognizerConfig::fields(), rc),
-       {{"max_rate_hz", "double", config::formatReal(kMaxRate_hz), "[0.01, 1000]",
+       {{"max_rate_hz", "double", config::formatReal(kPlacesMaxRate_hz), "[0.01, 1000]",
          "images processed per second of image time at most"},
         {"train_batch", "int", std::to_string(kTrainBatch), "[1, 100000]",
          "train mode: images per place per transaction"},
@@ -53,7 +53,7 @@ std::vector<config::ParameterDoc> HistogramPlaceRecognizerNode::parameters() {
 HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : diagnostics_(nh, "histogram_place_recognizer", 0.1, 100.0) {
   namespace P = ros_params;
-  const std::string path = P::getName(pnh, "database", kDefaultDatabase);
+  const std::string path = P::getName(pnh, "database", kPlacesDefaultDatabase);
   const bool create = P::get<bool>(pnh, "create_if_missing", true);
   places::HistogramConfig hc;
   hc.bins = P::getInRange(pnh, "bins", hc.bins, 2, 256);
@@ -65,7 +65,7 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh, r
   } catch (const std::invalid_argument& e) {
     throw P::ParamError(std::string("parameter ~spaces / ~mask: ") + e.what());
   }
-  const std::string mode = P::get<std::string>(pnh, "mode", kDefaultMode);
+  const std::string mode = P::get<std::string>(pnh, "mode", kPlacesDefaultMode);
   if (mode != "recognise" && mode != "recognize" && mode != "train")
     throw P::ParamError("parameter " + pnh.resolveName("mode") + " is '" + mode +
                         "'; allowed: recognise, train");
@@ -76,7 +76,7 @@ HistogramPlaceRecognizerNode::HistogramPlaceRecognizerNode(ros::NodeHandle nh, r
   rc.method = P::get<std::string>(pnh, "method", rc.method);
   P::loadFields(pnh, places::PlaceRecognizerConfig::fields(), &rc);
   gate_ = ros_conv::ImageGate("histogram_place_recognizer",
-                              P::getInRange(pnh, "max_rate_hz", kMaxRate_hz, 0.01, 1000.0),
+                              P::getInRange(pnh, "max_rate_hz", kPlacesMaxRate_hz, 0.01, 1000.0),
                               P::loadImageIntake(pnh));
   train_batch_ = P::getInRange(pnh, "train_batch", kTrainBatch, 1, 100000);
   train_every_n_ = P::getInRange(pnh, "train_every_n", kTrainEveryN, 1, 100000);

@@ -58,8 +58,8 @@ void checkParticleMemory(const ros::NodeHandle& pnh,
 
 namespace {
 // The node's own parameters' defaults (the algorithm's are in localization::RbpfConfig).
-const std::vector<double> kInitialPoseStd = {0.2, 0.2, 0.17};
-constexpr double kTransformTolerance_s = 0.1, kTfTimeout_s = 0.1;
+const std::vector<double> kRbpfInitialPoseStd = {0.2, 0.2, 0.17};
+constexpr double kRbpfTransformTolerance_s = 0.1, kRbpfTfTimeout_s = 0.1;
 
 }  // namespace
 
@@ -69,18 +69,18 @@ std::vector<config::ParameterDoc> RbpfLocalizerNode::parameters() {
        {{"threads", "int", "0", "[0, 256]", "threads for the particles (0: all cores)"},
         ros_params::seedParameter(),
         {"initial_pose", "list", "[]", "", "[x_m, y_m, yaw_rad]; empty: global localization"},
-        {"initial_pose_std", "list", config::formatList(kInitialPoseStd), "",
+        {"initial_pose_std", "list", config::formatList(kRbpfInitialPoseStd), "",
          "its standard deviations (m, m, rad)"},
         ros_params::frameParameter("odom"),
         ros_params::frameParameter("base"),
         {"publish_tf", "bool", "true", "", "broadcast map -> odom"},
-        {"transform_tolerance_s", "double", config::formatReal(kTransformTolerance_s), "[0, 10]",
-         "map -> odom is future-dated by this (s), as amcl does"}},
-       ros_conv::FieldCameraInput::parameters(kTfTimeout_s, "odom -> base_link -> camera")});
+        {"transform_tolerance_s", "double", config::formatReal(kRbpfTransformTolerance_s),
+         "[0, 10]", "map -> odom is future-dated by this (s), as amcl does"}},
+       ros_conv::FieldCameraInput::parameters(kRbpfTfTimeout_s, "odom -> base_link -> camera")});
 }
 
 RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
-    : input_("rbpf_localizer", pnh, kTfTimeout_s),
+    : input_("rbpf_localizer", pnh, kRbpfTfTimeout_s),
       diagnostics_(nh, "rbpf_localizer", 0.5, 100.0, &mutex_) {
   namespace P = ros_params;
   localization::RbpfConfig& c = config_;
@@ -92,14 +92,14 @@ RbpfLocalizerNode::RbpfLocalizerNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   checkParticleMemory(pnh, input_.priors(), c);
 
   math::SE2 initial;
-  if (P::loadInitialPose(pnh, kInitialPoseStd, &initial, &initial_pose_cov_))
+  if (P::loadInitialPose(pnh, kRbpfInitialPoseStd, &initial, &initial_pose_cov_))
     pending_pose_ = configured_pose_ = std::make_pair(initial, initial_pose_cov_);
 
   odom_frame_ = P::getFrameId(pnh, "odom_frame", ros_topics::kOdomFrame);
   base_frame_ = P::getFrameId(pnh, "base_frame", ros_topics::kBaseFrame);
   publish_tf_ = P::get<bool>(pnh, "publish_tf", true);
   transform_tolerance_s_ =
-      P::getInRange(pnh, "transform_tolerance_s", kTransformTolerance_s, 0.0, 10.0);
+      P::getInRange(pnh, "transform_tolerance_s", kRbpfTransformTolerance_s, 0.0, 10.0);
   try {
     config_.validate();
   } catch (const std::invalid_argument& e) {
