@@ -14,6 +14,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 LENGTH="${LENGTH:-111}"
 TOLERANCE="${TOLERANCE:-2}"
 [ "$#" -ge 2 ] || { echo "usage: $0 REF_DIR QUERY_DIR [evaluate_places options]"; exit 2; }
+[[ "$LENGTH" =~ ^[1-9][0-9]*$ ]] || { echo "evaluate_places_segments: LENGTH=$LENGTH is not a whole number of frames >= 1"; exit 2; }
+[[ "$TOLERANCE" =~ ^[0-9]+$ ]] || { echo "evaluate_places_segments: TOLERANCE=$TOLERANCE is not a whole number of frames"; exit 2; }
 REF="${1%/}"; QUERY="${2%/}"; shift 2
 [ -x "$BIN/evaluate_places" ] || "$AP_ROOT/scripts/setup.sh" || exit 1
 name="$(basename "$(dirname "$REF")")"
@@ -42,6 +44,8 @@ for ((start = 0; start + LENGTH <= n; start += LENGTH)); do
     --tolerance_frames "$TOLERANCE" --output "$dir" "$@" > "$dir/log.txt" 2>&1 \
     || { echo "evaluate_places_segments: $seg failed: $(tail -n 1 "$dir/log.txt")" >&2; exit 1; }
   r="$(recall route "$dir/log.txt")"; s="$(recall sequence "$dir/log.txt")"; f="$(recall fused "$dir/log.txt")"
+  [ -n "$r" ] && [ -n "$s" ] && [ -n "$f" ] \
+    || { echo "evaluate_places_segments: $seg: a method's recall is missing from $dir/log.txt" >&2; exit 1; }
   echo "segment=$seg route=$r sequence=$s fused=$f"
   table+=$'\n'"| $seg | $r | $s | $f |"
   sums="$(echo "$sums $r $s $f" | awk '{ print $1 + $4, $2 + $5, $3 + $6 }')"

@@ -75,7 +75,7 @@ ColorEstimatorNode::ColorEstimatorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
 namespace {
 
 /// `c` showing the values of `config` (what dynamic_reconfigure reports back as in force).
-void showConfig(const color::ColorEstimatorConfig& config,
+void showColorConfig(const color::ColorEstimatorConfig& config,
                 adaptive_perception::ColorEstimatorConfig* c) {
   c->drift_std_per_sqrt_s = config.model.drift_std_per_sqrt_s;
   c->unknown_mahalanobis = config.model.unknown_mahalanobis;
@@ -98,7 +98,7 @@ void ColorEstimatorNode::onReconfigure(adaptive_perception::ColorEstimatorConfig
     next.validate();
   } catch (const std::exception& e) {
     ROS_ERROR("color_estimator: reconfigure refused, every setting stays as it was: %s", e.what());
-    showConfig(config_, &c);
+    showColorConfig(config_, &c);
     return;
   }
   const bool gate_changed = next.model.unknown_mahalanobis != config_.model.unknown_mahalanobis;

@@ -36,7 +36,7 @@ visualization_msgs::MarkerArray lineMarkers(const LineSegmentArray& lines, const
 namespace {
 
 /// `cfg` showing the settings of `c` (what dynamic_reconfigure reports as in force).
-void showConfig(const laser::LineExtractionConfig& c,
+void showLineConfig(const laser::LineExtractionConfig& c,
                 adaptive_perception::LineExtractorConfig* cfg) {
   cfg->split_threshold_m = c.split_threshold_m;
   cfg->min_points = c.min_points;
@@ -76,7 +76,7 @@ LineExtractorNode::LineExtractorNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       std::make_unique<dynamic_reconfigure::Server<adaptive_perception::LineExtractorConfig>>(
           reconfigure_mutex_, pnh);
   adaptive_perception::LineExtractorConfig initial;
-  showConfig(c, &initial);
+  showLineConfig(c, &initial);
   reconfigure_->updateConfig(initial);
   reconfigure_->setCallback([this](adaptive_perception::LineExtractorConfig& cfg, uint32_t level) {
     onReconfigure(cfg, level);
@@ -97,7 +97,7 @@ void LineExtractorNode::onReconfigure(adaptive_perception::LineExtractorConfig& 
     extractor_.setConfig(c);
   } catch (const std::exception& e) {
     ROS_ERROR("line_extractor: reconfigure refused, every setting stays as it was: %s", e.what());
-    showConfig(extractor_.config(), &cfg);  // the reply shows what holds
+    showLineConfig(extractor_.config(), &cfg);  // the reply shows what holds
   }
 }
 

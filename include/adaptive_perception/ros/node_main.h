@@ -1,5 +1,5 @@
 #pragma once
-// The shared main() of every node (src/nodes/<node>.cpp, eight lines each):
+// The shared main() of every node (src/nodes/<node>.cpp, a few lines each):
 //
 //   namespace adaptive_perception { class ColorEstimatorNode; }
 //   int main(int argc, char** argv) {

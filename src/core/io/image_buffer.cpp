@@ -46,9 +46,7 @@ std::uint32_t bigEndian(const std::vector<std::uint8_t>& d, std::size_t at, int 
   return v;
 }
 
-}  // namespace
-
-cv::Mat bufferToYuv(const ImageBuffer& image, std::int64_t max_pixels) {
+cv::Mat toYuv(const ImageBuffer& image, std::int64_t max_pixels) {
   if (image.encoding == "yuv422") {
     checkBuffer(image, 2, max_pixels);
     if (image.width_px % 2 != 0)
@@ -66,7 +64,7 @@ cv::Mat bufferToYuv(const ImageBuffer& image, std::int64_t max_pixels) {
                          "' (accepted: yuv422, bgr8, rgb8)");
 }
 
-cv::Mat bufferToBgr8(const ImageBuffer& image, std::int64_t max_pixels) {
+cv::Mat toBgr8(const ImageBuffer& image, std::int64_t max_pixels) {
   cv::Mat out;
   if (image.encoding == "bgr8" || image.encoding == "rgb8") {
     checkBuffer(image, 3, max_pixels);
@@ -82,7 +80,7 @@ cv::Mat bufferToBgr8(const ImageBuffer& image, std::int64_t max_pixels) {
     return out;
   }
   if (image.encoding == "yuv422") {
-    const cv::Mat yuv = bufferToYuv(image, max_pixels);
+    const cv::Mat yuv = toYuv(image, max_pixels);
     out.create(yuv.size(), CV_8UC3);
     for (int r = 0; r < yuv.rows; ++r) {
       const cv::Vec3b* s = yuv.ptr<cv::Vec3b>(r);
@@ -99,11 +97,40 @@ cv::Mat bufferToBgr8(const ImageBuffer& image, std::int64_t max_pixels) {
                          "' (accepted: bgr8, rgb8, mono8, yuv422)");
 }
 
-cv::Mat bufferToMono8(const ImageBuffer& image, std::int64_t max_pixels) {
+cv::Mat toMono8(const ImageBuffer& image, std::int64_t max_pixels) {
   if (image.encoding != "mono8" && image.encoding != "8UC1")
     throw ImageFormatError("expected a mono8 image, got encoding '" + image.encoding + "'");
   checkBuffer(image, 1, max_pixels);
   return view(image, CV_8UC1).clone();
+}
+
+/// `convert(image)`, with what OpenCV or the allocator throws for an image that passed the checks
+/// (cv::Exception, std::bad_alloc near a high pixel limit) as ImageFormatError.
+template <class Convert>
+cv::Mat guarded(const ImageBuffer& image, Convert&& convert) {
+  try {
+    return convert();
+  } catch (const ImageFormatError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw ImageFormatError("image " + std::to_string(image.width_px) + "x" +
+                           std::to_string(image.height_px) + " " + image.encoding +
+                           " not converted: " + e.what());
+  }
+}
+
+}  // namespace
+
+cv::Mat bufferToYuv(const ImageBuffer& image, std::int64_t max_pixels) {
+  return guarded(image, [&] { return toYuv(image, max_pixels); });
+}
+
+cv::Mat bufferToBgr8(const ImageBuffer& image, std::int64_t max_pixels) {
+  return guarded(image, [&] { return toBgr8(image, max_pixels); });
+}
+
+cv::Mat bufferToMono8(const ImageBuffer& image, std::int64_t max_pixels) {
+  return guarded(image, [&] { return toMono8(image, max_pixels); });
 }
 
 std::optional<cv::Size> encodedImageSize(const std::vector<std::uint8_t>& d) {
