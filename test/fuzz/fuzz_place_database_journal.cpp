@@ -2,8 +2,8 @@
 // (places/place_database.h: open() reads both files' bytes before SQLite does and lets SQLite roll
 // back only a journal of a place database). The input is the database's length (4 bytes, little
 // endian, taken modulo what follows), the database, then the journal. Opened read-only and read
-// whole; when open() refuses the file and says it is untouched, both files must be as they were,
-// byte for byte.
+// whole; when open() refuses the file and says it is left untouched, both files must be as they
+// were, byte for byte.
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -45,7 +45,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const std::exception& e) {
     refusal = e.what();
   }
-  if (refusal.find("untouched") != std::string::npos) {
+  // The refusal's own words end the message (an error may quote the file's text before them).
+  const std::string untouched = "left untouched";
+  if (refusal.size() >= untouched.size() &&
+      refusal.compare(refusal.size() - untouched.size(), untouched.size(), untouched) == 0) {
     const std::string db_before(reinterpret_cast<const char*>(db_bytes), n);
     const std::string journal_before(reinterpret_cast<const char*>(journal_bytes), rest - n);
     std::error_code ec;
