@@ -3,14 +3,15 @@
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "adaptive_perception/PlaceRecognition.h"
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/node_run.h"
 #include "adaptive_perception/ros/parameter_docs.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
-#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -104,7 +105,16 @@ AppearanceLocalizerNode::~AppearanceLocalizerNode() {
   std::fflush(stdout);
 }
 
-void AppearanceLocalizerNode::onOdom(const nav_msgs::OdometryConstPtr& msg) { odom_ = *msg; }
+void AppearanceLocalizerNode::onOdom(const nav_msgs::OdometryConstPtr& msg) {
+  const auto& p = msg->pose.pose;
+  if (!std::isfinite(p.position.x) || !std::isfinite(p.position.y) ||
+      !std::isfinite(p.orientation.x) || !std::isfinite(p.orientation.y) ||
+      !std::isfinite(p.orientation.z) || !std::isfinite(p.orientation.w)) {
+    ROS_WARN_THROTTLE(5.0, "appearance_localizer: odom with a non-finite pose ignored");
+    return;
+  }
+  odom_.add(msg->header.stamp.toSec(), ros_conv::toSE2(p));
+}
 
 void AppearanceLocalizerNode::onInitialPose(
     const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg) {
@@ -144,15 +154,15 @@ void AppearanceLocalizerNode::processImage(const sensor_msgs::ImageConstPtr& msg
   if (restart) {  // a looped bag: the filter starts again as at start-up (same seed, same output)
     make_filter_();
     last_odom_.reset();
-    odom_.reset();  // from before the jump: its pose would move every particle across the map
+    // From before the jump: its pose would move every particle across the map.
+    odom_.dropAfter(msg->header.stamp.toSec());
   }
   if (verdict != ros_conv::ImageGate::Result::kProcess) return;
   const auto sims = classifier_->frameSimilarities(classifier_->extract(bgr),
                                                    classifier_config_.index.candidates);
   std::optional<math::SE2> delta;
-  std::optional<math::SE2> odom_pose;
-  if (odom_) {
-    odom_pose = ros_conv::toSE2(odom_->pose.pose);
+  const std::optional<math::SE2> odom_pose = odom_.at(msg->header.stamp.toSec());
+  if (odom_pose) {
     if (last_odom_) delta = math::between(*last_odom_, *odom_pose);
     last_odom_ = odom_pose;
   }

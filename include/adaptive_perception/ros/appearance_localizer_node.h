@@ -20,6 +20,7 @@
 
 #include "adaptive_perception/config/fields.h"
 #include "adaptive_perception/localization/appearance_mcl.h"
+#include "adaptive_perception/localization/odometry_buffer.h"
 #include "adaptive_perception/places/room_classifier.h"
 #include "adaptive_perception/ros/image_gate.h"
 #include "adaptive_perception/ros/node_diagnostics.h"
@@ -49,8 +50,8 @@ class AppearanceLocalizerNode {
   bool use_odom_ = true, publish_tf_ = false;
   ros_conv::ImageGate gate_{"appearance_localizer", 5.0};
   std::string map_frame_, odom_frame_;
-  std::optional<nav_msgs::Odometry> odom_;  // latest
-  std::optional<math::SE2> last_odom_;      // at the last processed image
+  localization::OdometryBuffer odom_;  // by stamp: the pose at each image's own time
+  std::optional<math::SE2> last_odom_;  // at the last processed image
   image_transport::Subscriber image_sub_;
   ros::Subscriber odom_sub_, initial_pose_sub_;
   double transform_tolerance_s_ = 0.0;  // from ~transform_tolerance

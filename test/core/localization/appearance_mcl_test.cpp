@@ -1,6 +1,7 @@
 // Appearance MCL on scripted inputs: the training run's average step, heading-aware nearest frames,
 // convergence and room by summed weight, stability, restricted then full re-initialisation,
-// unknown-room detection, and runs that do not depend on OpenCV's generator.
+// unknown-room detection, runs that do not depend on OpenCV's generator, and the odometry
+// buffer that gives the pose at an image's stamp.
 #include "adaptive_perception/localization/appearance_mcl.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 
+#include "adaptive_perception/localization/odometry_buffer.h"
 #include "adaptive_perception/math/angles.h"
 
 using namespace adaptive_perception;
@@ -81,7 +83,8 @@ TEST(AppearanceMcl, InitialPoseDrawsTheGivenGaussian) {
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(m[i], 0.0, 4.0 * std::sqrt(cov(i, i) / d.size())) << i;
     for (int j = 0; j < 3; ++j)
-      EXPECT_NEAR(c(i, j), cov(i, j), 4.0 * std::sqrt((cov(i, i) * cov(j, j) + cov(i, j) * cov(i, j)) / d.size()))
+      EXPECT_NEAR(c(i, j), cov(i, j),
+                  4.0 * std::sqrt((cov(i, i) * cov(j, j) + cov(i, j) * cov(i, j)) / d.size()))
           << i << "," << j;
   }
   Eigen::Matrix3d not_spd = cov;
@@ -177,4 +180,44 @@ TEST(AppearanceMcl, RefusesBadConfiguration) {
   EXPECT_THROW(AppearanceMcl(corridor(), 2, bad, 1), std::invalid_argument);
   EXPECT_THROW(AppearanceMcl({}, 2, {}, 1), std::invalid_argument);
   EXPECT_THROW(AppearanceMcl({{math::SE2(0, 0, 0), 3}}, 2, {}, 1), std::invalid_argument);
+}
+
+// The odometry the appearance localizer moves its particles by, taken at each image's stamp.
+TEST(OdometryBuffer, GivesTheNewestPoseAtOrBeforeTheStampWithinItsAge) {
+  localization::OdometryBuffer b;  // max_age_s 1, restart_after_back_s 1
+  EXPECT_FALSE(b.at(5.0));         // nothing kept
+  b.add(1.0, math::SE2(1, 0, 0));
+  b.add(1.1, math::SE2(2, 0, 0));
+  b.add(1.3, math::SE2(3, 0, 0));
+  EXPECT_FALSE(b.at(0.9));                // every pose is newer than the image
+  EXPECT_DOUBLE_EQ(b.at(1.0)->x_m, 1.0);  // at the stamp itself
+  EXPECT_DOUBLE_EQ(b.at(1.2)->x_m, 2.0);  // the newest before, not the nearest (1.3)
+  EXPECT_DOUBLE_EQ(b.at(2.0)->x_m, 3.0);  // 0.7 s old
+  EXPECT_FALSE(b.at(2.4));                // 1.1 s old: a stalled source
+  b.add(1.3, math::SE2(4, 0, 0));         // the same stamp again replaces
+  EXPECT_DOUBLE_EQ(b.at(1.3)->x_m, 4.0);
+  EXPECT_EQ(b.size(), 3u);
+}
+
+TEST(OdometryBuffer, IgnoresASlightlyOlderPoseAndStartsAgainWhenTimeGoesBack) {
+  localization::OdometryBuffer b;
+  b.add(10.0, math::SE2(1, 0, 0));
+  b.add(10.5, math::SE2(2, 0, 0));
+  b.add(10.2, math::SE2(9, 0, 0));  // 0.3 s older than the newest: reordered, ignored
+  EXPECT_DOUBLE_EQ(b.at(10.3)->x_m, 1.0);
+  EXPECT_EQ(b.size(), 2u);
+  b.add(3.0, math::SE2(5, 0, 0));  // 7.5 s back: a looped log, the old poses go
+  EXPECT_EQ(b.size(), 1u);
+  EXPECT_DOUBLE_EQ(b.at(3.2)->x_m, 5.0);
+  EXPECT_FALSE(b.at(10.3));  // nothing of the first pass is left (3.0 is 7.3 s before)
+}
+
+TEST(OdometryBuffer, DropsPosesAfterAnImageThatJumpedBackAndKeepsItsCapacity) {
+  localization::OdometryBuffer b(localization::OdometryBufferConfig{3, 1.0, 1.0});
+  for (int i = 0; i < 5; ++i) b.add(0.1 * i, math::SE2(i, 0, 0));
+  EXPECT_EQ(b.size(), 3u);   // 0.2, 0.3, 0.4 kept
+  EXPECT_FALSE(b.at(0.15));  // 0.0 and 0.1 went first
+  b.dropAfter(0.25);         // 0.3 and 0.4 go
+  EXPECT_EQ(b.size(), 1u);
+  EXPECT_DOUBLE_EQ(b.at(0.5)->x_m, 2.0);
 }
