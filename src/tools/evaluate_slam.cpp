@@ -23,6 +23,9 @@
 // they join).
 // `--front_end 0 --loop_closing 0` is the paper's filter alone, on the wheel odometry with
 // --odom_noise_scale times its noise model (the simulator's consistency checks run it so).
+// No returns: as ekf_slam_mapper does, a value repeated at the largest readings below the scans'
+// range_max is found and those readings taken for no return (laser/no_return.h; summary key
+// no_returns_marked); --keep_stated_range_max takes range_max as stated.
 // Odometry: nav_msgs/Odometry on `odom`, the message nearest each scan; base_link -> laser from
 // /tf_static (identity when absent). The external variant simulates an absolute position sensor
 // from ground_truth/pose with --external_std_m noise on every scan (the bag must have ground
@@ -68,6 +71,7 @@
 
 #include "adaptive_perception/LineSegmentArray.h"
 #include "adaptive_perception/laser/line_extraction.h"
+#include "adaptive_perception/laser/no_return.h"
 #include "adaptive_perception/math/angles.h"
 #include "adaptive_perception/math/chi_square.h"
 #include "adaptive_perception/math/rng.h"
@@ -200,6 +204,10 @@ int main(int argc, char** argv) {
   // ekf_slam_mapper's and line_extractor's parameters (the same names and ranges), e.g.
   // --retire_after_updates 50, --loop_closing 0.
   cli.fields(slam::LaserSlamConfig::fields(), &slam_cfg);
+  bool keep_stated_range_max = false;
+  cli.flag("keep_stated_range_max", &keep_stated_range_max,
+           "take the scans' range_max as stated (by default, as ekf_slam_mapper does, a value "
+           "repeated at the largest readings below it is found and taken for no return)");
   laser::LineExtractionConfig lines;
   cli.fields(laser::LineExtractionConfig::fields(), &lines);
   cli.parse(argc, argv);
@@ -278,6 +286,8 @@ int main(int argc, char** argv) {
     std::map<double, math::SE2> estimate, front_estimate;
     std::vector<double> scan_stamps;
     std::vector<std::pair<double, laser::LaserScan2D>> kept_scans;  // for the occupancy grid
+    laser::NoReturnFinder no_return;  // as ekf_slam_mapper's (laser/no_return.h)
+    long no_returns_marked = 0;
     std::ofstream front_tum;
     if (slam_cfg.front_end) front_tum.open(fs::path(output) / "laser_odometry.tum");
     std::vector<std::pair<math::SE2, Eigen::Matrix3d>> est_cov;
@@ -293,7 +303,16 @@ int main(int argc, char** argv) {
       if (prev_odom) dead_reckoning = dead_reckoning * math::between(*prev_odom, *o);
       prev_odom = o;
       const auto c0 = std::chrono::steady_clock::now();
-      const laser::LaserScan2D scan2d = ros_conv::fromLaserScan(*s);
+      laser::LaserScan2D scan2d = ros_conv::fromLaserScan(*s);
+      if (!keep_stated_range_max) {
+        bool found_now = false;
+        no_returns_marked += no_return.mark(&scan2d.ranges_m, scan2d.range_max_m, &found_now);
+        if (found_now)
+          std::fprintf(stderr,
+                       "evaluate_slam: the scans' range_max is %.2f m, but %ld readings are "
+                       "exactly %.2f m: taken for the laser's no-return value (not walls)\n",
+                       scan2d.range_max_m, no_return.readingsAtValue(), *no_return.value());
+      }
       std::vector<Eigen::Vector2d> robot;
       if (slam_cfg.front_end || loop_closing) {
         std::vector<laser::ScanPoint> pts;
@@ -452,7 +471,7 @@ int main(int argc, char** argv) {
         "wide_attempts=%ld wide_matches=%ld wide_confirmed=%ld wide_ambiguous=%ld "
         "wide_budget_cut=%ld wide_beyond_window=%ld wide_s=%.1f "
         "grid_cells=%dx%d "
-        "grid_s=%.1f\n",
+        "grid_s=%.1f no_returns_marked=%ld\n",
         variant.c_str(), with_truth ? std::sqrt(sq / with_truth) : -1.0, final_err, odom_final_err,
         with_truth ? double(in_bounds) / with_truth : -1.0,
         with_truth ? double(below) / with_truth : -1.0, with_truth ? nees_sum / with_truth : -1.0,
@@ -472,8 +491,7 @@ int main(int argc, char** argv) {
         slam.loopCloser().wideAttempts(), slam.loopCloser().wideMatches(),
         slam.loopCloser().wideConfirmed(), slam.loopCloser().wideAmbiguous(),
         slam.loopCloser().wideBudgetCut(), slam.loopCloser().wideBeyondWindow(),
-        slam.loopCloser().wideSeconds(), grid.width, grid.height,
-        grid_s);
+        slam.loopCloser().wideSeconds(), grid.width, grid.height, grid_s, no_returns_marked);
   } catch (const std::exception& e) {
     std::cerr << "evaluate_slam: error: " << e.what() << "\n";
     return 1;

@@ -39,6 +39,8 @@ LaserWorld LaserWorld::loadYaml(const std::string& path) {
       if (l["beams"]) w.laser.beams = l["beams"].as<int>();
       if (l["fov_deg"]) w.laser.fov_rad = l["fov_deg"].as<double>() * math::kPi / 180.0;
       if (l["max_range_m"]) w.laser.max_range_m = l["max_range_m"].as<double>();
+      if (l["stated_range_max_m"])
+        w.laser.stated_range_max_m = l["stated_range_max_m"].as<double>();
       if (l["range_noise_std_m"]) w.laser.range_noise_std_m = l["range_noise_std_m"].as<double>();
       if (l["dropout_probability"])
         w.laser.dropout_probability = l["dropout_probability"].as<double>();
@@ -53,6 +55,8 @@ LaserWorld LaserWorld::loadYaml(const std::string& path) {
     throw std::runtime_error(path + ": laser.fov_deg must be in (0, 360]");
   if (!(w.laser.max_range_m > 0.0))
     throw std::runtime_error(path + ": laser.max_range_m must be > 0");
+  if (!(w.laser.stated_range_max_m >= 0.0 && std::isfinite(w.laser.stated_range_max_m)))
+    throw std::runtime_error(path + ": laser.stated_range_max_m must be finite and >= 0");
   if (!(w.laser.rate_hz > 0.0)) throw std::runtime_error(path + ": laser.rate_hz must be > 0");
   if (!(w.speed_mps >= 0.0)) throw std::runtime_error(path + ": speed_mps must be >= 0");
   return w;
@@ -90,7 +94,7 @@ laser::LaserScan2D LaserSimulator::scan(std::vector<VisibleWall>* visible) {
   s.angle_min_rad = -L.fov_rad / 2;
   s.angle_increment_rad = L.fov_rad / (L.beams - 1);
   s.range_min_m = L.min_range_m;
-  s.range_max_m = L.max_range_m;
+  s.range_max_m = L.stated_range_max_m > 0.0 ? L.stated_range_max_m : L.max_range_m;
   const math::SE2 laser_pose = true_pose_ * L.mount;
   const math::SE2 map_to_laser = laser_pose.inverse();
   const Eigen::Vector2d o(laser_pose.x_m, laser_pose.y_m);

@@ -60,6 +60,33 @@ TEST(LaserSimulator, DeterministicAndDrivesTheRoute) {
   EXPECT_GT(max_range, 0);  // dropouts are reported as max range
 }
 
+TEST(LaserSimulator, AStatedRangeMaxAboveTheReachPutsTheNoReturnsBelowIt) {
+  // A log with no PARAM line: range_max 81.9 m stated, the laser reaching 3.5 m. The beams
+  // straight ahead (3.9 m to the wall) return nothing and are written as 3.5, below range_max,
+  // exactly as the laser's reach: what laser::NoReturnFinder looks for.
+  sim::LaserWorld w = box();
+  w.laser.max_range_m = 3.5;
+  w.laser.stated_range_max_m = 81.9;
+  sim::LaserSimulator s(w, 1);
+  const laser::LaserScan2D scan = s.scan(nullptr);
+  EXPECT_DOUBLE_EQ(scan.range_max_m, 81.9);
+  const int mid = static_cast<int>(scan.ranges_m.size()) / 2;
+  EXPECT_EQ(scan.ranges_m[mid], 3.5f);
+  EXPECT_NEAR(scan.ranges_m.back(), 3.0, 1e-5);  // a wall within reach is a wall
+  const std::string path = ::testing::TempDir() + "/stated_world.yaml";
+  std::ofstream(path) << "name: x\nwalls:\n  - [[0, 0], [1, 0]]\nroute: [[0, 0], [1, 1]]\n"
+                         "laser: {max_range_m: 50, stated_range_max_m: 81.9}\n";
+  EXPECT_DOUBLE_EQ(sim::LaserWorld::loadYaml(path).laser.stated_range_max_m, 81.9);
+  std::ofstream(path) << "name: x\nwalls:\n  - [[0, 0], [1, 0]]\nroute: [[0, 0], [1, 1]]\n"
+                         "laser: {stated_range_max_m: -1}\n";
+  try {
+    sim::LaserWorld::loadYaml(path);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("stated_range_max_m"), std::string::npos) << e.what();
+  }
+}
+
 TEST(LaserWorld, ShippedWorldsLoadAndBadFilesAreNamed) {
   for (const char* name : {"office", "loop", "rings_and_hall"}) {
     const auto w = sim::LaserWorld::loadYaml(std::string(AP_SOURCE_DIR) + "/config/worlds/" + name + ".yaml");
