@@ -59,7 +59,7 @@ for d in "${datasets[@]}"; do
     || echo "evaluate_places_traversals: no plot for $name (python3-matplotlib?)" >&2
   # One row per method from the table evaluate_places printed.
   awk -v n="$name" -v r="$(basename "$ref")" -v q="$(basename "$query")" -v c="$(summary_value "$line" queries)" -v t="$TOLERANCE" \
-    '/^  (thumbnail|gradient|chromaticity|layout|words|fused|sequence) /{print n","r","q","c","t","$1","$2","$3","$4","$5","$6}' \
+    '/^  (thumbnail|gradient|chromaticity|layout|words|fused|sequence|route) /{print n","r","q","c","t","$1","$2","$3","$4","$5","$6}' \
     "$dir/log.txt" >> "$csv"
 done
 md="$OUT/table.md"
