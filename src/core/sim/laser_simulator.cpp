@@ -55,8 +55,10 @@ LaserWorld LaserWorld::loadYaml(const std::string& path) {
     throw std::runtime_error(path + ": laser.fov_deg must be in (0, 360]");
   if (!(w.laser.max_range_m > 0.0))
     throw std::runtime_error(path + ": laser.max_range_m must be > 0");
-  if (!(w.laser.stated_range_max_m >= 0.0 && std::isfinite(w.laser.stated_range_max_m)))
-    throw std::runtime_error(path + ": laser.stated_range_max_m must be finite and >= 0");
+  if (!(w.laser.stated_range_max_m == 0.0 ||
+        (std::isfinite(w.laser.stated_range_max_m) &&
+         w.laser.stated_range_max_m >= w.laser.max_range_m)))
+    throw std::runtime_error(path + ": laser.stated_range_max_m must be 0 or at least max_range_m");
   if (!(w.laser.rate_hz > 0.0)) throw std::runtime_error(path + ": laser.rate_hz must be > 0");
   if (!(w.speed_mps >= 0.0)) throw std::runtime_error(path + ": speed_mps must be >= 0");
   return w;

@@ -183,41 +183,49 @@ TEST(AppearanceMcl, RefusesBadConfiguration) {
 }
 
 // The odometry the appearance localizer moves its particles by, taken at each image's stamp.
-TEST(OdometryBuffer, GivesTheNewestPoseAtOrBeforeTheStampWithinItsAge) {
+TEST(OdometryBuffer, InterpolatesBetweenThePosesOnEitherSideOfTheStamp) {
   localization::OdometryBuffer b;  // max_age_s 1, restart_after_back_s 1
   EXPECT_FALSE(b.at(5.0));         // nothing kept
-  b.add(1.0, math::SE2(1, 0, 0));
-  b.add(1.1, math::SE2(2, 0, 0));
-  b.add(1.3, math::SE2(3, 0, 0));
+  EXPECT_FALSE(b.newest());
+  b.add(1.0, math::SE2(1, 0, 3.0));
+  b.add(1.4, math::SE2(3, 2, -3.0));      // the heading crosses +-pi: 0.283 rad the short way
   EXPECT_FALSE(b.at(0.9));                // every pose is newer than the image
-  EXPECT_DOUBLE_EQ(b.at(1.0)->x_m, 1.0);  // at the stamp itself
-  EXPECT_DOUBLE_EQ(b.at(1.2)->x_m, 2.0);  // the newest before, not the nearest (1.3)
-  EXPECT_DOUBLE_EQ(b.at(2.0)->x_m, 3.0);  // 0.7 s old
-  EXPECT_FALSE(b.at(2.4));                // 1.1 s old: a stalled source
-  b.add(1.3, math::SE2(4, 0, 0));         // the same stamp again replaces
-  EXPECT_DOUBLE_EQ(b.at(1.3)->x_m, 4.0);
-  EXPECT_EQ(b.size(), 3u);
+  EXPECT_DOUBLE_EQ(b.at(1.0)->x_m, 1.0);  // at a stamp kept
+  const math::SE2 q = *b.at(1.1);         // a quarter of the way
+  EXPECT_NEAR(q.x_m, 1.5, 1e-12);
+  EXPECT_NEAR(q.y_m, 0.5, 1e-12);
+  EXPECT_NEAR(q.yaw_rad, 3.0 + 0.25 * (2 * M_PI - 6.0), 1e-12);
+  EXPECT_DOUBLE_EQ(b.at(2.3)->x_m, 3.0);  // 0.9 s after the newest: the newest
+  EXPECT_FALSE(b.at(2.5));                // 1.1 s after: a stalled source gives nothing
+  EXPECT_DOUBLE_EQ(*b.newest(), 1.4);
 }
 
-TEST(OdometryBuffer, IgnoresASlightlyOlderPoseAndStartsAgainWhenTimeGoesBack) {
+TEST(OdometryBuffer, KeepsStampOrderAndStartsAgainWhenTimeGoesBack) {
   localization::OdometryBuffer b;
   b.add(10.0, math::SE2(1, 0, 0));
-  b.add(10.5, math::SE2(2, 0, 0));
-  b.add(10.2, math::SE2(9, 0, 0));  // 0.3 s older than the newest: reordered, ignored
-  EXPECT_DOUBLE_EQ(b.at(10.3)->x_m, 1.0);
-  EXPECT_EQ(b.size(), 2u);
-  b.add(3.0, math::SE2(5, 0, 0));  // 7.5 s back: a looped log, the old poses go
+  b.add(10.4, math::SE2(5, 0, 0));
+  b.add(10.2, math::SE2(9, 0, 0));  // 0.2 s older than the newest: a late message, put in place
+  EXPECT_DOUBLE_EQ(b.at(10.1)->x_m, 5.0);  // between 10.0 (1) and 10.2 (9)
+  b.add(10.2, math::SE2(3, 0, 0));         // the same stamp again replaces
+  EXPECT_DOUBLE_EQ(b.at(10.2)->x_m, 3.0);
+  EXPECT_EQ(b.size(), 3u);
+  b.add(3.0, math::SE2(7, 0, 0));  // 7.4 s back: a looped log, the first pass's poses go
   EXPECT_EQ(b.size(), 1u);
-  EXPECT_DOUBLE_EQ(b.at(3.2)->x_m, 5.0);
-  EXPECT_FALSE(b.at(10.3));  // nothing of the first pass is left (3.0 is 7.3 s before)
+  EXPECT_DOUBLE_EQ(*b.newest(), 3.0);
 }
 
-TEST(OdometryBuffer, DropsPosesAfterAnImageThatJumpedBackAndKeepsItsCapacity) {
-  localization::OdometryBuffer b(localization::OdometryBufferConfig{3, 1.0, 1.0});
-  for (int i = 0; i < 5; ++i) b.add(0.1 * i, math::SE2(i, 0, 0));
-  EXPECT_EQ(b.size(), 3u);   // 0.2, 0.3, 0.4 kept
-  EXPECT_FALSE(b.at(0.15));  // 0.0 and 0.1 went first
-  b.dropAfter(0.25);         // 0.3 and 0.4 go
+TEST(OdometryBuffer, ARestartDropsOnlyPosesFromBeforeTheJumpAndOldPosesAge) {
+  localization::OdometryBuffer b;
+  b.add(50.0, math::SE2(1, 0, 0));
+  b.restartAt(49.5);  // the images went back 0.5 s: within restart_after_back_s, kept
   EXPECT_EQ(b.size(), 1u);
-  EXPECT_DOUBLE_EQ(b.at(0.5)->x_m, 2.0);
+  b.restartAt(20.0);  // 30 s back: the poses are of the time before the jump
+  EXPECT_EQ(b.size(), 0u);
+  b.add(20.05, math::SE2(2, 0, 0));  // the new pass's odometry came before its first image
+  b.restartAt(20.0);
+  EXPECT_EQ(b.size(), 1u);
+  localization::OdometryBuffer c(localization::OdometryBufferConfig{1.0, 1.0, 0.25});
+  for (int i = 0; i < 5; ++i) c.add(0.1 * i, math::SE2(i, 0, 0));
+  EXPECT_EQ(c.size(), 3u);  // 0.2, 0.3, 0.4: span_s 0.25 back from the newest
+  EXPECT_FALSE(c.at(0.15));
 }

@@ -78,7 +78,7 @@ TEST(LaserSimulator, AStatedRangeMaxAboveTheReachPutsTheNoReturnsBelowIt) {
                          "laser: {max_range_m: 50, stated_range_max_m: 81.9}\n";
   EXPECT_DOUBLE_EQ(sim::LaserWorld::loadYaml(path).laser.stated_range_max_m, 81.9);
   std::ofstream(path) << "name: x\nwalls:\n  - [[0, 0], [1, 0]]\nroute: [[0, 0], [1, 1]]\n"
-                         "laser: {stated_range_max_m: -1}\n";
+                         "laser: {max_range_m: 50, stated_range_max_m: 30}\n";
   try {
     sim::LaserWorld::loadYaml(path);
     FAIL();
