@@ -88,7 +88,7 @@ TEST(LaserSimulator, AStatedRangeMaxAboveTheReachPutsTheNoReturnsBelowIt) {
 }
 
 TEST(LaserWorld, ShippedWorldsLoadAndBadFilesAreNamed) {
-  for (const char* name : {"office", "loop", "rings_and_hall"}) {
+  for (const char* name : {"office", "loop", "rings_and_hall", "rings_and_round_hall_lap"}) {
     const auto w = sim::LaserWorld::loadYaml(std::string(AP_SOURCE_DIR) + "/config/worlds/" + name + ".yaml");
     EXPECT_GT(w.walls.size(), 4u);
     EXPECT_GE(w.route.size(), 4u);
