@@ -1,6 +1,7 @@
 #pragma once
-// 3-D map of a RoboCup soccer field, in the `map` frame: origin at the centre spot, x along the long
-// axis (towards the cyan goal on the four-legged field), y to the left when facing +x, z up; metres.
+// 3-D map of a RoboCup soccer field, in the `map` frame: origin at the centre spot, x along the
+// long axis (towards the cyan goal on the four-legged field), y to the left when facing +x, z up;
+// metres.
 //
 // Any field is data: FieldDimensions holds the league's dimensions, its goals (coloured panels, or
 // round posts with a crossbar and an optional net) and its landmarks as a list (a cylinder with
@@ -150,6 +151,15 @@ class FieldMap {
   double carpet_half_length_m_ = 0.0, carpet_half_width_m_ = 0.0;
   std::vector<GroundRect> rects_;
   std::vector<GroundRing> rings_;
+  // groundColorAt's index: the carpet cut into square cells; per cell, the paint (rects first,
+  // then rings, each in its list's order; a ring's index offset by rects_.size()) whose bounding
+  // box touches the cell, so that a lookup tests a few shapes instead of all of them and still
+  // answers as the scan over all of them would.
+  void indexGround();
+  double ground_cell_m_ = 0.25;
+  int ground_cols_ = 0, ground_rows_ = 0;
+  std::vector<int> ground_begin_;  // cell c's shapes: ground_shapes_[begin[c], begin[c + 1])
+  std::vector<int> ground_shapes_;
   std::vector<VerticalQuad> quads_;
   std::vector<Cylinder> cylinders_;
   std::vector<Sphere> spheres_;

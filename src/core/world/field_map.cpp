@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -20,7 +21,8 @@ std::vector<Landmark> fourLeggedBeacons() {
       const ColorClass goal = sx < 0 ? kYellow : kCyan;
       const ColorClass lower = sy < 0 ? goal : kPink;
       const ColorClass upper = sy < 0 ? kPink : goal;
-      out.push_back({"", {sx * 1.35, sy * 1.95}, 0.05, {{kWhite, 0.2}, {lower, 0.1}, {upper, 0.1}}});
+      out.push_back(
+          {"", {sx * 1.35, sy * 1.95}, 0.05, {{kWhite, 0.2}, {lower, 0.1}, {upper, 0.1}}});
     }
   }
   return out;
@@ -62,7 +64,8 @@ void FieldDimensions::validate() const {
         "goal_width_m (with its posts) must be less than field_width_m");
   check(goal_depth_m <= carpet_margin_m,
         "goal_depth_m must fit in carpet_margin_m (the goal stands behind the goal line)");
-  check(goal_post_diameter_m < goal_height_m, "goal_post_diameter_m must be less than goal_height_m");
+  check(goal_post_diameter_m < goal_height_m,
+        "goal_post_diameter_m must be less than goal_height_m");
   check(penalty_area_width_m < field_width_m && penalty_area_depth_m < hl,
         "the penalty area must fit in its half of the field");
   check((goal_area_depth_m == 0.0) == (goal_area_width_m == 0.0),
@@ -130,6 +133,7 @@ FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
   if (d.centre_mark) cross(0.0, 0.0);
   const double r = 0.5 * d.centre_circle_diameter_m;
   rings_.push_back({0.0, 0.0, r - 0.5 * lw, r + 0.5 * lw, kWhite});
+  indexGround();
 
   // Field wall around the carpet.
   const double wh = d.wall_height_m;
@@ -157,11 +161,18 @@ FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
       const double pr = 0.5 * d.goal_post_diameter_m;
       const double x_post = sign * (hl - lw + pr);  // the posts' fronts on the line's front edge
       for (double side : {-1.0, 1.0}) {
-        cylinders_.push_back({x_post, side * (gh + pr), pr, {{0.0, gt, c}},
+        cylinders_.push_back({x_post,
+                              side * (gh + pr),
+                              pr,
+                              {{0.0, gt, c}},
                               std::string(sign < 0 ? "minus_x" : "plus_x") + "_goal_post",
                               SurfaceKind::kGoal});
       }
-      quads_.push_back({{x_post, -gh - pr}, {x_post, gh + pr}, gt - d.goal_post_diameter_m, gt, c,
+      quads_.push_back({{x_post, -gh - pr},
+                        {x_post, gh + pr},
+                        gt - d.goal_post_diameter_m,
+                        gt,
+                        c,
                         SurfaceKind::kGoal});  // the crossbar, as a flat bar through the posts
     }
   }
@@ -175,7 +186,8 @@ FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
     }
     if (cyl.name.empty()) {
       cyl.name = colorClassName(l.bands.back().color);
-      if (l.bands.size() > 1) cyl.name += "_over_" + colorClassName(l.bands[l.bands.size() - 2].color);
+      if (l.bands.size() > 1)
+        cyl.name += "_over_" + colorClassName(l.bands[l.bands.size() - 2].color);
     }
     cylinders_.push_back(cyl);
   }
@@ -185,14 +197,57 @@ FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
   }
 }
 
+void FieldMap::indexGround() {
+  const double cl = carpet_half_length_m_, cw = carpet_half_width_m_, s = ground_cell_m_;
+  ground_cols_ = std::max(1, static_cast<int>(std::ceil(2.0 * cl / s)));
+  ground_rows_ = std::max(1, static_cast<int>(std::ceil(2.0 * cw / s)));
+  // A cell's shapes are those whose bounding box meets the cell grown by a margin far above the
+  // rounding of the lookup's cell arithmetic, so that a point is never looked up in a cell whose
+  // list misses a shape containing it.
+  const double margin = 1e-6;
+  auto touches = [&](int cx, int cy, double x0, double y0, double x1, double y1) {
+    const double a = -cl + cx * s, b = -cw + cy * s;
+    return x0 <= a + s + margin && x1 >= a - margin && y0 <= b + s + margin && y1 >= b - margin;
+  };
+  ground_begin_.assign(static_cast<size_t>(ground_cols_) * ground_rows_ + 1, 0);
+  ground_shapes_.clear();
+  for (int cy = 0; cy < ground_rows_; ++cy)
+    for (int cx = 0; cx < ground_cols_; ++cx) {
+      for (size_t i = 0; i < rects_.size(); ++i) {
+        const GroundRect& g = rects_[i];
+        if (touches(cx, cy, g.x0_m, g.y0_m, g.x1_m, g.y1_m))
+          ground_shapes_.push_back(static_cast<int>(i));
+      }
+      for (size_t i = 0; i < rings_.size(); ++i) {
+        const GroundRing& g = rings_[i];
+        if (touches(cx, cy, g.cx_m - g.r_outer_m, g.cy_m - g.r_outer_m, g.cx_m + g.r_outer_m,
+                    g.cy_m + g.r_outer_m))
+          ground_shapes_.push_back(static_cast<int>(rects_.size() + i));
+      }
+      ground_begin_[static_cast<size_t>(cy) * ground_cols_ + cx + 1] =
+          static_cast<int>(ground_shapes_.size());
+    }
+}
+
 ColorClass FieldMap::groundColorAt(double x, double y) const {
-  if (std::fabs(x) > carpet_half_length_m_ || std::fabs(y) > carpet_half_width_m_)
+  if (!(std::fabs(x) <= carpet_half_length_m_ && std::fabs(y) <= carpet_half_width_m_))
     return kBackground;
-  for (const auto& g : rects_)
-    if (x >= g.x0_m && x <= g.x1_m && y >= g.y0_m && y <= g.y1_m) return g.color;
-  for (const auto& g : rings_) {
-    const double r2 = (x - g.cx_m) * (x - g.cx_m) + (y - g.cy_m) * (y - g.cy_m);
-    if (r2 >= g.r_inner_m * g.r_inner_m && r2 <= g.r_outer_m * g.r_outer_m) return g.color;
+  const int cx = std::clamp(static_cast<int>((x + carpet_half_length_m_) / ground_cell_m_), 0,
+                            ground_cols_ - 1);
+  const int cy = std::clamp(static_cast<int>((y + carpet_half_width_m_) / ground_cell_m_), 0,
+                            ground_rows_ - 1);
+  const size_t cell = static_cast<size_t>(cy) * ground_cols_ + cx;
+  const int nr = static_cast<int>(rects_.size());
+  for (int k = ground_begin_[cell]; k < ground_begin_[cell + 1]; ++k) {
+    const int i = ground_shapes_[k];
+    if (i < nr) {
+      const GroundRect& g = rects_[i];
+      if (x >= g.x0_m && x <= g.x1_m && y >= g.y0_m && y <= g.y1_m) return g.color;
+    } else {
+      const GroundRing& g = rings_[i - nr];
+      const double r2 = (x - g.cx_m) * (x - g.cx_m) + (y - g.cy_m) * (y - g.cy_m);
+      if (r2 >= g.r_inner_m * g.r_inner_m && r2 <= g.r_outer_m * g.r_outer_m) return g.color;
+    }
   }
   return kGreen;
 }
@@ -256,7 +311,8 @@ Landmark landmarkValue(const YAML::Node& node, const std::string& source) {
           const std::string wb = at(source, b);
           if (!b.IsMap() || !b["color"] || !b["height_m"] || b.size() != 2)
             throw std::runtime_error(wb + "a band is {color: NAME, height_m: H} and nothing else");
-          l.bands.push_back({colorValue(b["color"], wb, "color", false), b["height_m"].as<double>()});
+          l.bands.push_back(
+              {colorValue(b["color"], wb, "color", false), b["height_m"].as<double>()});
         }
         has_bands = true;
       } else {
@@ -278,7 +334,8 @@ Landmark landmarkValue(const YAML::Node& node, const std::string& source) {
 FieldDimensions FieldMap::parseYaml(const std::string& text, const std::string& source) {
   const YAML::Node root = io::parseYamlText(text, source);
   FieldDimensions d;
-  // Keys left out keep their defaults, but a file without any (empty, or only comments) is a mistake.
+  // Keys left out keep their defaults, but a file without any (empty, or only comments) is a
+  // mistake.
   if (!root || root.IsNull())
     throw std::runtime_error(source + ": no field dimensions in the file (empty?)");
   if (!root.IsMap()) throw std::runtime_error(source + ": expected a map of field dimensions");

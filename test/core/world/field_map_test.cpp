@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+#include <utility>
+#include <vector>
 
 #include "adaptive_perception/world/label_renderer.h"
 
@@ -85,10 +88,10 @@ TEST(FieldMap, SplFieldHasPostsMarksAndNoWall) {
   EXPECT_EQ(map.groundColorAt(-(4.5 - 0.6), 1.0), kWhite);
   EXPECT_EQ(map.groundColorAt(-(4.5 - 0.6), 1.2), kGreen);  // beyond the goal area's 1.1 m
   EXPECT_EQ(map.groundColorAt(4.5 - 1.65, 1.9), kWhite);
-  EXPECT_EQ(map.groundColorAt(0.04, 0.0), kWhite);          // centre mark
+  EXPECT_EQ(map.groundColorAt(0.04, 0.0), kWhite);  // centre mark
   EXPECT_EQ(map.groundColorAt(0.3, 0.0), kGreen);
-  EXPECT_EQ(map.groundColorAt(0.0, 0.75), kWhite);          // centre circle
-  EXPECT_EQ(map.groundColorAt(5.15, 3.65), kGreen);         // the border
+  EXPECT_EQ(map.groundColorAt(0.0, 0.75), kWhite);   // centre circle
+  EXPECT_EQ(map.groundColorAt(5.15, 3.65), kGreen);  // the border
   EXPECT_EQ(map.groundColorAt(5.25, 0.0), kBackground);
   EXPECT_FALSE(map.isFree(4.7, 0.0, 0.1));  // in the goal
 }
@@ -101,7 +104,8 @@ TEST(FieldMap, SplLandmarksAreHitInTheirColours) {
   LabelRenderer r(map, PinholeCamera::aiboErs7());
   const Eigen::Vector3d from(0.0, 0.0, 0.25);
   auto hitAt = [&](double x, double y, double z) {
-    return r.castRay({from.x(), from.y(), z}, Eigen::Vector3d(x, y, z) - Eigen::Vector3d(from.x(), from.y(), z));
+    return r.castRay({from.x(), from.y(), z},
+                     Eigen::Vector3d(x, y, z) - Eigen::Vector3d(from.x(), from.y(), z));
   };
   const RayHit lower = hitAt(4.675, -3.175, 0.25), upper = hitAt(4.675, -3.175, 0.35),
                base = hitAt(4.675, -3.175, 0.1);
@@ -125,10 +129,12 @@ TEST(FieldMap, LandmarkErrorsNameFileLineAndKey) {
   EXPECT_NE(e.find("no bands"), std::string::npos) << e;
   e = errorOf("landmarks:\n  - {x_m: 1, y_m: 1, bands: []}\n");
   EXPECT_NE(e.find("no bands"), std::string::npos) << e;
-  e = errorOf("landmarks:\n  - {x_m: 1, y_m: 1, hieght: 2, bands: [{color: pink, height_m: 0.1}]}\n");
+  e = errorOf(
+      "landmarks:\n  - {x_m: 1, y_m: 1, hieght: 2, bands: [{color: pink, height_m: 0.1}]}\n");
   EXPECT_NE(e.find("f.yaml:2"), std::string::npos) << e;
   EXPECT_NE(e.find("hieght"), std::string::npos) << e;
-  e = errorOf("landmarks:\n  - x_m: 1\n    y_m: 1\n    bands:\n      - {color: purple, height_m: 0.1}\n");
+  e = errorOf(
+      "landmarks:\n  - x_m: 1\n    y_m: 1\n    bands:\n      - {color: purple, height_m: 0.1}\n");
   EXPECT_NE(e.find("f.yaml:5"), std::string::npos) << e;
   EXPECT_NE(e.find("purple"), std::string::npos) << e;
   e = errorOf("landmarks:\n  - {x_m: 1, y_m: 1, bands: [{color: pink}]}\n");
@@ -172,6 +178,53 @@ TEST(FieldMap, GroundColours) {
   EXPECT_EQ(map.groundColorAt(2.69, 0.0), kWhite);  // cyan goal line
   EXPECT_EQ(map.groundColorAt(2.8, 1.0), kGreen);   // carpet margin
   EXPECT_EQ(map.groundColorAt(3.5, 0.0), kBackground);
+}
+
+// groundColorAt looks the paint up through a grid of cells; the answer must be the scan over every
+// shape in order (first rects, then rings) that it replaces, here written out again as the
+// reference.
+TEST(FieldMap, GroundColoursThroughTheIndexAreTheFullScans) {
+  for (const char* name : {"field_4legged.yaml", "field_spl.yaml", "field_spl_landmarks.yaml"}) {
+    const FieldMap map = FieldMap::loadYaml(kConfig + name);
+    auto reference = [&](double x, double y) {
+      if (!(std::fabs(x) <= map.carpetHalfLength() && std::fabs(y) <= map.carpetHalfWidth()))
+        return kBackground;
+      for (const auto& g : map.groundRects())
+        if (x >= g.x0_m && x <= g.x1_m && y >= g.y0_m && y <= g.y1_m) return g.color;
+      for (const auto& g : map.groundRings()) {
+        const double r2 = (x - g.cx_m) * (x - g.cx_m) + (y - g.cy_m) * (y - g.cy_m);
+        if (r2 >= g.r_inner_m * g.r_inner_m && r2 <= g.r_outer_m * g.r_outer_m) return g.color;
+      }
+      return kGreen;
+    };
+    std::vector<std::pair<double, double>> points;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> ux(-map.carpetHalfLength() - 0.2,
+                                              map.carpetHalfLength() + 0.2);
+    std::uniform_real_distribution<double> uy(-map.carpetHalfWidth() - 0.2,
+                                              map.carpetHalfWidth() + 0.2);
+    for (int i = 0; i < 200000; ++i) points.emplace_back(ux(rng), uy(rng));
+    // Every paint edge exactly, and a hair either side of it: where a cell's list could miss.
+    for (const auto& g : map.groundRects())
+      for (double x : {g.x0_m, g.x1_m})
+        for (double y : {g.y0_m, g.y1_m, 0.5 * (g.y0_m + g.y1_m)})
+          for (double e : {-1e-12, 0.0, 1e-12}) {
+            points.emplace_back(x + e, y);
+            points.emplace_back(0.5 * (g.x0_m + g.x1_m), y + e);
+          }
+    for (double x : {-map.carpetHalfLength(), map.carpetHalfLength()})
+      for (double y : {-map.carpetHalfWidth(), 0.0, map.carpetHalfWidth()})
+        points.emplace_back(x, y);
+    long paint = 0;
+    for (const auto& [x, y] : points) {
+      const ColorClass want = reference(x, y);
+      ASSERT_EQ(map.groundColorAt(x, y), want) << name << " at " << x << ", " << y;
+      paint += want == kWhite;
+    }
+    EXPECT_GT(paint, 1000) << name;  // the points do reach the lines
+  }
+  const FieldMap map;
+  EXPECT_EQ(map.groundColorAt(std::nan(""), 0.0), kBackground);
 }
 
 TEST(FieldMap, FreeSpace) {
