@@ -55,7 +55,7 @@ AppearanceLocalizerNode::AppearanceLocalizerNode(ros::NodeHandle nh, ros::NodeHa
       P::getInRange(pnh, "max_rate_hz", kAppearanceMaxRate_hz, 0.01, 1000.0), intake);
   localization::OdometryBufferConfig odom_config;
   odom_config.restart_after_back_s = intake.order.restart_after_back_s;
-  odom_ = localization::OdometryBuffer(odom_config);
+  odom_ = localization::OdometrySync<Frame>(odom_config);
   publish_tf_ = P::get<bool>(pnh, "publish_tf", false);
   transform_tolerance_s_ =
       P::getInRange(pnh, "transform_tolerance", kAppearanceTransformTolerance_s, 0.0, 10.0);
@@ -116,14 +116,13 @@ void AppearanceLocalizerNode::onOdom(const nav_msgs::OdometryConstPtr& msg) {
     ROS_WARN_THROTTLE(5.0, "appearance_localizer: odom with a non-finite pose ignored");
     return;
   }
-  odom_.add(msg->header.stamp.toSec(), ros_conv::toSE2(p));
-  // The image that waited for the odometry of its own instant.
-  if (pending_ && *odom_.newest() >= pending_->msg->header.stamp.toSec()) {
-    const Pending p = std::move(*pending_);
-    pending_.reset();
-    images_without_odom_ = 0;
-    ros_conv::processGuarded("appearance_localizer", *p.msg, [&] { step(p.msg, p.bgr); });
-  }
+  stepAll(odom_.odometry(msg->header.stamp.toSec(), ros_conv::toSE2(p)));
+}
+
+void AppearanceLocalizerNode::stepAll(
+    std::vector<localization::OdometrySync<Frame>::Release> released) {
+  for (const auto& r : released)
+    ros_conv::processGuarded("appearance_localizer", *r.item.msg, [&] { step(r.item, r.pose); });
 }
 
 void AppearanceLocalizerNode::onInitialPose(
@@ -165,49 +164,35 @@ void AppearanceLocalizerNode::processImage(const sensor_msgs::ImageConstPtr& msg
   if (restart) {  // a looped bag: the filter starts again as at start-up (same seed, same output)
     make_filter_();
     last_odom_.reset();
-    pending_.reset();
-    images_without_odom_ = 0;
-    // From before the jump: its pose would move every particle across the map.
-    odom_.restartAt(t);
+    // The held image and the odometry of before the jump go: its pose would move every particle
+    // across the map.
+    odom_.restart(t);
   }
   if (verdict != ros_conv::ImageGate::Result::kProcess) return;
-  // With odometry, an image waits for the odometry of its own instant (at most until the next
-  // image), so that a replay moves the particles by the same steps whatever order the topics
-  // arrive in. Three images in a row that had to go without it stop the waiting (no odometry, or
-  // stamped on another clock) until odometry at an image's stamp comes again.
-  const bool odom_reaches = odom_.newest() && *odom_.newest() >= t;
-  if (pending_) {  // the odometry did not reach the last image before this one came
-    ++images_without_odom_;
-    ++unmatched_images_;
-    const Pending p = std::move(*pending_);
-    pending_.reset();
-    step(p.msg, p.bgr);
-  }
-  if (use_odom_ && !odom_reaches && images_without_odom_ < kMaxImagesWithoutOdom) {
-    pending_ = Pending{msg, bgr};
+  if (!use_odom_) {
+    step(Frame{msg, bgr}, std::nullopt);
     return;
   }
-  if (!use_odom_ || odom_reaches) {
-    images_without_odom_ = 0;
-  } else {
-    ++unmatched_images_;
-    ROS_WARN_THROTTLE(10.0,
-                      "appearance_localizer: no odom stamped at or after the images (none "
-                      "published, or on another clock): the particles move by the training "
-                      "run's average step where the odometry does not reach");
-  }
-  step(msg, bgr);
+  // The image waits for the odometry of its own instant (localization/odometry_buffer.h), so that
+  // a replay moves the particles by the same steps whatever order the topics arrive in.
+  const bool was_matching = odom_.matching();
+  auto released = odom_.image(t, Frame{msg, bgr});
+  if (was_matching && !odom_.matching())
+    ROS_WARN(
+        "appearance_localizer: no odom stamped at or after the last images (none published, "
+        "or on another clock): images are taken without waiting for it until it comes");
+  stepAll(std::move(released));  // each step under its own guard
 }
 
-void AppearanceLocalizerNode::step(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& bgr) {
+void AppearanceLocalizerNode::step(const Frame& frame, const std::optional<math::SE2>& odom_pose) {
+  const sensor_msgs::ImageConstPtr& msg = frame.msg;
+  const cv::Mat& bgr = frame.bgr;
   const auto sims = classifier_->frameSimilarities(classifier_->extract(bgr),
                                                    classifier_config_.index.candidates);
   std::optional<math::SE2> delta;
-  const std::optional<math::SE2> odom_pose =
-      use_odom_ ? odom_.at(msg->header.stamp.toSec()) : std::nullopt;
   if (odom_pose && last_odom_) delta = math::between(*last_odom_, *odom_pose);
-  last_odom_ = odom_pose;  // none: the next delta must not span the gap as well
   const localization::AppearanceEstimate e = mcl_->step(delta, sims);
+  last_odom_ = odom_pose;  // none: the next delta must not span the gap as well
   ++frames_;
   reinits_ += e.reinitialized;
   stable_ = e.stable;
@@ -259,7 +244,7 @@ void AppearanceLocalizerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapp
   stat.add("re-initialisations", reinits_);
   stat.add("initial poses taken", initial_poses_);
   stat.add("images dropped (bad)", gate_.badImages());
-  stat.add("images without odom at their stamp", unmatched_images_);
+  stat.add("images without odom at their stamp", odom_.unmatched());
   stat.add("last room", last_room_);
 }
 

@@ -35,11 +35,17 @@ class AppearanceLocalizerNode {
   ~AppearanceLocalizerNode();
 
  private:
+  struct Frame {  // an image the gate took
+    sensor_msgs::ImageConstPtr msg;
+    cv::Mat bgr;
+  };
   /// processImage() through ros_conv::processGuarded: no exception ends the node.
   void onImage(const sensor_msgs::ImageConstPtr& msg);
   void processImage(const sensor_msgs::ImageConstPtr& msg);
-  /// One filter step on an image the gate took (`bgr`), with the odometry at its stamp.
-  void step(const sensor_msgs::ImageConstPtr& msg, const cv::Mat& bgr);
+  /// One filter step on an image the gate took, with the odometry at its stamp (or none).
+  void step(const Frame& frame, const std::optional<math::SE2>& odom_pose);
+  /// step() on each released image, each guarded on its own.
+  void stepAll(std::vector<localization::OdometrySync<Frame>::Release> released);
   void onOdom(const nav_msgs::OdometryConstPtr& msg);
   void onInitialPose(const geometry_msgs::PoseWithCovarianceStampedConstPtr& msg);
   bool onGlobalLocalization(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -52,16 +58,9 @@ class AppearanceLocalizerNode {
   bool use_odom_ = true, publish_tf_ = false;
   ros_conv::ImageGate gate_{"appearance_localizer", 5.0};
   std::string map_frame_, odom_frame_;
-  localization::OdometryBuffer odom_;   // by stamp: the pose at each image's own time
+  // Each image with the odometry of its stamp (an image waits for it, at most until the next).
+  localization::OdometrySync<Frame> odom_;
   std::optional<math::SE2> last_odom_;  // at the last processed image
-  struct Pending {
-    sensor_msgs::ImageConstPtr msg;
-    cv::Mat bgr;
-  };
-  std::optional<Pending> pending_;  // an image waiting for the odometry of its stamp
-  static constexpr int kMaxImagesWithoutOdom = 3;
-  int images_without_odom_ = 0;  // in a row
-  long unmatched_images_ = 0;    // went without odometry at their stamp
   image_transport::Subscriber image_sub_;
   ros::Subscriber odom_sub_, initial_pose_sub_;
   double transform_tolerance_s_ = 0.0;  // from ~transform_tolerance

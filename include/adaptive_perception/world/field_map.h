@@ -156,7 +156,7 @@ class FieldMap {
   // box touches the cell, so that a lookup tests a few shapes instead of all of them and still
   // answers as the scan over all of them would.
   void indexGround();
-  double ground_cell_m_ = 0.25;
+  double ground_cell_m_ = 0.25;  // set by indexGround
   int ground_cols_ = 0, ground_rows_ = 0;
   std::vector<int> ground_begin_;  // cell c's shapes: ground_shapes_[begin[c], begin[c + 1])
   std::vector<int> ground_shapes_;

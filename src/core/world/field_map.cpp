@@ -198,9 +198,12 @@ FieldMap::FieldMap(const FieldDimensions& d) : dims_(d) {
 }
 
 void FieldMap::indexGround() {
-  const double cl = carpet_half_length_m_, cw = carpet_half_width_m_, s = ground_cell_m_;
-  ground_cols_ = std::max(1, static_cast<int>(std::ceil(2.0 * cl / s)));
-  ground_rows_ = std::max(1, static_cast<int>(std::ceil(2.0 * cw / s)));
+  const double cl = carpet_half_length_m_, cw = carpet_half_width_m_;
+  // 0.25 m cells, coarser on a carpet over 256 m a side (at most 1024 cells a side).
+  ground_cell_m_ = std::max(0.25, 2.0 * std::max(cl, cw) / 1024.0);
+  const double s = ground_cell_m_;
+  ground_cols_ = std::clamp(static_cast<int>(std::ceil(2.0 * cl / s)), 1, 1024);
+  ground_rows_ = std::clamp(static_cast<int>(std::ceil(2.0 * cw / s)), 1, 1024);
   // A cell's shapes are those whose bounding box meets the cell grown by a margin far above the
   // rounding of the lookup's cell arithmetic, so that a point is never looked up in a cell whose
   // list misses a shape containing it.

@@ -1,7 +1,7 @@
 // Appearance MCL on scripted inputs: the training run's average step, heading-aware nearest frames,
 // convergence and room by summed weight, stability, restricted then full re-initialisation,
 // unknown-room detection, runs that do not depend on OpenCV's generator, and the odometry
-// buffer that gives the pose at an image's stamp.
+// buffer and sync that give each image the pose at its stamp.
 #include "adaptive_perception/localization/appearance_mcl.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +9,9 @@
 #include <cmath>
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "adaptive_perception/localization/odometry_buffer.h"
 #include "adaptive_perception/math/angles.h"
@@ -228,4 +231,95 @@ TEST(OdometryBuffer, ARestartDropsOnlyPosesFromBeforeTheJumpAndOldPosesAge) {
   for (int i = 0; i < 5; ++i) c.add(0.1 * i, math::SE2(i, 0, 0));
   EXPECT_EQ(c.size(), 3u);  // 0.2, 0.3, 0.4: span_s 0.25 back from the newest
   EXPECT_FALSE(c.at(0.15));
+}
+
+TEST(OdometryBuffer, DoesNotBridgeAGapLongerThanItsMaxAge) {
+  localization::OdometryBuffer b;  // max_age_s 1
+  b.add(0.0, math::SE2(0, 0, 0));
+  b.add(3.0, math::SE2(3, 0, 0));
+  EXPECT_FALSE(b.at(1.5));  // 3 s between the poses on either side: the source stalled
+  b.add(2.5, math::SE2(2, 0, 0));
+  EXPECT_NEAR(b.at(2.75)->x_m, 2.5, 1e-12);
+}
+
+namespace {
+using Sync = localization::OdometrySync<int>;
+// Odometry at 20 Hz moving 1 m/s along x, images at 5 Hz on the same clock, delivered in the
+// order `events` gives: 'i' the next image, 'o' the next odometry message. Returns every release
+// as (image, x of its pose or -1).
+std::vector<std::pair<int, double>> replay(const std::string& events) {
+  Sync sync;
+  std::vector<std::pair<int, double>> out;
+  int image = 0, odom = 0;
+  auto take = [&](std::vector<Sync::Release> r) {
+    for (const auto& x : r) out.emplace_back(x.item, x.pose ? x.pose->x_m : -1.0);
+  };
+  for (char e : events) {
+    if (e == 'i') {
+      take(sync.image(0.2 * image, image));
+      ++image;
+    } else {
+      take(sync.odometry(0.05 * odom, math::SE2(0.05 * odom, 0, 0)));
+      ++odom;
+    }
+  }
+  return out;
+}
+}  // namespace
+
+TEST(OdometrySync, ImagesGetTheSameOdometryWhateverOrderTheStreamsArriveIn) {
+  // For each image k (at odometry message 4k's stamp): in stamp order; the image before its own
+  // odometry message; the image after the next message too. Then odometry past the last image.
+  std::string in_order, images_first, odometry_late;
+  for (int k = 0; k < 4; ++k) {
+    in_order += "oiooo";
+    images_first += "ioooo";
+    odometry_late += "ooioo";
+  }
+  for (std::string* e : {&in_order, &images_first, &odometry_late}) *e += "o";
+  const auto a = replay(in_order), b = replay(images_first), c = replay(odometry_late);
+  ASSERT_EQ(a.size(), 4u);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a, c);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(a[k].first, k);
+    EXPECT_NEAR(a[k].second, 0.2 * k, 1e-12);  // the pose at each image's own stamp
+  }
+}
+
+TEST(OdometrySync, WithoutOdometryImagesGoAfterThreeAndWaitAgainWhenItComes) {
+  Sync sync;
+  EXPECT_TRUE(sync.image(0.0, 0).empty());  // held
+  for (int k = 1; k <= 3; ++k) {
+    const auto r = sync.image(0.2 * k, k);  // the held one goes, without odometry
+    ASSERT_EQ(r.size(), k < 3 ? 1u : 2u);   // the third in a row: this one goes at once too
+    EXPECT_EQ(r[0].item, k - 1);
+    EXPECT_FALSE(r[0].pose);
+  }
+  EXPECT_FALSE(sync.matching());
+  const auto now = sync.image(0.8, 4);  // released at once
+  ASSERT_EQ(now.size(), 1u);
+  EXPECT_EQ(now[0].item, 4);
+  EXPECT_EQ(sync.unmatched(), 5);
+  // Odometry comes and reaches the last image: images wait for it again.
+  EXPECT_TRUE(sync.odometry(0.8, math::SE2(8, 0, 0)).empty());
+  EXPECT_TRUE(sync.matching());
+  EXPECT_TRUE(sync.image(1.0, 5).empty());
+  const auto r = sync.odometry(1.0, math::SE2(10, 0, 0));
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].item, 5);
+  EXPECT_NEAR(r[0].pose->x_m, 10.0, 1e-12);
+}
+
+TEST(OdometrySync, ARestartDropsTheHeldImageAndTheOdometryBeforeTheJump) {
+  Sync sync;
+  EXPECT_TRUE(sync.odometry(100.0, math::SE2(1, 0, 0)).empty());
+  EXPECT_TRUE(sync.image(100.2, 0).empty());  // held
+  sync.restart(10.0);                         // the log looped
+  EXPECT_FALSE(sync.waiting());
+  EXPECT_TRUE(sync.image(10.0, 1).empty());  // waits: the old pass's odometry is gone
+  const auto r = sync.odometry(10.0, math::SE2(2, 0, 0));
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].item, 1);
+  EXPECT_NEAR(r[0].pose->x_m, 2.0, 1e-12);
 }

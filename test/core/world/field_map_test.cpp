@@ -215,6 +215,20 @@ TEST(FieldMap, GroundColoursThroughTheIndexAreTheFullScans) {
     for (double x : {-map.carpetHalfLength(), map.carpetHalfLength()})
       for (double y : {-map.carpetHalfWidth(), 0.0, map.carpetHalfWidth()})
         points.emplace_back(x, y);
+    // On the cells' own edges (0.25 m apart from the carpet's corner), -0, the ring's edges, and
+    // far away.
+    for (double u = -map.carpetHalfLength(); u <= map.carpetHalfLength(); u += 0.25)
+      for (double v = -map.carpetHalfWidth(); v <= map.carpetHalfWidth(); v += 0.25)
+        points.emplace_back(u, v);
+    for (const auto& g : map.groundRings())
+      for (double r : {g.r_inner_m, g.r_outer_m})
+        for (double a = 0.0; a < 6.3; a += 0.01)
+          points.emplace_back(g.cx_m + r * std::cos(a), g.cy_m + r * std::sin(a));
+    for (double big : {1e300, -1e300, HUGE_VAL, -HUGE_VAL}) {
+      points.emplace_back(big, 0.0);
+      points.emplace_back(0.0, big);
+    }
+    points.emplace_back(-0.0, -0.0);
     long paint = 0;
     for (const auto& [x, y] : points) {
       const ColorClass want = reference(x, y);
@@ -225,6 +239,7 @@ TEST(FieldMap, GroundColoursThroughTheIndexAreTheFullScans) {
   }
   const FieldMap map;
   EXPECT_EQ(map.groundColorAt(std::nan(""), 0.0), kBackground);
+  EXPECT_EQ(map.groundColorAt(0.0, std::nan("")), kBackground);
 }
 
 TEST(FieldMap, FreeSpace) {
