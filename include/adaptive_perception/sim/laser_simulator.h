@@ -21,8 +21,9 @@ struct LaserSensorConfig {
   double min_range_m = 0.05;
   double range_noise_std_m = 0.01;
   double dropout_probability = 0.01;  // a beam returns nothing (reported as max range)
-  // The range_max the scans state (0: max_range_m; else at least max_range_m). A log that states more than its laser reaches
-  // (no PARAM line: 81.9 m) has its no-returns, written as max_range_m, below range_max.
+  // The range_max the scans state (0: max_range_m; else at least max_range_m). A log that states
+  // more than its laser reaches (no PARAM line: 81.9 m) has its no-returns, written as
+  // max_range_m, below range_max.
   double stated_range_max_m = 0.0;
   double rate_hz = 10.0;
   math::SE2 mount{0.1, 0.0, 0.0};  // laser in base_link
