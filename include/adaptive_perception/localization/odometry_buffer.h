@@ -47,7 +47,7 @@ class OdometryBuffer {
   explicit OdometryBuffer(OdometryBufferConfig config = {}) : config_(config) {}
 
   void add(double stamp_s, const math::SE2& pose) {
-    if (const auto n = newest(); n && *n - stamp_s > config_.restart_after_back_s) poses_.clear();
+    restartAt(stamp_s);
     poses_[stamp_s] = pose;
     const double oldest_kept = poses_.rbegin()->first - config_.span_s;
     while (poses_.begin()->first < oldest_kept) poses_.erase(poses_.begin());
@@ -77,7 +77,6 @@ class OdometryBuffer {
   void restartAt(double stamp_s) {
     if (const auto n = newest(); n && *n - stamp_s > config_.restart_after_back_s) poses_.clear();
   }
-  void clear() { poses_.clear(); }
   std::size_t size() const { return poses_.size(); }
   const OdometryBufferConfig& config() const { return config_; }
 
