@@ -4,7 +4,8 @@ positions (data/calibration/nao_v6_top_marks.csv): a least-squares fit of the fo
 all images, square pixels, principal point at the image centre) and, per image, the height of the
 pan axis above the ground (base_to_pan_m z), the camera's pitch beyond the recorded head pitch, and
 the robot's heading (not known from the motion capture). The lens's offset from the pitch axis is the
-published one (--lens_x_m, --lens_z_m). Prints each image's fit and residuals, the fit over all
+published one (--lens_x_m, --lens_z_m). Where the marks give each image's torso pitch (the inertial
+unit's), each fit also prints torso_pitch_reference_rad: their mean, at which camera_pitch_rad holds. Prints each image's fit and residuals, the fit over all
 images (the numbers config/cameras/nao_v6_top.yaml holds) and a leave-one-image-out fit for each
 image (the camera to evaluate that image with, calibrated without it).
 
@@ -26,7 +27,9 @@ def read_marks(path):
         d = dict(zip(header, r))
         p = out.setdefault(d["point"], {"robot": (float(d["robot_x_m"]), float(d["robot_y_m"])),
                                         "head_pitch": float(d["head_pitch_rad"]),
-                                        "head_yaw": float(d["head_yaw_rad"]), "marks": []})
+                                        "head_yaw": float(d["head_yaw_rad"]),
+                                        "torso_pitch": float(d["torso_pitch_rad"])
+                                        if d.get("torso_pitch_rad") else None, "marks": []})
         p["marks"].append((float(d["field_x_m"]), float(d["field_y_m"]), float(d["u_px"]),
                            float(d["v_px"])))
     return out
@@ -87,9 +90,14 @@ def summary(label, names, x, r):
     pan_z = np.mean(x[1::3])
     pitch = np.mean(x[2::3])
     hfov = math.degrees(2 * math.atan(0.5 * args.width / x[0]))
+    # The inertial unit's torso pitch at which camera_pitch_rad holds: the mean over the same
+    # images (HeadChain::leanRad() leans the head by a later reading's difference from it).
+    torso = [points[n]["torso_pitch"] for n in names]
+    reference = (f" torso_pitch_reference_rad={np.mean(torso):.4f}"
+                 if all(t is not None for t in torso) else "")
     print(f"calibrate_head_camera: fit={label} images={len(names)} fx_px={x[0]:.1f} "
-          f"hfov_deg={hfov:.2f} base_to_pan_z_m={pan_z:.4f} camera_pitch_rad={pitch:.4f} "
-          f"rms_px={math.sqrt(np.mean(r ** 2)):.2f} max_px={np.max(np.abs(r)):.2f}")
+          f"hfov_deg={hfov:.2f} base_to_pan_z_m={pan_z:.4f} camera_pitch_rad={pitch:.4f}"
+          f"{reference} rms_px={math.sqrt(np.mean(r ** 2)):.2f} max_px={np.max(np.abs(r)):.2f}")
     return x[0], pan_z, pitch
 
 
@@ -111,6 +119,13 @@ if __name__ == "__main__":
         offset += k
         print(f"  {n}: base_to_pan_z_m={x[1 + 3 * i]:.4f} camera_pitch_rad={x[2 + 3 * i]:.4f} "
               f"heading_deg={math.degrees(x[3 + 3 * i]):.1f} rms_px={math.sqrt(np.mean(ri ** 2)):.2f}")
+    # Does the inertial unit see what the images do? Each image's pitch beyond the mean against
+    # its torso pitch beyond theirs (the lean HeadChain::leanRad() would give it).
+    torso = [points[n]["torso_pitch"] for n in names]
+    if all(t is not None for t in torso):
+        for i, n in enumerate(names):
+            print(f"  {n}: pitch_beyond_mean_rad={x[2 + 3 * i] - np.mean(x[2::3]):.4f} "
+                  f"torso_pitch_beyond_mean_rad={torso[i] - np.mean(torso):.4f}")
     summary("all", names, x, r)
     if len(names) > 1:
         for n in names:

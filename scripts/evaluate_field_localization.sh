@@ -28,20 +28,24 @@ make_tmp
 cd "$AP_ROOT"
 CAMERA=config/cameras/nao_v6_top.yaml
 python3 scripts/nao_field_list.py "$SESSION" "$TMP/all.csv" > /dev/null
-# The leave-one-point-out cameras: fx, the pan axis's height and the camera's pitch of each
-# without_<point> fit.
+# The leave-one-point-out cameras: fx, the pan axis's height, the camera's pitch and the torso
+# pitch it holds at (the inertial unit's) of each without_<point> fit.
 FIT='s/.*fit=without_\([^ ]*\) .*fx_px=\([^ ]*\) .*base_to_pan_z_m=\([^ ]*\)'
-FIT+=' camera_pitch_rad=\([^ ]*\) .*/\1 \2 \3 \4/p'
+FIT+=' camera_pitch_rad=\([^ ]*\) torso_pitch_reference_rad=\([^ ]*\) .*/\1 \2 \3 \4 \5/p'
 python3 scripts/calibrate_head_camera.py data/calibration/nao_v6_top_marks.csv > "$TMP/fits.txt"
 sed -n "$FIT" "$TMP/fits.txt" > "$TMP/without.txt"
 # Every point the calibration used needs its camera fitted without it.
-used="$(grep -c '^  punt' "$TMP/fits.txt" || true)"
+used="$(grep -c '^  punt[0-9]*: base_to_pan_z_m=' "$TMP/fits.txt" || true)"
 [ "$(wc -l < "$TMP/without.txt")" -eq "$used" ] && [ "$used" -gt 0 ] ||
   die "calibrate_head_camera.py printed $used fitted points but not a without_ fit for each"
-while read -r point fx z pitch; do
+while read -r point fx z pitch torso; do
   sed -e "s/^fx_px: .*/fx_px: $fx/" -e "s/^fy_px: .*/fy_px: $fx/" \
       -e "s/^base_to_pan_m: .*/base_to_pan_m: [0.0, 0.0, $z]/" \
-      -e "s/^camera_pitch_rad: .*/camera_pitch_rad: $pitch/" "$CAMERA" > "$TMP/without_$point.yaml"
+      -e "s/^camera_pitch_rad: .*/camera_pitch_rad: $pitch/" \
+      -e "s/^torso_pitch_reference_rad: .*/torso_pitch_reference_rad: $torso/" \
+      "$CAMERA" > "$TMP/without_$point.yaml"
+  grep -q "^torso_pitch_reference_rad: $torso\$" "$TMP/without_$point.yaml" ||
+    die "$CAMERA has no torso_pitch_reference_rad line for the without_$point fit"
 done < "$TMP/without.txt"
 header="$(head -n 1 "$TMP/all.csv")"
 errors=()

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Writes evaluate_field_localization's --list for the NAO field development set (or a session of
 the same layout): one line per point folder with its top (or bottom) camera image, the head angles
-the robot recorded at the picture, and the motion-capture position (median of the take's last two
-seconds, when the robot was no longer touched; field frame x = X, y = -Z).
+the robot recorded at the picture, the torso's pitch from its inertial unit (AngleY), and the
+motion-capture position (median of the take's last two seconds, when the robot was no longer
+touched; field frame x = X, y = -Z).
 
 usage: nao_field_list.py SESSION_DIR OUTPUT.csv [top|bottom]
 SESSION_DIR holds puntN/ folders with imagetop.jpg, imagebottom.jpg, record.csv and pointN.csv
@@ -39,11 +40,15 @@ def mocap_rotation_deg(path):
 
 
 def head_angles(path):
+    """HeadPitch, HeadYaw (sensors) and the inertial unit's torso pitch (AngleY; None if the record
+    has no angley column) at the picture."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     if not rows or "headpitchsens" not in rows[-1] or "headyawsens" not in rows[-1]:
         raise SystemExit(f"{path}: expected columns headpitchsens and headyawsens")
-    return float(rows[-1]["headpitchsens"]), float(rows[-1]["headyawsens"])
+    torso = rows[-1].get("angley")
+    return (float(rows[-1]["headpitchsens"]), float(rows[-1]["headyawsens"]),
+            float(torso) if torso else None)
 
 
 def main():
@@ -57,14 +62,15 @@ def main():
                     key=lambda d: int("".join(ch for ch in d if ch.isdigit()) or 0))
     if not points:
         raise SystemExit(f"{session}: no puntN folders")
-    lines = ["image,head_pitch_rad,head_yaw_rad,x_m,y_m"]
+    lines = ["image,head_pitch_rad,head_yaw_rad,x_m,y_m,torso_pitch_rad"]
     for p in points:
         folder = os.path.join(session, p)
         number = "".join(ch for ch in p if ch.isdigit())
         x, y = mocap_xy(os.path.join(folder, f"point{number}.csv"))
-        pitch, yaw = head_angles(os.path.join(folder, "record.csv"))
+        pitch, yaw, torso = head_angles(os.path.join(folder, "record.csv"))
         image = os.path.join(os.path.realpath(session), p, f"image{camera}.jpg")
-        lines.append(f"{image},{pitch:.6f},{yaw:.6f},{x:.4f},{y:.4f}")
+        torso_text = f"{torso:.6f}" if torso is not None else ""
+        lines.append(f"{image},{pitch:.6f},{yaw:.6f},{x:.4f},{y:.4f},{torso_text}")
     with open(output, "w") as f:
         f.write("\n".join(lines) + "\n")
     print(f"nao_field_list: points={len(points)} output={output}")

@@ -12,6 +12,7 @@ namespace adaptive_perception {
 
 namespace {
 constexpr char kDefaultCamera[] = "config/cameras/nao_v6_top.yaml";
+constexpr double kTorsoPitchMaxAge_s = 0.5;
 }  // namespace
 
 std::vector<config::ParameterDoc> HeadTfNode::parameters() {
@@ -24,7 +25,11 @@ std::vector<config::ParameterDoc> HeadTfNode::parameters() {
       {"tilt_frame", "string", ros_topics::kHeadTiltFrame, "", "the frame the tilt joint turns"},
       {"camera_frame", "string", ros_topics::kCameraFrame, "", "the lens, x forward"},
       {"optical_frame", "string", ros_topics::kCameraOpticalFrame, "",
-       "the camera's optical frame (z forward, x right, y down): the images' frame_id"}};
+       "the camera's optical frame (z forward, x right, y down): the images' frame_id"},
+      {"torso_pitch_max_age_s", "double", config::formatReal(kTorsoPitchMaxAge_s), "[0, 60]",
+       "an imu message leans the head (camera files with a torso_pitch_reference_rad) for "
+       "joint_states stamped within this time of it (s); else no lean. An inertial unit "
+       "publishes at 10 Hz or more, and a standing robot's lean changes over seconds"}};
 }
 
 HeadTfNode::HeadTfNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -36,16 +41,38 @@ HeadTfNode::HeadTfNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   tilt_frame_ = ros_params::getFrameId(pnh, "tilt_frame", ros_topics::kHeadTiltFrame);
   camera_frame_ = ros_params::getFrameId(pnh, "camera_frame", ros_topics::kCameraFrame);
   optical_frame_ = ros_params::getFrameId(pnh, "optical_frame", ros_topics::kCameraOpticalFrame);
+  torso_pitch_max_age_s_ = ros_params::getInRange(pnh, "torso_pitch_max_age_s", kTorsoPitchMaxAge_s, 0.0, 60.0);
   const ros::Time now = ros::Time::now();
   static_broadcaster_.sendTransform(std::vector<geometry_msgs::TransformStamped>{
       ros_conv::toTransform(camera_.head.tiltCamera(), tilt_frame_, camera_frame_, now),
       ros_conv::toTransform(world::HeadChain::cameraOptical(), camera_frame_, optical_frame_,
                             now)});
   sub_ = nh.subscribe(ros_topics::kJointStates, 100, &HeadTfNode::callback, this);
+  const bool leans = std::isfinite(camera_.head.torso_pitch_reference_rad);
+  if (leans) imu_sub_ = nh.subscribe(ros_topics::kImu, 100, &HeadTfNode::imuCallback, this);
   diagnostics_.add("head chain", this, &HeadTfNode::check);
-  ROS_INFO("head_tf_publisher: camera %s (%s): %s -> %s from joint_states %s and %s",
+  ROS_INFO("head_tf_publisher: camera %s (%s): %s -> %s from joint_states %s and %s%s",
            camera_.name.c_str(), camera_file_.c_str(), base_frame_.c_str(), optical_frame_.c_str(),
-           camera_.pan_joint.c_str(), camera_.tilt_joint.c_str());
+           camera_.pan_joint.c_str(), camera_.tilt_joint.c_str(),
+           leans ? ", leaned by the torso's pitch from imu"
+                 : " (the camera file has no torso_pitch_reference_rad: imu is not read)");
+}
+
+void HeadTfNode::imuCallback(const sensor_msgs::ImuConstPtr& msg) {
+  const auto& o = msg->orientation;
+  const Eigen::Quaterniond q(o.w, o.x, o.y, o.z);
+  if (!q.coeffs().allFinite() || q.norm() < 1e-6) {
+    ++imu_skipped_;
+    std::ostringstream s;
+    s << "imu orientation (" << o.x << ", " << o.y << ", " << o.z << ", " << o.w
+      << ") is not a rotation (non-finite or zero)";
+    last_imu_problem_ = s.str();
+    ROS_ERROR_THROTTLE(5.0, "head_tf_publisher: %s; the head is not leaned by it",
+                       last_imu_problem_.c_str());
+    return;
+  }
+  torso_pitch_rad_ = world::pitchBelowHorizontal(q);
+  torso_pitch_stamp_ = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
 }
 
 void HeadTfNode::callback(const sensor_msgs::JointStateConstPtr& msg) {
@@ -81,8 +108,17 @@ void HeadTfNode::callback(const sensor_msgs::JointStateConstPtr& msg) {
     return skip(s.str());
   }
   const ros::Time stamp = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+  double lean_rad = 0.0;
+  if (!torso_pitch_stamp_.isZero()) {
+    const double age_s = (stamp - torso_pitch_stamp_).toSec();
+    if (age_s >= -torso_pitch_max_age_s_ && age_s <= torso_pitch_max_age_s_) {
+      lean_rad = camera_.head.leanRad(torso_pitch_rad_);
+      ++leaned_;
+    }
+  }
   broadcaster_.sendTransform(std::vector<geometry_msgs::TransformStamped>{
-      ros_conv::toTransform(camera_.head.basePan(pan_rad), base_frame_, pan_frame_, stamp),
+      ros_conv::toTransform(camera_.head.basePan(pan_rad, lean_rad), base_frame_, pan_frame_,
+                            stamp),
       ros_conv::toTransform(camera_.head.panTilt(tilt_rad), pan_frame_, tilt_frame_, stamp)});
   ++published_;
   diagnostics_.tick();
@@ -101,6 +137,12 @@ void HeadTfNode::check(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   stat.add("camera", camera_.name);
   stat.add("head transforms published", published_);
   stat.add("joint_states skipped", skipped_);
+  if (std::isfinite(camera_.head.torso_pitch_reference_rad)) {
+    stat.add("head transforms leaned by imu", leaned_);
+    stat.add("imu messages skipped", imu_skipped_);
+    if (imu_skipped_ > 0) stat.add("last imu problem", last_imu_problem_);
+    if (!torso_pitch_stamp_.isZero()) stat.add("torso pitch (rad)", torso_pitch_rad_);
+  }
 }
 
 // The node's main (src/nodes, ros/node_main.h) links this one instance.

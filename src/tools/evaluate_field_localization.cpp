@@ -8,9 +8,11 @@
 //   evaluate_field_localization --help   (every option with its default, unit and range)
 //
 // --camera: a camera file (world/robot_camera.h, config/cameras/): the intrinsics, and the head
-// chain that turns each line's head_pitch_rad / head_yaw_rad into the camera's pose on the robot.
-// --list: CSV `image,head_pitch_rad,head_yaw_rad,x_m,y_m` (io/head_image_list.h; the position
-// columns optional; scripts/nao_field_list.py writes one for the NAO development set). Every
+// chain that turns each line's head_pitch_rad / head_yaw_rad into the camera's pose on the robot,
+// leaned by the line's torso_pitch_rad where the file has a torso_pitch_reference_rad.
+// --list: CSV `image,head_pitch_rad,head_yaw_rad,x_m,y_m,torso_pitch_rad` (io/head_image_list.h;
+// the last three columns optional; scripts/nao_field_list.py writes one for the NAO development
+// set). Every
 // parameter of rbpf_localizer's table that comes from localization::RbpfConfig is an option of the
 // same name, range and default. Writes OUTPUT/images.csv (one line per image, also printed) and
 // OUTPUT/NAME.png (the image with the field's lines and landmarks drawn from the estimate). Last
@@ -71,7 +73,8 @@ int main(int argc, char** argv) {
   cli.option("camera", &camera_file,
              "the camera file (config/cameras/; relative: from the package)")
       ->required();
-  cli.option("list", &list_file, "CSV image,head_pitch_rad,head_yaw_rad[,x_m,y_m]")->required();
+  cli.option("list", &list_file, "CSV image,head_pitch_rad,head_yaw_rad[,x_m,y_m[,torso_pitch_rad]]")
+      ->required();
   int frames = 30;
   cli.option("frames", &frames, config::closed(1, 1000),
              "times each image is given to the filter (one second of a 30 Hz camera)");
@@ -115,7 +118,8 @@ int main(int argc, char** argv) {
                                  std::to_string(camera.camera.height_px));
       const cv::Mat yuv = color::bgrToYuv(bgr);
       const Eigen::Isometry3d base_to_optical =
-          camera.baseToOptical(item.head_yaw_rad, item.head_pitch_rad);
+          camera.baseToOptical(item.head_yaw_rad, item.head_pitch_rad,
+                               item.torso_pitch_rad.value_or(std::nan("")));
       const auto t0 = Clock::now();
       localization::RbpfLocalizer rbpf(map, camera.camera, priors, cfg);
       rbpf.initUniform();

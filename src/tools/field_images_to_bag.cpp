@@ -7,14 +7,15 @@
 //   field_images_to_bag --list FILE --camera FILE --output BAG [--seconds_per_image S]
 //   field_images_to_bag --help   (every option with its default, unit and range)
 //
-// --list: CSV `image,head_pitch_rad,head_yaw_rad[,x_m,y_m]` (io/head_image_list.h;
-// scripts/nao_field_list.py writes one for the NAO development set; the true position, if given, is
-// not written: the list gives no heading). --camera: a camera file (world/robot_camera.h,
+// --list: CSV `image,head_pitch_rad,head_yaw_rad[,x_m,y_m[,torso_pitch_rad]]`
+// (io/head_image_list.h; scripts/nao_field_list.py writes one for the NAO development set; the true
+// position, if given, is not written: the list gives no heading). --camera: a camera file (world/robot_camera.h,
 // config/cameras/): the intrinsics for camera_info and the names of the pan and tilt joints. Every
 // image must have the camera's size.
 // Topics (DESIGN.md): camera/image_raw/compressed (sensor_msgs/CompressedImage: the file's own
 // JPEG or PNG bytes, not re-encoded; replay with the nodes' ~image_transport compressed),
-// camera/camera_info, joint_states (the camera file's pan_joint and tilt_joint), odom and tf
+// camera/camera_info, joint_states (the camera file's pan_joint and tilt_joint), imu (where the
+// list gives a torso pitch: the torso's orientation, pitched by it), odom and tf
 // odom -> base_link (the identity: the robot stands). The head chain base_link -> camera is not
 // written: head_tf_publisher makes it from joint_states, as on a NAO without a URDF. Frame ids:
 // camera_optical_frame, odom, base_link. Consecutive images of the list follow each other with no
@@ -25,6 +26,7 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/time.h>
 #include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2_msgs/TFMessage.h>
 
@@ -89,7 +91,9 @@ int main(int argc, char** argv) {
   cli.option("camera", &camera_file,
              "the camera file (config/cameras/; relative: from the package)")
       ->required();
-  cli.option("list", &list_file, "CSV image,head_pitch_rad,head_yaw_rad[,x_m,y_m]")->required();
+  cli.option("list", &list_file,
+             "CSV image,head_pitch_rad,head_yaw_rad[,x_m,y_m[,torso_pitch_rad]]")
+      ->required();
   double seconds_per_image = 3.0;
   cli.option("seconds_per_image", &seconds_per_image, config::closed(0.1, 3600.0),
              "how long each image is shown, s");
@@ -141,6 +145,19 @@ int main(int argc, char** argv) {
         joints.name = {camera.pan_joint, camera.tilt_joint};
         joints.position = {list[i].head_yaw_rad, list[i].head_pitch_rad};
         bag.write(slash(T::kJointStates), stamp, joints);
+        if (list[i].torso_pitch_rad) {
+          sensor_msgs::Imu imu;  // the torso's orientation only: pitched, level otherwise
+          imu.header.stamp = stamp;
+          imu.header.seq = seq;
+          imu.header.frame_id = T::kBaseFrame;
+          const Eigen::Quaterniond q(
+              Eigen::AngleAxisd(*list[i].torso_pitch_rad, Eigen::Vector3d::UnitY()));
+          imu.orientation.w = q.w(), imu.orientation.x = q.x(), imu.orientation.y = q.y(),
+          imu.orientation.z = q.z();
+          imu.angular_velocity_covariance[0] = -1.0;  // not given (sensor_msgs/Imu)
+          imu.linear_acceleration_covariance[0] = -1.0;
+          bag.write(slash(T::kImu), stamp, imu);
+        }
         std_msgs::Header h;
         h.stamp = stamp;
         h.seq = seq;

@@ -1,8 +1,10 @@
 // head_tf_publisher against the camera file's own chain: base_link -> camera_optical_frame from tf
 // at a joint_states stamp equals RobotCamera::baseToOptical at those angles; bad messages are
-// skipped (no transform at their stamps) and a good one after them still gets through.
+// skipped (no transform at their stamps) and a good one after them still gets through; the torso's
+// pitch from imu leans the head.
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
@@ -97,6 +99,57 @@ TEST(HeadTfFromJointStates, ChainMatchesTheCameraFileAndBadMessagesAreSkipped) {
     EXPECT_TRUE(at.isApprox(expected, 1e-6))
         << "a transform was published for a skipped message at t=" << bad.toSec();
   }
+}
+
+// The torso's pitch from imu leans the head by its difference from the camera file's reference
+// (HeadChain::leanRad()); an orientation that is no rotation is skipped and leaves the last good
+// one in place; a reading older than ~torso_pitch_max_age_s (0.5 s) leans nothing.
+TEST(HeadTfFromJointStates, ImuLeansTheHeadAndBadImuIsSkipped) {
+  Fixture f;
+  ros::Publisher imu_pub = f.nh.advertise<sensor_msgs::Imu>("imu", 10);
+  const world::RobotCamera nao =
+      world::RobotCamera::loadYaml(std::string(AP_SOURCE_DIR) + "/config/cameras/nao_v6_top.yaml");
+  ASSERT_TRUE(std::isfinite(nao.head.torso_pitch_reference_rad));
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  while ((f.pub.getNumSubscribers() == 0 || imu_pub.getNumSubscribers() == 0) &&
+         ros::WallTime::now() < end)
+    ros::WallDuration(0.05).sleep();
+  ASSERT_GT(imu_pub.getNumSubscribers(), 0u) << "head_tf_publisher did not subscribe to imu";
+  const auto sendImu = [&](double t, const Eigen::Quaterniond& q) {
+    sensor_msgs::Imu imu;
+    imu.header.stamp = ros::Time(t);
+    imu.orientation.w = q.w(), imu.orientation.x = q.x(), imu.orientation.y = q.y(),
+    imu.orientation.z = q.z();
+    imu_pub.publish(imu);
+    ros::WallDuration(0.3).sleep();  // heard before the joint_states that follow
+  };
+  const auto pitched = [](double pitch, double yaw) {  // the torso turned as it stands
+    return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                              Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()));
+  };
+  // The development set's punt3 (torso -0.142 rad): 0.06 rad back from the reference.
+  f.t = 199.0;  // send() stamps the next second: 200.0, the reading's own stamp
+  sendImu(200.0, pitched(-0.142, 0.516));
+  const ros::Time leaned = f.send({"HeadYaw", "HeadPitch"}, {0.1, -0.003});
+  Eigen::Isometry3d got;
+  ASSERT_TRUE(f.lookup(leaned, 10.0, &got)) << "no transform for the leaned head";
+  EXPECT_TRUE(got.isApprox(nao.baseToOptical(0.1, -0.003, -0.142), 1e-6)) << got.matrix();
+  EXPECT_GT(got.linear().col(2).z(), nao.baseToOptical(0.1, -0.003).linear().col(2).z() + 0.05)
+      << "leaning back must raise the optical axis";
+
+  // A good reading, then one that is no rotation: the good one stays.
+  f.t = 299.1;  // 300.1: 0.1 s after the good reading
+  sendImu(300.0, pitched(0.008, -1.8));
+  sendImu(300.05, Eigen::Quaterniond(0.0, 0.0, 0.0, 0.0));
+  const ros::Time after_bad = f.send({"HeadYaw", "HeadPitch"}, {0.0, -0.13});
+  ASSERT_TRUE(f.lookup(after_bad, 10.0, &got)) << "the node stopped after a bad imu message";
+  EXPECT_TRUE(got.isApprox(nao.baseToOptical(0.0, -0.13, 0.008), 1e-6)) << got.matrix();
+
+  // 100 s after the last reading: no lean.
+  f.t = 399.0;
+  const ros::Time stale = f.send({"HeadYaw", "HeadPitch"}, {0.0, -0.13});
+  ASSERT_TRUE(f.lookup(stale, 10.0, &got));
+  EXPECT_TRUE(got.isApprox(nao.baseToOptical(0.0, -0.13), 1e-6)) << got.matrix();
 }
 
 int main(int argc, char** argv) {

@@ -6,12 +6,18 @@
 // head_tilt_link (tilt about y) at the message's stamp; once, latched on tf_static, head_tilt_link
 // -> camera_link (the lens's offset and pitch) and camera_link -> camera_optical_frame.
 //
+// When the camera file has a torso_pitch_reference_rad, the torso's pitch from `imu` (the latest
+// message within ~torso_pitch_max_age_s of the joint_states' stamp) leans the head about
+// base_link's y axis by its difference from the reference (HeadChain::leanRad(); the body's lean,
+// which the head's joints do not see); with no recent imu message, no lean.
+//
 // A message without either joint, with a non-finite angle or one outside the file's joint range,
-// or with more positions than names is skipped with a throttled error naming what was wrong; the
-// node keeps running. Its interface is documented once, in docs/nodes/head_tf_publisher.md; the
+// or with more positions than names is skipped with a throttled error naming what was wrong, as is
+// an imu message whose orientation is not finite or zero; the node keeps running. Its interface is documented once, in docs/nodes/head_tf_publisher.md; the
 // parameter table there is made from parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -33,14 +39,18 @@ class HeadTfNode {
 
  private:
   void callback(const sensor_msgs::JointStateConstPtr& msg);
+  void imuCallback(const sensor_msgs::ImuConstPtr& msg);
   void check(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
   world::RobotCamera camera_;
   std::string camera_file_;
   std::string base_frame_, pan_frame_, tilt_frame_, camera_frame_, optical_frame_;
-  long published_ = 0, skipped_ = 0;
-  std::string last_problem_;
-  ros::Subscriber sub_;
+  double torso_pitch_max_age_s_ = 0.0;
+  double torso_pitch_rad_ = 0.0;  // the latest imu message's
+  ros::Time torso_pitch_stamp_;   // zero: none yet
+  long published_ = 0, skipped_ = 0, leaned_ = 0, imu_skipped_ = 0;
+  std::string last_problem_, last_imu_problem_;
+  ros::Subscriber sub_, imu_sub_;
   tf2_ros::TransformBroadcaster broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   ros_conv::NodeDiagnostics

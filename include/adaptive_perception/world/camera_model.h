@@ -7,6 +7,7 @@
 // forward, x right, y down.
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 
 #include "adaptive_perception/math/se2.h"
 
@@ -42,13 +43,26 @@ struct HeadChain {
   double camera_pitch_rad = 0.0;  // the camera's fixed pitch in the head (positive = nose down)
   double min_pan_rad = -1.62, max_pan_rad = 1.62;      // ERS-7: +-93 degrees
   double min_tilt_rad = -0.78, max_tilt_rad = 1.3;
+  // The torso's pitch as the robot's inertial unit reads it (about y, positive = leaning forward,
+  // as NAOqi's AngleY) when camera_pitch_rad was calibrated. A torso pitch read with an image then
+  // gives the body's lean, which the head's joint sensors do not see: leanRad(). NaN: no reference
+  // (the lean is 0 whatever the inertial unit reads).
+  double torso_pitch_reference_rad = std::numeric_limits<double>::quiet_NaN();
 
-  Eigen::Isometry3d basePan(double pan_rad) const;   // base_link -> head_pan_link
+  /// The body's lean at this torso pitch: torso_pitch_rad - torso_pitch_reference_rad; 0 without
+  /// a reference or for a non-finite reading.
+  double leanRad(double torso_pitch_rad) const {
+    const double lean = torso_pitch_rad - torso_pitch_reference_rad;
+    return std::isfinite(lean) ? lean : 0.0;
+  }
+  /// base_link -> head_pan_link; a body lean (leanRad()) turns the head about base_link's y axis
+  /// at the pan axis (the neck), before the pan.
+  Eigen::Isometry3d basePan(double pan_rad, double lean_rad = 0.0) const;
   Eigen::Isometry3d panTilt(double tilt_rad) const;  // head_pan_link -> head_tilt_link
   Eigen::Isometry3d tiltCamera() const;  // head_tilt_link -> camera_link (fixed; its pitch)
   static Eigen::Isometry3d cameraOptical();          // camera_link -> camera_optical_frame (fixed)
   /// base_link -> camera_optical_frame.
-  Eigen::Isometry3d baseToOptical(double pan_rad, double tilt_rad) const;
+  Eigen::Isometry3d baseToOptical(double pan_rad, double tilt_rad, double lean_rad = 0.0) const;
   /// The angles are finite and inside the joints' ranges, up to 1e-3 rad over (a joint sensor may
   /// read a hair past its limit).
   bool inJointRange(double pan_rad, double tilt_rad) const {
@@ -59,6 +73,11 @@ struct HeadChain {
            inside(tilt_rad, min_tilt_rad, max_tilt_rad);
   }
 };
+
+/// The pitch of a body's orientation in a frame whose z axis is up (an inertial unit's): the angle
+/// by which the body's x axis points below the horizontal (positive = leaning forward, about y, as
+/// NAOqi's AngleY and HeadChain::torso_pitch_reference_rad); its yaw and roll do not change it.
+double pitchBelowHorizontal(const Eigen::Quaterniond& orientation);
 
 /// The 3-D pose of a planar base pose (map -> base_link), with optional body height/pitch/roll.
 Eigen::Isometry3d planarToIsometry(const math::SE2& pose, double z_m = 0.0, double roll_rad = 0.0,

@@ -37,9 +37,11 @@ void PinholeCamera::validate() const {
     throw std::invalid_argument("camera focal lengths must be positive");
 }
 
-Eigen::Isometry3d HeadChain::basePan(double pan) const {
+Eigen::Isometry3d HeadChain::basePan(double pan, double lean) const {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translate(base_to_pan_m).rotate(Eigen::AngleAxisd(pan, Eigen::Vector3d::UnitZ()));
+  t.translate(base_to_pan_m)
+      .rotate(Eigen::AngleAxisd(lean, Eigen::Vector3d::UnitY()))
+      .rotate(Eigen::AngleAxisd(pan, Eigen::Vector3d::UnitZ()));
   return t;
 }
 
@@ -65,8 +67,13 @@ Eigen::Isometry3d HeadChain::cameraOptical() {
   return t;
 }
 
-Eigen::Isometry3d HeadChain::baseToOptical(double pan, double tilt) const {
-  return basePan(pan) * panTilt(tilt) * tiltCamera() * cameraOptical();
+Eigen::Isometry3d HeadChain::baseToOptical(double pan, double tilt, double lean) const {
+  return basePan(pan, lean) * panTilt(tilt) * tiltCamera() * cameraOptical();
+}
+
+double pitchBelowHorizontal(const Eigen::Quaterniond& orientation) {
+  const Eigen::Vector3d x = orientation.normalized() * Eigen::Vector3d::UnitX();
+  return std::atan2(-x.z(), std::hypot(x.x(), x.y()));
 }
 
 Eigen::Isometry3d planarToIsometry(const math::SE2& pose, double z, double roll, double pitch) {

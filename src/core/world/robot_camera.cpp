@@ -45,6 +45,7 @@ RobotCamera RobotCamera::parseYaml(const std::string& text, const std::string& s
       {"max_pan_rad", &c.head.max_pan_rad},
       {"min_tilt_rad", &c.head.min_tilt_rad},
       {"max_tilt_rad", &c.head.max_tilt_rad},
+      {"torso_pitch_reference_rad", &c.head.torso_pitch_reference_rad},
   };
   std::map<std::string, Eigen::Vector3d*> vectors = {
       {"base_to_pan_m", &c.head.base_to_pan_m},
@@ -80,7 +81,7 @@ RobotCamera RobotCamera::parseYaml(const std::string& text, const std::string& s
                                  "' (name, width_px, height_px, fx_px, fy_px, cx_px, cy_px, "
                                  "pan_joint, tilt_joint, base_to_pan_m, pan_to_tilt_m, "
                                  "tilt_to_camera_m, camera_pitch_rad, min_pan_rad, max_pan_rad, "
-                                 "min_tilt_rad, max_tilt_rad)");
+                                 "min_tilt_rad, max_tilt_rad, torso_pitch_reference_rad)");
       }
     } catch (const YAML::Exception& e) {
       throw std::runtime_error(where + "bad value for '" + key + "': " + e.msg);

@@ -43,10 +43,23 @@ TEST(HeadImageList, ReadsBothHeadersTruthAndPaths) {
   EXPECT_DOUBLE_EQ(list[1].head_pitch_rad, -0.13);
   EXPECT_FALSE(list[1].truth_xy_m.has_value());
 
+  EXPECT_FALSE(list[0].torso_pitch_rad.has_value());
+
   std::ofstream(csv) << "image,head_pitch_rad,head_yaw_rad\na.jpg,0,0\n";
   const auto short_list = io::readHeadImageList(csv);
   ASSERT_EQ(short_list.size(), 1u);
   EXPECT_FALSE(short_list[0].truth_xy_m.has_value());
+
+  std::ofstream(csv) << "image,head_pitch_rad,head_yaw_rad,x_m,y_m,torso_pitch_rad\n"
+                        "a.jpg,0,0,1,2,-0.142\nb.jpg,0,0,,,\nc.jpg,0,0,,,0.008\n";
+  const auto torso = io::readHeadImageList(csv);
+  ASSERT_EQ(torso.size(), 3u);
+  ASSERT_TRUE(torso[0].torso_pitch_rad.has_value());
+  EXPECT_DOUBLE_EQ(*torso[0].torso_pitch_rad, -0.142);
+  EXPECT_DOUBLE_EQ(torso[0].truth_xy_m->y(), 2.0);
+  EXPECT_FALSE(torso[1].torso_pitch_rad.has_value());
+  EXPECT_FALSE(torso[2].truth_xy_m.has_value());
+  EXPECT_DOUBLE_EQ(*torso[2].torso_pitch_rad, 0.008);
 }
 
 TEST(HeadImageList, ErrorsNameTheFileLineAndColumn) {
@@ -68,6 +81,11 @@ TEST(HeadImageList, ErrorsNameTheFileLineAndColumn) {
                   "list.csv:2: x_m and y_m are given together"));
   EXPECT_TRUE(has(errorOf(csv, "image,head_pitch_rad,head_yaw_rad\n,0,0\n"),
                   "list.csv:2: the image column is empty"));
+  EXPECT_TRUE(has(errorOf(csv, "image,head_pitch_rad,head_yaw_rad,x_m\na.jpg,0,0,1\n"),
+                  "list.csv:1: expected the header"));
+  EXPECT_TRUE(has(errorOf(csv, "image,head_pitch_rad,head_yaw_rad,x_m,y_m,torso_pitch_rad\n"
+                               "a.jpg,0,0,1,2,up\n"),
+                  "list.csv:2: torso_pitch_rad 'up' is not a finite number"));
   EXPECT_TRUE(has(errorOf(csv, "# nothing\n"), "list.csv: empty (no header)"));
   EXPECT_TRUE(has(errorOf((scratch.path() / "none" / "x.csv").string(), ""), "cannot open"));
 }

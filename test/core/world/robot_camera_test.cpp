@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace adaptive_perception::world {
@@ -64,7 +65,54 @@ TEST(RobotCamera, NaoTopChainByHand) {
   EXPECT_NEAR(bottom.head.camera_pitch_rad - nao.head.camera_pitch_rad, 0.672, 1e-9);
 }
 
+TEST(RobotCamera, TorsoPitchLeansTheHeadAboutTheNeckByHand) {
+  RobotCamera nao = RobotCamera::parseYaml(
+      "base_to_pan_m: [0, 0, 0.35]\npan_to_tilt_m: [0, 0, 0]\ntilt_to_camera_m: [0.05, 0, 0.06]\n"
+      "camera_pitch_rad: 0.0\ntorso_pitch_reference_rad: -0.08\n",
+      "cam.yaml");
+  EXPECT_DOUBLE_EQ(nao.head.torso_pitch_reference_rad, -0.08);
+  // Leaning forward by 0.1 rad (the inertial unit reads 0.02): the lens turns about the neck,
+  // 0.35 m up, and the optical axis points down by the lean plus the head's pitch.
+  const double lean = 0.1, pitch = 0.05;
+  EXPECT_NEAR(nao.head.leanRad(0.02), lean, 1e-15);
+  const Eigen::Isometry3d t = nao.baseToOptical(0.0, pitch, 0.02);
+  const double a = lean + pitch;
+  EXPECT_NEAR(t.translation().x(), 0.05 * std::cos(a) + 0.06 * std::sin(a), 1e-12);
+  EXPECT_NEAR(t.translation().z(), 0.35 + 0.06 * std::cos(a) - 0.05 * std::sin(a), 1e-12);
+  EXPECT_NEAR(t.linear().col(2).x(), std::cos(a), 1e-12);
+  EXPECT_NEAR(t.linear().col(2).z(), -std::sin(a), 1e-12);
+  // Looking left (yaw 90 degrees), the forward lean still tilts the view down, not sideways.
+  const Eigen::Isometry3d left = nao.baseToOptical(M_PI / 2, 0.0, 0.02);
+  EXPECT_NEAR(left.linear().col(2).y(), 1.0, 1e-12);
+  EXPECT_NEAR(left.linear().col(0).z(), -std::sin(lean), 1e-12);  // image right (forward) is lower
+  // No reading, or no reference: no lean.
+  EXPECT_TRUE(nao.baseToOptical(0.3, pitch).isApprox(nao.head.baseToOptical(0.3, pitch), 1e-15));
+  nao.head.torso_pitch_reference_rad = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(nao.head.leanRad(0.02), 0.0);
+  EXPECT_TRUE(
+      nao.baseToOptical(0.3, pitch, 0.02).isApprox(nao.head.baseToOptical(0.3, pitch), 1e-15));
+}
+
+TEST(RobotCamera, PitchBelowHorizontalIgnoresYawAndRoll) {
+  using Eigen::AngleAxisd;
+  using Eigen::Vector3d;
+  for (const double pitch : {-0.142, 0.0, 0.008, 0.3})
+    for (const double yaw : {0.0, 0.516, -2.5})
+      for (const double roll : {0.0, -0.0188, 0.2}) {
+        // Yaw, then pitch, then roll (NAOqi's AngleZ, AngleY, AngleX), not normalised on purpose.
+        const Eigen::Quaterniond q(AngleAxisd(yaw, Vector3d::UnitZ()) *
+                                   AngleAxisd(pitch, Vector3d::UnitY()) *
+                                   AngleAxisd(roll, Vector3d::UnitX()));
+        EXPECT_NEAR(pitchBelowHorizontal(Eigen::Quaterniond(q.coeffs() * 3.0)), pitch, 1e-12);
+      }
+  // A positive pitch is a forward lean: the body's x axis, turned about +y, points down.
+  EXPECT_LT((AngleAxisd(0.1, Vector3d::UnitY()) * Vector3d::UnitX()).z(), 0.0);
+}
+
 TEST(RobotCamera, ErrorsNameTheFileLineAndKey) {
+  EXPECT_NE(errorOf("torso_pitch_reference_rad: .inf\n")
+                .find("cam.yaml:1: 'torso_pitch_reference_rad' must be finite"),
+            std::string::npos);
   EXPECT_NE(errorOf("name: x\nfocal: 3\n").find("cam.yaml:2: unknown key 'focal'"),
             std::string::npos);
   EXPECT_NE(errorOf("fx_px: [1, 2]\n").find("cam.yaml:1: bad value for 'fx_px'"),
