@@ -4,9 +4,9 @@
 #include <sstream>
 
 #include "adaptive_perception/ros/msg_conversion.h"
+#include "adaptive_perception/ros/node_run.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/ros/topics.h"
-#include "adaptive_perception/ros/node_run.h"
 
 namespace adaptive_perception {
 
@@ -41,7 +41,8 @@ HeadTfNode::HeadTfNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   tilt_frame_ = ros_params::getFrameId(pnh, "tilt_frame", ros_topics::kHeadTiltFrame);
   camera_frame_ = ros_params::getFrameId(pnh, "camera_frame", ros_topics::kCameraFrame);
   optical_frame_ = ros_params::getFrameId(pnh, "optical_frame", ros_topics::kCameraOpticalFrame);
-  torso_pitch_max_age_s_ = ros_params::getInRange(pnh, "torso_pitch_max_age_s", kTorsoPitchMaxAge_s, 0.0, 60.0);
+  torso_pitch_max_age_s_ =
+      ros_params::getInRange(pnh, "torso_pitch_max_age_s", kTorsoPitchMaxAge_s, 0.0, 60.0);
   const ros::Time now = ros::Time::now();
   static_broadcaster_.sendTransform(std::vector<geometry_msgs::TransformStamped>{
       ros_conv::toTransform(camera_.head.tiltCamera(), tilt_frame_, camera_frame_, now),

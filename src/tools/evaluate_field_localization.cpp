@@ -73,7 +73,8 @@ int main(int argc, char** argv) {
   cli.option("camera", &camera_file,
              "the camera file (config/cameras/; relative: from the package)")
       ->required();
-  cli.option("list", &list_file, "CSV image,head_pitch_rad,head_yaw_rad[,x_m,y_m[,torso_pitch_rad]]")
+  cli.option("list", &list_file,
+             "CSV image,head_pitch_rad,head_yaw_rad[,x_m,y_m[,torso_pitch_rad]]")
       ->required();
   int frames = 30;
   cli.option("frames", &frames, config::closed(1, 1000),
@@ -117,9 +118,8 @@ int main(int argc, char** argv) {
                                  ") is " + std::to_string(camera.camera.width_px) + "x" +
                                  std::to_string(camera.camera.height_px));
       const cv::Mat yuv = color::bgrToYuv(bgr);
-      const Eigen::Isometry3d base_to_optical =
-          camera.baseToOptical(item.head_yaw_rad, item.head_pitch_rad,
-                               item.torso_pitch_rad.value_or(std::nan("")));
+      const Eigen::Isometry3d base_to_optical = camera.baseToOptical(
+          item.head_yaw_rad, item.head_pitch_rad, item.torso_pitch_rad.value_or(std::nan("")));
       const auto t0 = Clock::now();
       localization::RbpfLocalizer rbpf(map, camera.camera, priors, cfg);
       rbpf.initUniform();
@@ -159,8 +159,7 @@ int main(int argc, char** argv) {
                     est.spread_m, est.cluster_weight,
                     item.truth_xy_m ? std::to_string(item.truth_xy_m->x()).c_str() : "",
                     item.truth_xy_m ? std::to_string(item.truth_xy_m->y()).c_str() : "", error, ms,
-                    goals, pitch_offset, mirror_evidence, checks, relocalizations,
-                    max_check_score);
+                    goals, pitch_offset, mirror_evidence, checks, relocalizations, max_check_score);
       std::cout << line << std::endl;
       csv << line << "\n";
       cv::imwrite((fs::path(output) / (name + ".png")).string(),

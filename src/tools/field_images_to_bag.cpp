@@ -9,9 +9,9 @@
 //
 // --list: CSV `image,head_pitch_rad,head_yaw_rad[,x_m,y_m[,torso_pitch_rad]]`
 // (io/head_image_list.h; scripts/nao_field_list.py writes one for the NAO development set; the true
-// position, if given, is not written: the list gives no heading). --camera: a camera file (world/robot_camera.h,
-// config/cameras/): the intrinsics for camera_info and the names of the pan and tilt joints. Every
-// image must have the camera's size.
+// position, if given, is not written: the list gives no heading). --camera: a camera file
+// (world/robot_camera.h, config/cameras/): the intrinsics for camera_info and the names of the pan
+// and tilt joints. Every image must have the camera's size.
 // Topics (DESIGN.md): camera/image_raw/compressed (sensor_msgs/CompressedImage: the file's own
 // JPEG or PNG bytes, not re-encoded; replay with the nodes' ~image_transport compressed),
 // camera/camera_info, joint_states (the camera file's pan_joint and tilt_joint), imu (where the

@@ -13,8 +13,9 @@
 //
 // A message without either joint, with a non-finite angle or one outside the file's joint range,
 // or with more positions than names is skipped with a throttled error naming what was wrong, as is
-// an imu message whose orientation is not finite or zero; the node keeps running. Its interface is documented once, in docs/nodes/head_tf_publisher.md; the
-// parameter table there is made from parameters().
+// an imu message whose orientation is not finite or zero; the node keeps running. Its interface is
+// documented once, in docs/nodes/head_tf_publisher.md; the parameter table there is made from
+// parameters().
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Imu.h>

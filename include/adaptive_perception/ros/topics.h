@@ -15,7 +15,7 @@ constexpr const char* kGroundTruthBox = "ground_truth/box";  // PolygonStamped (
 constexpr const char* kTrackedObject = "tracked_object";  // TrackedObject
 constexpr const char* kPlace = "place";  // PlaceRecognition
 constexpr const char* kJointStates = "joint_states";
-constexpr const char* kImu = "imu";  // sensor_msgs/Imu: the torso's orientation (a NAO's inertial unit)
+constexpr const char* kImu = "imu";  // sensor_msgs/Imu: the torso's orientation
 constexpr const char* kLightingState = "lighting/state";  // simulator only
 constexpr const char* kFieldMap = "field_map";
 

@@ -41,7 +41,7 @@ struct HeadChain {
   Eigen::Vector3d pan_to_tilt_m{0.0, 0.0, 0.04};
   Eigen::Vector3d tilt_to_camera_m{0.075, 0.0, 0.02};  // snout camera ahead of the tilt axis
   double camera_pitch_rad = 0.0;  // the camera's fixed pitch in the head (positive = nose down)
-  double min_pan_rad = -1.62, max_pan_rad = 1.62;      // ERS-7: +-93 degrees
+  double min_pan_rad = -1.62, max_pan_rad = 1.62;  // ERS-7: +-93 degrees
   double min_tilt_rad = -0.78, max_tilt_rad = 1.3;
   // The torso's pitch as the robot's inertial unit reads it (about y, positive = leaning forward,
   // as NAOqi's AngleY) when camera_pitch_rad was calibrated. A torso pitch read with an image then
@@ -59,8 +59,8 @@ struct HeadChain {
   /// at the pan axis (the neck), before the pan.
   Eigen::Isometry3d basePan(double pan_rad, double lean_rad = 0.0) const;
   Eigen::Isometry3d panTilt(double tilt_rad) const;  // head_pan_link -> head_tilt_link
-  Eigen::Isometry3d tiltCamera() const;  // head_tilt_link -> camera_link (fixed; its pitch)
-  static Eigen::Isometry3d cameraOptical();          // camera_link -> camera_optical_frame (fixed)
+  Eigen::Isometry3d tiltCamera() const;      // head_tilt_link -> camera_link (fixed; its pitch)
+  static Eigen::Isometry3d cameraOptical();  // camera_link -> camera_optical_frame (fixed)
   /// base_link -> camera_optical_frame.
   Eigen::Isometry3d baseToOptical(double pan_rad, double tilt_rad, double lean_rad = 0.0) const;
   /// The angles are finite and inside the joints' ranges, up to 1e-3 rad over (a joint sensor may

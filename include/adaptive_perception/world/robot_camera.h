@@ -33,9 +33,9 @@ struct RobotCamera {
 
   /// base_link -> camera_optical_frame at these joint angles and this torso pitch from the
   /// inertial unit (NaN: not read, no lean).
-  Eigen::Isometry3d baseToOptical(double pan_rad, double tilt_rad,
-                                  double torso_pitch_rad = std::numeric_limits<double>::quiet_NaN())
-      const {
+  Eigen::Isometry3d baseToOptical(
+      double pan_rad, double tilt_rad,
+      double torso_pitch_rad = std::numeric_limits<double>::quiet_NaN()) const {
     return head.baseToOptical(pan_rad, tilt_rad, head.leanRad(torso_pitch_rad));
   }
 

@@ -36,8 +36,8 @@ double number(const std::string& text, const std::string& where, const std::stri
 }  // namespace
 
 std::vector<HeadImage> readHeadImageList(const std::string& csv_path) {
-  const std::vector<std::string> full = {"image", "head_pitch_rad", "head_yaw_rad",
-                                         "x_m",   "y_m",            "torso_pitch_rad"};
+  const std::vector<std::string> full = {"image", "head_pitch_rad", "head_yaw_rad", "x_m",
+                                         "y_m",   "torso_pitch_rad"};
   const auto joined = [&](std::size_t n) {
     std::string t;
     for (std::size_t i = 0; i < n; ++i) t += (i ? "," : "") + full[i];
@@ -52,8 +52,8 @@ std::vector<HeadImage> readHeadImageList(const std::string& csv_path) {
       const bool known = (c.size() == 3 || c.size() == 5 || c.size() == 6) &&
                          std::equal(c.begin(), c.end(), full.begin());
       if (!known)
-        throw std::runtime_error(where + "expected the header `" + joined(3) + "`, `" +
-                                 joined(5) + "` or `" + joined(6) + "`, got '" + l.text + "'");
+        throw std::runtime_error(where + "expected the header `" + joined(3) + "`, `" + joined(5) +
+                                 "` or `" + joined(6) + "`, got '" + l.text + "'");
       width = c.size();
       continue;
     }

@@ -14,6 +14,9 @@ namespace adaptive_perception::world {
 
 namespace {
 
+// The head chain's offsets are parts of one robot: beyond this, a slip of the file (mm for m).
+constexpr double kMaxOffset_m = 10.0;
+
 std::string at(const std::string& source, const YAML::Node& node) {
   return source + ":" + std::to_string(node.Mark().line + 1) + ": ";
 }
@@ -65,6 +68,9 @@ RobotCamera RobotCamera::parseYaml(const std::string& text, const std::string& s
       } else if (auto n = numbers.find(key); n != numbers.end()) {
         const double v = kv.second.as<double>();
         if (!std::isfinite(v)) throw std::runtime_error(where + "'" + key + "' must be finite");
+        // An angle beyond a full turn, or an offset on a robot beyond kMaxOffset_m, is a slip.
+        if (key.size() > 4 && key.substr(key.size() - 4) == "_rad" && std::abs(v) > 2.0 * M_PI)
+          throw std::runtime_error(where + "'" + key + "' must be within a full turn (rad)");
         *n->second = v;
         if (key.size() == 5 && key.substr(2) == "_px") intrinsics_given = true;
       } else if (auto v = vectors.find(key); v != vectors.end()) {
@@ -72,6 +78,10 @@ RobotCamera RobotCamera::parseYaml(const std::string& text, const std::string& s
         if (xyz.size() != 3 || !std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) ||
             !std::isfinite(xyz[2]))
           throw std::runtime_error(where + "'" + key + "' needs three finite numbers [x, y, z]");
+        for (const double m : xyz)
+          if (std::abs(m) > kMaxOffset_m)
+            throw std::runtime_error(where + "'" + key + "' has an offset beyond " +
+                                     std::to_string(int(kMaxOffset_m)) + " m");
         *v->second = {xyz[0], xyz[1], xyz[2]};
       } else if (auto s = strings.find(key); s != strings.end()) {
         *s->second = kv.second.as<std::string>();

@@ -110,6 +110,12 @@ TEST(RobotCamera, PitchBelowHorizontalIgnoresYawAndRoll) {
 }
 
 TEST(RobotCamera, ErrorsNameTheFileLineAndKey) {
+  EXPECT_NE(errorOf("name: x\ncamera_pitch_rad: 7\n")
+                .find("cam.yaml:2: 'camera_pitch_rad' must be within a full turn"),
+            std::string::npos);
+  EXPECT_NE(errorOf("tilt_to_camera_m: [58.71, 0, 63.64]\n")
+                .find("cam.yaml:1: 'tilt_to_camera_m' has an offset beyond 10 m"),
+            std::string::npos);
   EXPECT_NE(errorOf("torso_pitch_reference_rad: .inf\n")
                 .find("cam.yaml:1: 'torso_pitch_reference_rad' must be finite"),
             std::string::npos);
