@@ -1,5 +1,6 @@
 #include "adaptive_perception/ros/head_tf_publisher_node.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -13,6 +14,7 @@ namespace adaptive_perception {
 namespace {
 constexpr char kDefaultCamera[] = "config/cameras/nao_v6_top.yaml";
 constexpr double kTorsoPitchMaxAge_s = 0.5;
+constexpr bool kLeanFromImu = true;
 }  // namespace
 
 std::vector<config::ParameterDoc> HeadTfNode::parameters() {
@@ -26,10 +28,13 @@ std::vector<config::ParameterDoc> HeadTfNode::parameters() {
       {"camera_frame", "string", ros_topics::kCameraFrame, "", "the lens, x forward"},
       {"optical_frame", "string", ros_topics::kCameraOpticalFrame, "",
        "the camera's optical frame (z forward, x right, y down): the images' frame_id"},
+      {"lean_from_imu", "bool", kLeanFromImu ? "true" : "false", "",
+       "lean the head by the torso's pitch from imu, for a camera file with a "
+       "torso_pitch_reference_rad (the body's lean, which the head's joints do not see)"},
       {"torso_pitch_max_age_s", "double", config::formatReal(kTorsoPitchMaxAge_s), "[0, 60]",
-       "an imu message leans the head (camera files with a torso_pitch_reference_rad) for "
-       "joint_states stamped within this time of it (s); else no lean. An inertial unit "
-       "publishes at 10 Hz or more, and a standing robot's lean changes over seconds"}};
+       "the imu reading stamped nearest a joint_states message leans the head if it is within "
+       "this time of it (s); else no lean. An inertial unit publishes at 10 Hz or more, and a "
+       "standing robot's lean changes over seconds"}};
 }
 
 HeadTfNode::HeadTfNode(ros::NodeHandle nh, ros::NodeHandle pnh)
@@ -49,31 +54,47 @@ HeadTfNode::HeadTfNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       ros_conv::toTransform(world::HeadChain::cameraOptical(), camera_frame_, optical_frame_,
                             now)});
   sub_ = nh.subscribe(ros_topics::kJointStates, 100, &HeadTfNode::callback, this);
-  const bool leans = std::isfinite(camera_.head.torso_pitch_reference_rad);
-  if (leans) imu_sub_ = nh.subscribe(ros_topics::kImu, 100, &HeadTfNode::imuCallback, this);
+  lean_from_imu_ = ros_params::get(pnh, "lean_from_imu", kLeanFromImu) &&
+                   std::isfinite(camera_.head.torso_pitch_reference_rad);
+  if (lean_from_imu_)
+    imu_sub_ = nh.subscribe(ros_topics::kImu, 200, &HeadTfNode::imuCallback, this);
   diagnostics_.add("head chain", this, &HeadTfNode::check);
   ROS_INFO("head_tf_publisher: camera %s (%s): %s -> %s from joint_states %s and %s%s",
            camera_.name.c_str(), camera_file_.c_str(), base_frame_.c_str(), optical_frame_.c_str(),
            camera_.pan_joint.c_str(), camera_.tilt_joint.c_str(),
-           leans ? ", leaned by the torso's pitch from imu"
-                 : " (the camera file has no torso_pitch_reference_rad: imu is not read)");
+           lean_from_imu_ ? ", leaned by the torso's pitch from imu"
+                          : " (imu is not read: ~lean_from_imu off or the camera file has no "
+                            "torso_pitch_reference_rad)");
 }
 
 void HeadTfNode::imuCallback(const sensor_msgs::ImuConstPtr& msg) {
   const auto& o = msg->orientation;
   const Eigen::Quaterniond q(o.w, o.x, o.y, o.z);
-  if (!q.coeffs().allFinite() || q.norm() < 1e-6) {
-    ++imu_skipped_;
+  std::string problem;
+  if (msg->orientation_covariance[0] == -1.0) {
+    problem = "imu gives no orientation (orientation_covariance[0] = -1)";
+  } else if (!q.coeffs().allFinite() || q.norm() < 1e-6) {
     std::ostringstream s;
     s << "imu orientation (" << o.x << ", " << o.y << ", " << o.z << ", " << o.w
       << ") is not a rotation (non-finite or zero)";
-    last_imu_problem_ = s.str();
-    ROS_ERROR_THROTTLE(5.0, "head_tf_publisher: %s; the head is not leaned by it",
-                       last_imu_problem_.c_str());
+    problem = s.str();
+  }
+  if (!problem.empty()) {
+    ++imu_skipped_;
+    last_imu_problem_ = problem;
+    ROS_ERROR_THROTTLE(5.0, "head_tf_publisher: %s; the head is not leaned by it", problem.c_str());
     return;
   }
-  torso_pitch_rad_ = world::pitchBelowHorizontal(q);
-  torso_pitch_stamp_ = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+  const ros::Time stamp = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+  torso_pitch_.emplace_back(stamp, world::pitchBelowHorizontal(q));
+  // Readings more than the age window behind the newest cannot be the nearest to any new
+  // joint_states within it; a reading stamped earlier than the newest (a bag's jump back) clears
+  // the rest.
+  if (torso_pitch_.size() > 1 && stamp < torso_pitch_[torso_pitch_.size() - 2].first)
+    torso_pitch_.erase(torso_pitch_.begin(), torso_pitch_.end() - 1);
+  while (!torso_pitch_.empty() &&
+         (stamp - torso_pitch_.front().first).toSec() > 2.0 * torso_pitch_max_age_s_ + 1.0)
+    torso_pitch_.pop_front();
 }
 
 void HeadTfNode::callback(const sensor_msgs::JointStateConstPtr& msg) {
@@ -110,12 +131,14 @@ void HeadTfNode::callback(const sensor_msgs::JointStateConstPtr& msg) {
   }
   const ros::Time stamp = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
   double lean_rad = 0.0;
-  if (!torso_pitch_stamp_.isZero()) {
-    const double age_s = (stamp - torso_pitch_stamp_).toSec();
-    if (age_s >= -torso_pitch_max_age_s_ && age_s <= torso_pitch_max_age_s_) {
-      lean_rad = camera_.head.leanRad(torso_pitch_rad_);
-      ++leaned_;
-    }
+  const auto nearest =
+      std::min_element(torso_pitch_.begin(), torso_pitch_.end(), [&](const auto& a, const auto& b) {
+        return std::abs((a.first - stamp).toSec()) < std::abs((b.first - stamp).toSec());
+      });
+  if (nearest != torso_pitch_.end() &&
+      std::abs((nearest->first - stamp).toSec()) <= torso_pitch_max_age_s_) {
+    lean_rad = camera_.head.leanRad(nearest->second);
+    ++leaned_;
   }
   broadcaster_.sendTransform(std::vector<geometry_msgs::TransformStamped>{
       ros_conv::toTransform(camera_.head.basePan(pan_rad, lean_rad), base_frame_, pan_frame_,
@@ -133,16 +156,21 @@ void HeadTfNode::check(diagnostic_updater::DiagnosticStatusWrapper& stat) {
   else if (skipped_ > 0)
     stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                  "some joint_states skipped: " + last_problem_);
+  else if (lean_from_imu_ && published_ > 0 && leaned_ == 0)
+    stat.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                 imu_skipped_ > 0 ? "the head is not leaned: " + last_imu_problem_
+                                  : "the head is not leaned: no imu reading near the "
+                                    "joint_states (a bag without imu, or another topic?)");
   else
     stat.summary(diagnostic_msgs::DiagnosticStatus::OK, "publishing the head chain");
   stat.add("camera", camera_.name);
   stat.add("head transforms published", published_);
   stat.add("joint_states skipped", skipped_);
-  if (std::isfinite(camera_.head.torso_pitch_reference_rad)) {
+  if (lean_from_imu_) {
     stat.add("head transforms leaned by imu", leaned_);
     stat.add("imu messages skipped", imu_skipped_);
     if (imu_skipped_ > 0) stat.add("last imu problem", last_imu_problem_);
-    if (!torso_pitch_stamp_.isZero()) stat.add("torso pitch (rad)", torso_pitch_rad_);
+    if (!torso_pitch_.empty()) stat.add("torso pitch (rad)", torso_pitch_.back().second);
   }
 }
 

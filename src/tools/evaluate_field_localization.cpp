@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
                                  ") is " + std::to_string(camera.camera.width_px) + "x" +
                                  std::to_string(camera.camera.height_px));
       const cv::Mat yuv = color::bgrToYuv(bgr);
-      const Eigen::Isometry3d base_to_optical = camera.baseToOptical(
+      const Eigen::Isometry3d base_to_optical = camera.baseToOpticalAtTorsoPitch(
           item.head_yaw_rad, item.head_pitch_rad, item.torso_pitch_rad.value_or(std::nan("")));
       const auto t0 = Clock::now();
       localization::RbpfLocalizer rbpf(map, camera.camera, priors, cfg);

@@ -139,12 +139,7 @@ int main(int argc, char** argv) {
         odom.child_frame_id = T::kBaseFrame;
         odom.pose.pose.orientation.w = 1.0;
         bag.write(slash(T::kOdom), stamp, odom);
-        sensor_msgs::JointState joints;
-        joints.header.stamp = stamp;
-        joints.header.seq = seq;
-        joints.name = {camera.pan_joint, camera.tilt_joint};
-        joints.position = {list[i].head_yaw_rad, list[i].head_pitch_rad};
-        bag.write(slash(T::kJointStates), stamp, joints);
+        // The torso first: head_tf_publisher leans each joint_states by the reading nearest it.
         if (list[i].torso_pitch_rad) {
           sensor_msgs::Imu imu;  // the torso's orientation only: pitched, level otherwise
           imu.header.stamp = stamp;
@@ -158,6 +153,12 @@ int main(int argc, char** argv) {
           imu.linear_acceleration_covariance[0] = -1.0;
           bag.write(slash(T::kImu), stamp, imu);
         }
+        sensor_msgs::JointState joints;
+        joints.header.stamp = stamp;
+        joints.header.seq = seq;
+        joints.name = {camera.pan_joint, camera.tilt_joint};
+        joints.position = {list[i].head_yaw_rad, list[i].head_pitch_rad};
+        bag.write(slash(T::kJointStates), stamp, joints);
         std_msgs::Header h;
         h.stamp = stamp;
         h.seq = seq;

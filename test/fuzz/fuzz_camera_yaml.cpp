@@ -17,7 +17,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   });
   if (accepted)
     for (const double torso : {-0.5, 0.0, 0.5})
-      if (!c.baseToOptical(c.head.min_pan_rad, c.head.max_tilt_rad, torso).matrix().allFinite())
+      if (!c.baseToOpticalAtTorsoPitch(c.head.min_pan_rad, c.head.max_tilt_rad, torso)
+               .matrix()
+               .allFinite())
         std::abort();  // an accepted file that places the camera nowhere
   return 0;
 }

@@ -102,8 +102,9 @@ TEST(HeadTfFromJointStates, ChainMatchesTheCameraFileAndBadMessagesAreSkipped) {
 }
 
 // The torso's pitch from imu leans the head by its difference from the camera file's reference
-// (HeadChain::leanRad()); an orientation that is no rotation is skipped and leaves the last good
-// one in place; a reading older than ~torso_pitch_max_age_s (0.5 s) leans nothing.
+// (HeadChain::leanRad()); an orientation that is no rotation, or marked as not given, is skipped
+// and leaves the last good one in place; a reading further than ~torso_pitch_max_age_s (0.5 s)
+// from the joint_states leans nothing.
 TEST(HeadTfFromJointStates, ImuLeansTheHeadAndBadImuIsSkipped) {
   Fixture f;
   ros::Publisher imu_pub = f.nh.advertise<sensor_msgs::Imu>("imu", 10);
@@ -115,13 +116,22 @@ TEST(HeadTfFromJointStates, ImuLeansTheHeadAndBadImuIsSkipped) {
          ros::WallTime::now() < end)
     ros::WallDuration(0.05).sleep();
   ASSERT_GT(imu_pub.getNumSubscribers(), 0u) << "head_tf_publisher did not subscribe to imu";
-  const auto sendImu = [&](double t, const Eigen::Quaterniond& q) {
+  // This fixture's listener hears /tf only once connected (see the first test): warm up.
+  f.t = 150.0;
+  bool heard = false;
+  for (int attempt = 0; attempt < 40 && !heard; ++attempt) {
+    Eigen::Isometry3d warm;
+    heard = f.lookup(f.send({"HeadYaw", "HeadPitch"}, {0.0, 0.0}), 0.5, &warm);
+  }
+  ASSERT_TRUE(heard) << "no transform from head_tf_publisher within 20 s";
+  const auto sendImu = [&](double t, const Eigen::Quaterniond& q, bool given = true) {
     sensor_msgs::Imu imu;
     imu.header.stamp = ros::Time(t);
     imu.orientation.w = q.w(), imu.orientation.x = q.x(), imu.orientation.y = q.y(),
     imu.orientation.z = q.z();
+    if (!given) imu.orientation_covariance[0] = -1.0;  // sensor_msgs/Imu: no orientation
     imu_pub.publish(imu);
-    ros::WallDuration(0.3).sleep();  // heard before the joint_states that follow
+    ros::WallDuration(0.5).sleep();  // heard before the joint_states that follow
   };
   const auto pitched = [](double pitch, double yaw) {  // the torso turned as it stands
     return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
@@ -133,17 +143,20 @@ TEST(HeadTfFromJointStates, ImuLeansTheHeadAndBadImuIsSkipped) {
   const ros::Time leaned = f.send({"HeadYaw", "HeadPitch"}, {0.1, -0.003});
   Eigen::Isometry3d got;
   ASSERT_TRUE(f.lookup(leaned, 10.0, &got)) << "no transform for the leaned head";
-  EXPECT_TRUE(got.isApprox(nao.baseToOptical(0.1, -0.003, -0.142), 1e-6)) << got.matrix();
+  EXPECT_TRUE(got.isApprox(nao.baseToOpticalAtTorsoPitch(0.1, -0.003, -0.142), 1e-6))
+      << got.matrix();
   EXPECT_GT(got.linear().col(2).z(), nao.baseToOptical(0.1, -0.003).linear().col(2).z() + 0.05)
       << "leaning back must raise the optical axis";
 
-  // A good reading, then one that is no rotation: the good one stays.
+  // A good reading, then one that is no rotation and one marked as no orientation: the good one
+  // stays.
   f.t = 299.1;  // 300.1: 0.1 s after the good reading
   sendImu(300.0, pitched(0.008, -1.8));
   sendImu(300.05, Eigen::Quaterniond(0.0, 0.0, 0.0, 0.0));
+  sendImu(300.08, pitched(0.3, 0.0), false);
   const ros::Time after_bad = f.send({"HeadYaw", "HeadPitch"}, {0.0, -0.13});
   ASSERT_TRUE(f.lookup(after_bad, 10.0, &got)) << "the node stopped after a bad imu message";
-  EXPECT_TRUE(got.isApprox(nao.baseToOptical(0.0, -0.13, 0.008), 1e-6)) << got.matrix();
+  EXPECT_TRUE(got.isApprox(nao.baseToOpticalAtTorsoPitch(0.0, -0.13, 0.008), 1e-6)) << got.matrix();
 
   // 100 s after the last reading: no lean.
   f.t = 399.0;

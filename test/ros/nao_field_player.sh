@@ -13,7 +13,7 @@ trap 'rm -rf "$OUT"' EXIT
 PKG="$(rospack find adaptive_perception)"
 python3 "$PKG/scripts/nao_field_list.py" "$SESSION" "$OUT/all.csv" top
 columns=1-6
-[ "$IMU" = true ] || columns=1-5
+[ "${IMU,,}" = true ] || columns=1-5
 { head -n 1 "$OUT/all.csv"; grep "/$POINT/" "$OUT/all.csv"; } | cut -d, -f"$columns" > "$OUT/point.csv"
 rosrun adaptive_perception field_images_to_bag --list "$OUT/point.csv" \
   --camera config/cameras/nao_v6_top.yaml --seconds_per_image "$SECONDS_PER_IMAGE" \

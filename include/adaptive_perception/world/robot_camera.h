@@ -13,8 +13,8 @@
 //   tilt_to_camera_m: [x, y, z]    tilt axis -> lens
 //   camera_pitch_rad: 0.0          the lens's fixed pitch in the head (positive = nose down)
 //   min_pan_rad, max_pan_rad, min_tilt_rad, max_tilt_rad: the joints' ranges
-//   torso_pitch_reference_rad: 0.0  the inertial unit's torso pitch at the calibration (optional;
-//                                   HeadChain::leanRad(): a torso pitch read later leans the head)
+//   torso_pitch_reference_rad: -0.08  the inertial unit's torso pitch at the calibration (optional,
+//                    default none: no lean; HeadChain::leanRad(): a torso pitch read later leans)
 // Frames and signs are camera_model.h's (pan positive = left, tilt positive = nose down), which are
 // the NAO's HeadYaw and HeadPitch. Errors name the file and line: a syntax error, an unknown key,
 // a value of the wrong kind, a vector without three numbers, a camera that fails validate().
@@ -31,11 +31,14 @@ struct RobotCamera {
   std::string pan_joint = "head_pan_joint";  // joint_states names of the head's joints
   std::string tilt_joint = "head_tilt_joint";
 
-  /// base_link -> camera_optical_frame at these joint angles and this torso pitch from the
-  /// inertial unit (NaN: not read, no lean).
-  Eigen::Isometry3d baseToOptical(
-      double pan_rad, double tilt_rad,
-      double torso_pitch_rad = std::numeric_limits<double>::quiet_NaN()) const {
+  /// base_link -> camera_optical_frame at these joint angles (the head chain alone).
+  Eigen::Isometry3d baseToOptical(double pan_rad, double tilt_rad) const {
+    return head.baseToOptical(pan_rad, tilt_rad);
+  }
+  /// The same, the head leaned by this torso pitch from the inertial unit (HeadChain::leanRad():
+  /// its difference from torso_pitch_reference_rad; NaN, or no reference: no lean).
+  Eigen::Isometry3d baseToOpticalAtTorsoPitch(double pan_rad, double tilt_rad,
+                                              double torso_pitch_rad) const {
     return head.baseToOptical(pan_rad, tilt_rad, head.leanRad(torso_pitch_rad));
   }
 

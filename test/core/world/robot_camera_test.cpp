@@ -75,22 +75,24 @@ TEST(RobotCamera, TorsoPitchLeansTheHeadAboutTheNeckByHand) {
   // 0.35 m up, and the optical axis points down by the lean plus the head's pitch.
   const double lean = 0.1, pitch = 0.05;
   EXPECT_NEAR(nao.head.leanRad(0.02), lean, 1e-15);
-  const Eigen::Isometry3d t = nao.baseToOptical(0.0, pitch, 0.02);
+  const Eigen::Isometry3d t = nao.baseToOpticalAtTorsoPitch(0.0, pitch, 0.02);
   const double a = lean + pitch;
   EXPECT_NEAR(t.translation().x(), 0.05 * std::cos(a) + 0.06 * std::sin(a), 1e-12);
   EXPECT_NEAR(t.translation().z(), 0.35 + 0.06 * std::cos(a) - 0.05 * std::sin(a), 1e-12);
   EXPECT_NEAR(t.linear().col(2).x(), std::cos(a), 1e-12);
   EXPECT_NEAR(t.linear().col(2).z(), -std::sin(a), 1e-12);
   // Looking left (yaw 90 degrees), the forward lean still tilts the view down, not sideways.
-  const Eigen::Isometry3d left = nao.baseToOptical(M_PI / 2, 0.0, 0.02);
+  const Eigen::Isometry3d left = nao.baseToOpticalAtTorsoPitch(M_PI / 2, 0.0, 0.02);
   EXPECT_NEAR(left.linear().col(2).y(), 1.0, 1e-12);
   EXPECT_NEAR(left.linear().col(0).z(), -std::sin(lean), 1e-12);  // image right (forward) is lower
   // No reading, or no reference: no lean.
-  EXPECT_TRUE(nao.baseToOptical(0.3, pitch).isApprox(nao.head.baseToOptical(0.3, pitch), 1e-15));
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(nao.baseToOpticalAtTorsoPitch(0.3, pitch, none)
+                  .isApprox(nao.head.baseToOptical(0.3, pitch), 1e-15));
   nao.head.torso_pitch_reference_rad = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(nao.head.leanRad(0.02), 0.0);
-  EXPECT_TRUE(
-      nao.baseToOptical(0.3, pitch, 0.02).isApprox(nao.head.baseToOptical(0.3, pitch), 1e-15));
+  EXPECT_TRUE(nao.baseToOpticalAtTorsoPitch(0.3, pitch, 0.02)
+                  .isApprox(nao.head.baseToOptical(0.3, pitch), 1e-15));
 }
 
 TEST(RobotCamera, PitchBelowHorizontalIgnoresYawAndRoll) {
