@@ -35,6 +35,17 @@ struct Fixture {
     pub.publish(js);
     return js.header.stamp;
   }
+  // The node subscribing is not the listener hearing /tf: a transform the node publishes before
+  // the listener's connection is up is lost. Resends a warm-up message (stamps from `from_t` + 1,
+  // far from the test's) until one arrives; false if none did within 20 s.
+  bool warmUp(double from_t) {
+    t = from_t;
+    for (int attempt = 0; attempt < 40; ++attempt) {
+      Eigen::Isometry3d warm;
+      if (lookup(send({"HeadYaw", "HeadPitch"}, {0.0, 0.0}), 0.5, &warm)) return true;
+    }
+    return false;
+  }
   // The transform at `stamp`, waiting up to `wait_s` for it (false: none came).
   bool lookup(const ros::Time& stamp, double wait_s, Eigen::Isometry3d* out) {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(wait_s);
@@ -61,16 +72,7 @@ TEST(HeadTfFromJointStates, ChainMatchesTheCameraFileAndBadMessagesAreSkipped) {
   while (f.pub.getNumSubscribers() == 0 && ros::WallTime::now() < end)
     ros::WallDuration(0.05).sleep();
   ASSERT_GT(f.pub.getNumSubscribers(), 0u) << "head_tf_publisher did not subscribe to joint_states";
-  // The node subscribing is not the listener hearing /tf: a transform the node publishes before
-  // the listener's connection is up is lost. Resend a warm-up message (stamps 1, 2, ..., far
-  // before the test's) until one arrives, then start.
-  f.t = 0.0;
-  bool heard = false;
-  for (int attempt = 0; attempt < 40 && !heard; ++attempt) {
-    Eigen::Isometry3d warm;
-    heard = f.lookup(f.send({"HeadYaw", "HeadPitch"}, {0.0, 0.0}), 0.5, &warm);
-  }
-  ASSERT_TRUE(heard) << "no transform from head_tf_publisher within 20 s";
+  ASSERT_TRUE(f.warmUp(0.0)) << "no transform from head_tf_publisher within 20 s";
   f.t = 100.0;
 
   // A NAO's message: the head among other joints.
@@ -116,14 +118,7 @@ TEST(HeadTfFromJointStates, ImuLeansTheHeadAndBadImuIsSkipped) {
          ros::WallTime::now() < end)
     ros::WallDuration(0.05).sleep();
   ASSERT_GT(imu_pub.getNumSubscribers(), 0u) << "head_tf_publisher did not subscribe to imu";
-  // This fixture's listener hears /tf only once connected (see the first test): warm up.
-  f.t = 150.0;
-  bool heard = false;
-  for (int attempt = 0; attempt < 40 && !heard; ++attempt) {
-    Eigen::Isometry3d warm;
-    heard = f.lookup(f.send({"HeadYaw", "HeadPitch"}, {0.0, 0.0}), 0.5, &warm);
-  }
-  ASSERT_TRUE(heard) << "no transform from head_tf_publisher within 20 s";
+  ASSERT_TRUE(f.warmUp(150.0)) << "no transform from head_tf_publisher within 20 s";
   const auto sendImu = [&](double t, const Eigen::Quaterniond& q, bool given = true) {
     sensor_msgs::Imu imu;
     imu.header.stamp = ros::Time(t);
