@@ -5,9 +5,10 @@ all images, square pixels, principal point at the image centre) and, per image, 
 pan axis above the ground (base_to_pan_m z), the camera's pitch beyond the recorded head pitch, and
 the robot's heading (not known from the motion capture). The lens's offset from the pitch axis is the
 published one (--lens_x_m, --lens_z_m). Where the marks give each image's torso pitch (the inertial
-unit's), each fit also prints torso_pitch_reference_rad: their mean, at which camera_pitch_rad holds. Prints each image's fit and residuals, the fit over all
-images (the numbers config/cameras/nao_v6_top.yaml holds) and a leave-one-image-out fit for each
-image (the camera to evaluate that image with, calibrated without it).
+unit's), each fit also prints torso_pitch_reference_rad: their mean, at which camera_pitch_rad holds.
+Prints each image's fit and residuals, the fit over all images (the numbers
+config/cameras/nao_v6_top.yaml holds) and a leave-one-image-out fit for each image (the camera to
+evaluate that image with, calibrated without it).
 
 usage: calibrate_head_camera.py MARKS.csv [--width 640 --height 480 --lens_x_m 0.05871 --lens_z_m 0.06364]
 """
