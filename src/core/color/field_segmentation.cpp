@@ -291,6 +291,25 @@ FieldSegmentation segmentFieldYuv(const cv::Mat& yuv, const FieldSegmentationCon
       return o;
     };
     if (half > 0) b = slide(slide(b, true), false);
+    // At the image's sides the window is cut off: a peak against a side survives the closing when
+    // it is wider than half the window (the dark interior of a backlit hall at an image's edge,
+    // taken for carpet up to the image's top). Its outer flank is out of view, so its width cannot
+    // tell it from a strip of real field between a player and the side; its height can. Within
+    // one window of a side, the field's edge rises above the highest row of the boundary between
+    // the sides by less than the window's width unless it is steeper than 45 degrees there; a
+    // strip that rises further is held down to that row.
+    const int side = 2 * half;
+    if (half > 0 && cols > 2 * side) {
+      int top = rows;
+      for (int c = side; c < cols - side; ++c) top = std::min(top, b[c]);
+      auto hold = [&](int from, int to) {
+        const int peak = *std::min_element(b.begin() + from, b.begin() + to);
+        if (top < rows && top - peak > side)
+          for (int c = from; c < to; ++c) b[c] = std::max(b[c], top);
+      };
+      hold(0, side);
+      hold(cols - side, cols);
+    }
   }
   std::vector<int> boundary = b;
   if (cfg.boundary_convex) {

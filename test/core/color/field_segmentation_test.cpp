@@ -161,6 +161,33 @@ TEST(FieldSegmentation, TheRobotsOwnArmAtTheBottomDoesNotHideTheCarpetAboveIt) {
   EXPECT_EQ(off, 0);
 }
 
+
+// Against a side the narrow-peak window is cut off. Both strips below are 24 px wide: narrower
+// than the window (32 px of 320), wider than its half, so the closing alone keeps either.
+TEST(FieldSegmentation, ACarpetColouredStripUpTheImagesSideIsNotField) {
+  // A backlit hall's dark interior at the image's left edge, of the carpet's colour from the
+  // image's top down to the field: the boundary stays at the field's edge in every column (the
+  // hull drawn to the strip's top would run diagonally across half the image).
+  Scene s = drawScene();
+  s.bgr(cv::Rect(0, 0, 24, kBoundary)).setTo(cv::Scalar(45, 130, 55));
+  const auto seg = ap::color::segmentField(s.bgr, {});
+  int off = 0;
+  for (int c = 0; c < kW; ++c)
+    if (std::abs(seg.boundary_row.at<int>(0, c) - kBoundary) > 2) ++off;
+  EXPECT_EQ(off, 0);
+}
+
+TEST(FieldSegmentation, AStripOfFieldBetweenAPlayerAndTheSideStaysField) {
+  // A dark-clad player (legs down to row 200) stands 24 px from the image's right edge: the field
+  // between the player and the side is at the field's height, and stays field.
+  Scene s = drawScene();
+  s.bgr(cv::Rect(kW - 24 - 30, 40, 30, 160)).setTo(cv::Scalar(90, 40, 30));
+  const auto seg = ap::color::segmentField(s.bgr, {});
+  int off = 0;
+  for (int c = kW - 24; c < kW; ++c)
+    if (std::abs(seg.boundary_row.at<int>(0, c) - kBoundary) > 2) ++off;
+  EXPECT_EQ(off, 0);
+}
 TEST(FieldSegmentation, AnImageWithoutGreenHasNoField) {
   cv::Mat grey(120, 160, CV_8UC3, cv::Scalar(120, 120, 120));
   cv::rectangle(grey, cv::Rect(0, 60, 160, 60), cv::Scalar(40, 60, 200), cv::FILLED);  // red floor
