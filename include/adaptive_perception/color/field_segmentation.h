@@ -24,10 +24,10 @@
 //      step between neighbouring columns; then peaks narrower than boundary_min_width_share
 //      removed (something field-coloured above the field: grass seen through a goal's net) and,
 //      within that width of each side, where a peak's outer flank is out of view, a strip rising
-//      above the boundary's highest row between the sides by more than that width (steeper than
-//      45 degrees) held down to that row; then the upper convex hull of the rows, since anything
-//      standing on the field can only hide the boundary, never raise it, and the field seen from
-//      inside it is convex in the image.
+//      above the boundary everywhere else (the other side's strip included) by more than that
+//      width, so more steeply than 45 degrees, held down to the highest row there; then the upper
+//      convex hull of the rows, since anything standing on the field can only hide the boundary,
+//      never raise it, and the field seen from inside it is convex in the image.
 //   4. Lines: inside the field, pixels paler than the carpet (chroma over luma) that are thin and
 //      bright (a white top-hat of the smoothed luma with a window wider than a line, at least
 //      line_contrast_sigma carpet standard deviations), with few objects (darker than the carpet

@@ -294,21 +294,23 @@ FieldSegmentation segmentFieldYuv(const cv::Mat& yuv, const FieldSegmentationCon
     // At the image's sides the window is cut off: a peak against a side survives the closing when
     // it is wider than half the window (the dark interior of a backlit hall at an image's edge,
     // taken for carpet up to the image's top). Its outer flank is out of view, so its width cannot
-    // tell it from a strip of real field between a player and the side; its height can. Within
-    // one window of a side, the field's edge rises above the highest row of the boundary between
-    // the sides by less than the window's width unless it is steeper than 45 degrees there; a
-    // strip that rises further is held down to that row.
+    // tell it from a strip of real field between a player and the side; its height can. A strip
+    // within one window of a side that rises above the boundary everywhere else (the other side's
+    // strip included: a robot near the camera may hide every column between) by more than the
+    // window's width, so more steeply than 45 degrees, is held down to the highest row there.
     const int side = 2 * half;
     if (half > 0 && cols > 2 * side) {
-      int top = rows;
-      for (int c = side; c < cols - side; ++c) top = std::min(top, b[c]);
-      auto hold = [&](int from, int to) {
-        const int peak = *std::min_element(b.begin() + from, b.begin() + to);
+      auto highest = [&](int from, int to) {
+        return from < to ? *std::min_element(b.begin() + from, b.begin() + to) : rows;
+      };
+      const int left_peak = highest(0, side), right_peak = highest(cols - side, cols);
+      const int left_top = highest(side, cols), right_top = highest(0, cols - side);
+      auto hold = [&](int from, int to, int peak, int top) {
         if (top < rows && top - peak > side)
           for (int c = from; c < to; ++c) b[c] = std::max(b[c], top);
       };
-      hold(0, side);
-      hold(cols - side, cols);
+      hold(0, side, left_peak, left_top);
+      hold(cols - side, cols, right_peak, right_top);
     }
   }
   std::vector<int> boundary = b;

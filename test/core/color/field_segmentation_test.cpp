@@ -162,32 +162,52 @@ TEST(FieldSegmentation, TheRobotsOwnArmAtTheBottomDoesNotHideTheCarpetAboveIt) {
 }
 
 
-// Against a side the narrow-peak window is cut off. Both strips below are 24 px wide: narrower
-// than the window (32 px of 320), wider than its half, so the closing alone keeps either.
+// Against a side the narrow-peak window (33 px of 320) is cut off. The strips below are 24 px
+// wide: narrower than the window, wider than its half, so the closing alone keeps every one.
+int columnsOff(const ap::color::FieldSegmentation& seg, int from, int to, int row) {
+  int off = 0;
+  for (int c = from; c < to; ++c)
+    if (std::abs(seg.boundary_row.at<int>(0, c) - row) > 2) ++off;
+  return off;
+}
+
 TEST(FieldSegmentation, ACarpetColouredStripUpTheImagesSideIsNotField) {
   // A backlit hall's dark interior at the image's left edge, of the carpet's colour from the
   // image's top down to the field: the boundary stays at the field's edge in every column (the
-  // hull drawn to the strip's top would run diagonally across half the image).
+  // hull drawn to the strip's top would run diagonally across the image).
   Scene s = drawScene();
   s.bgr(cv::Rect(0, 0, 24, kBoundary)).setTo(cv::Scalar(45, 130, 55));
-  const auto seg = ap::color::segmentField(s.bgr, {});
-  int off = 0;
-  for (int c = 0; c < kW; ++c)
-    if (std::abs(seg.boundary_row.at<int>(0, c) - kBoundary) > 2) ++off;
-  EXPECT_EQ(off, 0);
+  EXPECT_EQ(columnsOff(ap::color::segmentField(s.bgr, {}), 0, kW, kBoundary), 0);
+}
+
+TEST(FieldSegmentation, AStripRisingMoreSteeplyThan45DegreesAtASideIsHeldDown) {
+  // 40 rows above the field in 24 columns: more than the window's 32 rows.
+  Scene s = drawScene();
+  s.bgr(cv::Rect(0, kBoundary - 40, 24, 40)).setTo(cv::Scalar(45, 130, 55));
+  EXPECT_EQ(columnsOff(ap::color::segmentField(s.bgr, {}), 0, kW, kBoundary), 0);
 }
 
 TEST(FieldSegmentation, AStripOfFieldBetweenAPlayerAndTheSideStaysField) {
-  // A dark-clad player (legs down to row 200) stands 24 px from the image's right edge: the field
-  // between the player and the side is at the field's height, and stays field.
+  // A dark-clad player (legs down to row 200) stands 24 px from the image's right edge, and the
+  // field's edge beyond the player stands 10 rows higher than anywhere else in view (it rises
+  // towards the right): less steep than 45 degrees, so the strip stays field at its height.
   Scene s = drawScene();
   s.bgr(cv::Rect(kW - 24 - 30, 40, 30, 160)).setTo(cv::Scalar(90, 40, 30));
-  const auto seg = ap::color::segmentField(s.bgr, {});
-  int off = 0;
-  for (int c = kW - 24; c < kW; ++c)
-    if (std::abs(seg.boundary_row.at<int>(0, c) - kBoundary) > 2) ++off;
-  EXPECT_EQ(off, 0);
+  s.bgr(cv::Rect(kW - 24, kBoundary - 10, 24, 10)).setTo(cv::Scalar(45, 130, 55));
+  EXPECT_EQ(columnsOff(ap::color::segmentField(s.bgr, {}), kW - 24, kW, kBoundary - 10), 0);
 }
+
+TEST(FieldSegmentation, ARobotNearTheCameraHidingTheMiddleDoesNotHoldTheSidesDown) {
+  // A dark robot close to the camera covers every column but the outer 32 on each side, from
+  // row 20 down to row 200: the field's edge is seen only in the two side strips, and both stay
+  // at it (the hull bridges the robot there).
+  Scene s = drawScene();
+  s.bgr(cv::Rect(32, 20, kW - 64, 180)).setTo(cv::Scalar(90, 40, 30));
+  const auto seg = ap::color::segmentField(s.bgr, {});
+  EXPECT_EQ(columnsOff(seg, 0, 32, kBoundary), 0);
+  EXPECT_EQ(columnsOff(seg, kW - 32, kW, kBoundary), 0);
+}
+
 TEST(FieldSegmentation, AnImageWithoutGreenHasNoField) {
   cv::Mat grey(120, 160, CV_8UC3, cv::Scalar(120, 120, 120));
   cv::rectangle(grey, cv::Rect(0, 60, 160, 60), cv::Scalar(40, 60, 200), cv::FILLED);  // red floor
