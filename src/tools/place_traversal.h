@@ -45,11 +45,13 @@
 namespace adaptive_perception::tools {
 
 namespace traversal_detail {
+inline std::runtime_error unreadable(const std::string& path, const std::string& which) {
+  return std::runtime_error(which + " image '" + path +
+                            "' cannot be read (missing or not an image)");
+}
 inline cv::Mat readImage(const std::string& path, const std::string& which) {
   cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
-  if (img.empty())
-    throw std::runtime_error(which + " image '" + path +
-                             "' cannot be read (missing or not an image)");
+  if (img.empty()) throw unreadable(path, which);
   return img;
 }
 // Every cue of one image: the whole-image descriptors and the SIFT descriptors of the words.
@@ -244,6 +246,25 @@ inline int runTraversalEvaluation(CommandLine& cli, TraversalOptions opts,
     const std::vector<std::string> listed =
         ref_path.empty() ? std::vector<std::string>() : io::readTraversal(ref_path);
     const std::vector<std::string> query_files = io::readTraversal(query_path);
+    // What can be checked without decoding is checked before the references are described (the
+    // long part): a missing file or a malformed ground-truth line is named at once.
+    for (const std::string& f : listed)
+      if (!fs::is_regular_file(f)) throw traversal_detail::unreadable(f, "reference");
+    for (const std::string& f : query_files)
+      if (!fs::is_regular_file(f)) throw traversal_detail::unreadable(f, "query");
+    const std::vector<io::FrameCorrespondence> correspondences =
+        gt_path.empty() ? std::vector<io::FrameCorrespondence>()
+                        : io::readFrameCorrespondences(gt_path);
+    const auto check_range = [&](size_t n_refs) {
+      for (const io::FrameCorrespondence& c : correspondences)
+        if (c.query >= static_cast<int>(query_files.size()) ||
+            c.reference >= static_cast<int>(n_refs))
+          throw std::runtime_error(gt_path + ": query " + std::to_string(c.query + 1) +
+                                   " / reference " + std::to_string(c.reference + 1) +
+                                   " beyond the traversals (" + std::to_string(query_files.size()) +
+                                   " queries, " + std::to_string(n_refs) + " references)");
+    };
+    if (!stored) check_range(listed.size());  // a described traversal has one reference a file
     const auto t_ref = std::chrono::steady_clock::now();
     const places::ReferenceTraversal refs =
         stored ? traversal_detail::loadReferences(db_path, listed, cfg.descriptor)
@@ -259,15 +280,8 @@ inline int runTraversalEvaluation(CommandLine& cli, TraversalOptions opts,
     }
     if (!gt_path.empty()) {
       for (auto& t : truth) t.reference = -1;
-      for (const io::FrameCorrespondence& c : io::readFrameCorrespondences(gt_path)) {
-        if (c.query >= static_cast<int>(query_files.size()) ||
-            c.reference >= static_cast<int>(n_refs))
-          throw std::runtime_error(gt_path + ": query " + std::to_string(c.query + 1) +
-                                   " / reference " + std::to_string(c.reference + 1) +
-                                   " beyond the traversals (" + std::to_string(query_files.size()) +
-                                   " queries, " + std::to_string(n_refs) + " references)");
-        truth[c.query] = c;
-      }
+      check_range(n_refs);
+      for (const io::FrameCorrespondence& c : correspondences) truth[c.query] = c;
     }
     long without_truth = 0;
     for (const auto& t : truth) without_truth += t.reference < 0;
