@@ -86,10 +86,20 @@ class IndoorRenderer {
 
  private:
   struct Hit;
+  // One lighting and the colours of its sources (world::colorTemperatureRgb: Planck's law, the
+  // costliest part of a pixel when evaluated per pixel), made once per image.
+  struct Sources {
+    const IndoorLighting& lighting;
+    Eigen::Vector3d sky, sun, street;
+    std::vector<Eigen::Vector3d> lamp;  // per place
+  };
+  Sources sources(const IndoorLighting& l) const;
   bool castRay(const Eigen::Vector3d& o, const Eigen::Vector3d& d, Hit* hit) const;
+  Eigen::Vector3d radiance(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                           const Sources& src) const;
   Eigen::Vector3d irradiance(const Eigen::Vector3d& p, const Eigen::Vector3d& n, int place,
-                             double lamp_factor, const IndoorLighting& l) const;
-  Eigen::Vector3d skyRadiance(const Eigen::Vector3d& d, const IndoorLighting& l) const;
+                             double lamp_factor, const Sources& src) const;
+  Eigen::Vector3d skyRadiance(const Eigen::Vector3d& d, const Sources& src) const;
   Eigen::Vector3d wallAlbedo(int wall, int side_place, double s_m, double z_m) const;
   Eigen::Vector3d floorAlbedo(int place, double x_m, double y_m) const;
 

@@ -289,12 +289,21 @@ bool IndoorRenderer::sunVisible(const Eigen::Vector3d& p, const IndoorLighting& 
   return true;
 }
 
-Eigen::Vector3d IndoorRenderer::skyRadiance(const Eigen::Vector3d& d,
-                                            const IndoorLighting& l) const {
+IndoorRenderer::Sources IndoorRenderer::sources(const IndoorLighting& l) const {
   using world::colorTemperatureRgb;
   const double wp = camera_.sensor.white_point_k;
+  Sources src{l, colorTemperatureRgb(l.sky_temperature_k, wp),
+              colorTemperatureRgb(l.sun_temperature_k, wp), colorTemperatureRgb(2100.0, wp), {}};
+  for (const auto& place : world_.places)
+    src.lamp.push_back(
+        colorTemperatureRgb(place.style.lamp_color_temperature_k + l.lamp_temperature_shift_k, wp));
+  return src;
+}
+
+Eigen::Vector3d IndoorRenderer::skyRadiance(const Eigen::Vector3d& d, const Sources& src) const {
+  const IndoorLighting& l = src.lighting;
   if (l.kind == IndoorLightingKind::kNight) return {0.004, 0.005, 0.012};
-  const Eigen::Vector3d sky = colorTemperatureRgb(l.sky_temperature_k, wp);
+  const Eigen::Vector3d& sky = src.sky;
   if (d.z() < 0.0) {  // below the horizon: distant trees and lawns
     return l.daylight * 0.25 * Eigen::Vector3d(0.18, 0.28, 0.12).cwiseProduct(sky) *
            (1.0 + (l.kind == IndoorLightingKind::kSunny ? 1.5 : 0.0));
@@ -309,39 +318,41 @@ Eigen::Vector3d IndoorRenderer::skyRadiance(const Eigen::Vector3d& d,
 
 Eigen::Vector3d IndoorRenderer::irradiance(const Eigen::Vector3d& p, const Eigen::Vector3d& n,
                                            int place, double lamp_factor,
-                                           const IndoorLighting& l) const {
-  using world::colorTemperatureRgb;
-  const double wp = camera_.sensor.white_point_k;
+                                           const Sources& src) const {
+  const IndoorLighting& l = src.lighting;
   Eigen::Vector3d e = Eigen::Vector3d::Zero();
   const bool outdoor = place < 0 || world_.places[place].outdoor;
   if (!outdoor) {
     const PlaceStyle& s = world_.places[place].style;
-    e += lamp_factor * s.lamp_intensity * l.lamp_scale *
-         colorTemperatureRgb(s.lamp_color_temperature_k + l.lamp_temperature_shift_k, wp);
-    e += l.daylight * window_light_[place] * colorTemperatureRgb(l.sky_temperature_k, wp);
+    e += lamp_factor * s.lamp_intensity * l.lamp_scale * src.lamp[place];
+    e += l.daylight * window_light_[place] * src.sky;
   } else {
-    e += l.street_light * colorTemperatureRgb(2100.0, wp);
-    e += l.daylight * 1.8 * (0.6 + 0.4 * std::max(0.0, n.z())) *
-         colorTemperatureRgb(l.sky_temperature_k, wp);
+    e += l.street_light * src.street;
+    e += l.daylight * 1.8 * (0.6 + 0.4 * std::max(0.0, n.z())) * src.sky;
   }
   if (l.sun > 0.0) {
     const double cos_in = n.dot(l.sun_direction);
-    if (cos_in > 0.0 && sunVisible(p + 0.01 * n, l))
-      e += l.sun * cos_in * colorTemperatureRgb(l.sun_temperature_k, wp);
+    if (cos_in > 0.0 && sunVisible(p + 0.01 * n, l)) e += l.sun * cos_in * src.sun;
   }
   return e;
 }
 
 Eigen::Vector3d IndoorRenderer::radiance(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
                                          const IndoorLighting& l) const {
+  return radiance(o, d, sources(l));
+}
+
+Eigen::Vector3d IndoorRenderer::radiance(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                                         const Sources& src) const {
+  const IndoorLighting& l = src.lighting;
   Hit hit;
-  if (!castRay(o, d, &hit)) return skyRadiance(d, l);
+  if (!castRay(o, d, &hit)) return skyRadiance(d, src);
   const Eigen::Vector3d p = o + hit.t * d;
   switch (hit.kind) {
     case Hit::kFloor: {
       const int place = world_.placeAt(p.head<2>());
       return floorAlbedo(place, p.x(), p.y())
-          .cwiseProduct(irradiance(p, hit.normal, place, 1.0, l));
+          .cwiseProduct(irradiance(p, hit.normal, place, 1.0, src));
     }
     case Hit::kCeiling: {
       const int place = world_.placeAt(p.head<2>());
@@ -349,12 +360,10 @@ Eigen::Vector3d IndoorRenderer::radiance(const Eigen::Vector3d& o, const Eigen::
                    gy = p.y() / 2.0 - std::floor(p.y() / 2.0);
       if (std::abs(gx - 0.5) < 0.15 && std::abs(gy - 0.5) < 0.3) {  // lamp panel: emits
         const PlaceStyle& s = world_.places[place].style;
-        return 1.6 * s.lamp_intensity * l.lamp_scale *
-               world::colorTemperatureRgb(s.lamp_color_temperature_k + l.lamp_temperature_shift_k,
-                                          camera_.sensor.white_point_k);
+        return 1.6 * s.lamp_intensity * l.lamp_scale * src.lamp[place];
       }
       return Eigen::Vector3d(0.85, 0.85, 0.83)
-          .cwiseProduct(irradiance(p, hit.normal, place, 0.45, l));
+          .cwiseProduct(irradiance(p, hit.normal, place, 0.45, src));
     }
     case Hit::kBox: {
       const IndoorBox& b = world_.boxes[hit.index];
@@ -362,7 +371,7 @@ Eigen::Vector3d IndoorRenderer::radiance(const Eigen::Vector3d& o, const Eigen::
       const double shade = hit.normal.z() > 0.5 ? 1.0 : 0.8;
       const Eigen::Vector3d tex =
           b.rgb * shade * (0.92 + 0.12 * valueNoise(p.x() * 10 + p.z() * 7, p.y() * 10, hit.index));
-      return tex.cwiseProduct(irradiance(p, hit.normal, place, 0.9, l));
+      return tex.cwiseProduct(irradiance(p, hit.normal, place, 0.9, src));
     }
     case Hit::kWall: {
       const IndoorWall& w = world_.walls[hit.index];
@@ -382,20 +391,20 @@ Eigen::Vector3d IndoorRenderer::radiance(const Eigen::Vector3d& o, const Eigen::
                            p.z() - win.bottom_m < 0.05 || win.top_m - p.z() < 0.05 ||
                            std::abs(along - std::round(along / 1.2) * 1.2) < 0.03;
         if (frame)
-          return Eigen::Vector3d(0.8, 0.8, 0.8).cwiseProduct(irradiance(p, n, side, 0.8, l));
-        if (indoor_side) return skyRadiance(d, l);  // the view outside
+          return Eigen::Vector3d(0.8, 0.8, 0.8).cwiseProduct(irradiance(p, n, side, 0.8, src));
+        if (indoor_side) return skyRadiance(d, src);  // the view outside
         // Glass seen from outside: dark, with a reflection of the sky.
         Eigen::Vector3d r = d;
         r.head<2>() -= 2.0 * r.head<2>().dot(n.head<2>()) * n.head<2>();
-        return 0.25 * skyRadiance(r, l) + Eigen::Vector3d(0.01, 0.012, 0.015);
+        return 0.25 * skyRadiance(r, src) + Eigen::Vector3d(0.01, 0.012, 0.015);
       }
       const double s_m = hit.u * (w.b_m - w.a_m).norm();
-      return wallAlbedo(hit.index, side, s_m, p.z()).cwiseProduct(irradiance(p, n, side, 0.8, l));
+      return wallAlbedo(hit.index, side, s_m, p.z()).cwiseProduct(irradiance(p, n, side, 0.8, src));
     }
     case Hit::kNone:
       break;
   }
-  return skyRadiance(d, l);
+  return skyRadiance(d, src);
 }
 
 cv::Mat IndoorRenderer::render(const math::SE2& pose, const IndoorLighting& l,
@@ -403,6 +412,7 @@ cv::Mat IndoorRenderer::render(const math::SE2& pose, const IndoorLighting& l,
   const int w = camera_.width(), h = camera_.height();
   const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
   const Eigen::Vector3d origin(pose.x_m, pose.y_m, camera_.height_m);
+  const Sources src = sources(l);
   std::vector<Eigen::Vector3f> lin(rays_body_.size(), Eigen::Vector3f::Zero());
   double lum_sum = 0.0;
   long lum_n = 0;
@@ -410,7 +420,7 @@ cv::Mat IndoorRenderer::render(const math::SE2& pose, const IndoorLighting& l,
     if (valid_[i] != 1) continue;
     const Eigen::Vector3d& b = rays_body_[i];
     const Eigen::Vector3d d(c * b.x() - s * b.y(), s * b.x() + c * b.y(), b.z());
-    const Eigen::Vector3d r = radiance(origin, d, l) * vignette_[i];
+    const Eigen::Vector3d r = radiance(origin, d, src) * vignette_[i];
     lin[i] = r.cast<float>();
     lum_sum += 0.299 * r.x() + 0.587 * r.y() + 0.114 * r.z();
     ++lum_n;
