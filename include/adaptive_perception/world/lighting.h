@@ -28,6 +28,17 @@ struct SceneLighting {
   /// large area of a real bank (vertical surfaces are lit too, if less).
   Eigen::Vector3d irradiance(const Eigen::Vector3d& point_m, const Eigen::Vector3d& normal) const;
 
+  /// The sources' colours (colorTemperatureRgb of the ambient light and of each bank), for a
+  /// renderer that asks for the irradiance at every pixel: Planck's law costs more than the rest
+  /// of a pixel. `irradiance` with them gives the same numbers as without.
+  struct SourceColors {
+    Eigen::Vector3d ambient;
+    std::vector<Eigen::Vector3d> banks;  // one per bank, in order
+  };
+  SourceColors sourceColors() const;
+  Eigen::Vector3d irradiance(const Eigen::Vector3d& point_m, const Eigen::Vector3d& normal,
+                             const SourceColors& colors) const;
+
   static constexpr double kDiffuseFloor = 0.35;
 };
 

@@ -57,6 +57,7 @@ CameraImage CameraSensor::render(const std::vector<world::RayHit>& hits,
   out.labels.create(h, w, CV_8UC1);
   const SensorResponse& sensor = config_.sensor;
   const Eigen::Vector3d wb = world::colorTemperatureRgb(sensor.white_point_k, sensor.white_point_k);
+  const world::SceneLighting::SourceColors colors = lighting.sourceColors();
   for (int r = 0; r < h; ++r) {
     for (int c = 0; c < w; ++c) {
       const size_t i = static_cast<size_t>(r) * w + c;
@@ -64,10 +65,10 @@ CameraImage CameraSensor::render(const std::vector<world::RayHit>& hits,
       Eigen::Vector3d radiance;
       if (hit.kind == world::SurfaceKind::kNone) {
         const Eigen::Vector3d d = (map_to_optical.linear() * camera_.rayThrough(c, r)).normalized();
-        const Eigen::Vector3d e = lighting.irradiance(map_to_optical.translation() + 4.0 * d, -d);
+        const Eigen::Vector3d e = lighting.irradiance(map_to_optical.translation() + 4.0 * d, -d, colors);
         radiance = roomTexture(d) * env.materials.room.cwiseProduct(e);
       } else {
-        radiance = env.albedo(hit).cwiseProduct(lighting.irradiance(hit.point_m, hit.normal));
+        radiance = env.albedo(hit).cwiseProduct(lighting.irradiance(hit.point_m, hit.normal, colors));
       }
       const double r2 = radial2_[i];
       Eigen::Vector3d rgb = env.exposure * sensor.falloff(r2) * radiance.cwiseProduct(wb);
