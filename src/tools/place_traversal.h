@@ -248,10 +248,13 @@ inline int runTraversalEvaluation(CommandLine& cli, TraversalOptions opts,
     const std::vector<std::string> query_files = io::readTraversal(query_path);
     // What can be checked without decoding is checked before the references are described (the
     // long part): a missing file or a malformed ground-truth line is named at once.
-    for (const std::string& f : listed)
-      if (!fs::is_regular_file(f)) throw traversal_detail::unreadable(f, "reference");
+    // (A stored traversal's listed files are only compared with the stored names, not read.)
+    std::error_code ec;
+    if (!stored)
+      for (const std::string& f : listed)
+        if (!fs::is_regular_file(f, ec)) throw traversal_detail::unreadable(f, "reference");
     for (const std::string& f : query_files)
-      if (!fs::is_regular_file(f)) throw traversal_detail::unreadable(f, "query");
+      if (!fs::is_regular_file(f, ec)) throw traversal_detail::unreadable(f, "query");
     const std::vector<io::FrameCorrespondence> correspondences =
         gt_path.empty() ? std::vector<io::FrameCorrespondence>()
                         : io::readFrameCorrespondences(gt_path);

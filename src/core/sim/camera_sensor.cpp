@@ -65,10 +65,12 @@ CameraImage CameraSensor::render(const std::vector<world::RayHit>& hits,
       Eigen::Vector3d radiance;
       if (hit.kind == world::SurfaceKind::kNone) {
         const Eigen::Vector3d d = (map_to_optical.linear() * camera_.rayThrough(c, r)).normalized();
-        const Eigen::Vector3d e = lighting.irradiance(map_to_optical.translation() + 4.0 * d, -d, colors);
+        const Eigen::Vector3d e =
+            lighting.irradiance(map_to_optical.translation() + 4.0 * d, -d, colors);
         radiance = roomTexture(d) * env.materials.room.cwiseProduct(e);
       } else {
-        radiance = env.albedo(hit).cwiseProduct(lighting.irradiance(hit.point_m, hit.normal, colors));
+        radiance =
+            env.albedo(hit).cwiseProduct(lighting.irradiance(hit.point_m, hit.normal, colors));
       }
       const double r2 = radial2_[i];
       Eigen::Vector3d rgb = env.exposure * sensor.falloff(r2) * radiance.cwiseProduct(wb);
