@@ -18,7 +18,9 @@
 // back: by a reader first (recoveredJournal() tells), by a writer on its first read. A place
 // database of an unknown schema version or without the format key is refused after that. A
 // database built with other settings (bins, colour spaces, mask) is refused by requireSettings
-// with both settings named.
+// with both settings named. A stored value a reader cannot use (a histogram bin that is NaN,
+// infinite or negative; a line-structure value or pose that is not finite) is refused when it is
+// read, naming the file and the image: NaN distances would make the best place an arbitrary one.
 //
 // Schema (version 1): meta(key, value); places(id, name UNIQUE); adjacency(a, b) with a < b;
 // images(id, place_id, source, stamp_s); histograms(image_id, space, data BLOB of 3 * bins

@@ -3,10 +3,12 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 #include "adaptive_perception/places/place_database.h"
 #include "sqlite_statement.h"
@@ -32,6 +34,20 @@ void forEachImage(Statement& q, Start&& start, Row&& row, Finish&& finish) {
     row(id);
   }
   if (current >= 0) finish(current);
+}
+
+// A stored blob of floats whose values a reader cannot use: "value K is nan" (or inf, or negative
+// where `non_negative`) for the first such value, empty when every value holds. A NaN or negative
+// histogram bin would make every distance to that image NaN, and the best place an arbitrary one.
+std::string badFloats(const void* data, int count, bool non_negative) {
+  for (int k = 0; k < count; ++k) {
+    float v;
+    std::memcpy(&v, static_cast<const char*>(data) + k * sizeof(float), sizeof(float));
+    if (!std::isfinite(v) || (non_negative && v < 0.0f))
+      return "value " + std::to_string(k) + " is " +
+             (std::isnan(v) ? std::string("nan") : std::isinf(v) ? "infinite" : std::to_string(v));
+  }
+  return "";
 }
 }  // namespace
 
@@ -98,6 +114,10 @@ PlaceIndex PlaceDatabase::loadIndex(const std::vector<int>& spaces_in) const {
           throw std::runtime_error(path_ + ": image " + std::to_string(id) + " has a " +
                                    std::to_string(q.bytes(3)) + "-byte histogram, expected " +
                                    std::to_string(bytes));
+        const std::string bad = badFloats(q.blob(3), 3 * settings_.bins, true);
+        if (!bad.empty())
+          throw std::runtime_error(path_ + ": image " + std::to_string(id) + " has a damaged " +
+                                   spaceName(s) + " histogram (" + bad + ")");
         h.spaces[s].resize(3 * settings_.bins);
         std::memcpy(h.spaces[s].data(), q.blob(3), bytes);
       },
@@ -211,12 +231,19 @@ std::vector<TrainingFrame> PlaceDatabase::loadFrames() const {
       f.x_m = q.real(4);
       f.y_m = q.real(5);
       f.yaw_rad = q.real(6);
+      if (!std::isfinite(f.x_m) || !std::isfinite(f.y_m) || !std::isfinite(f.yaw_rad))
+        throw std::runtime_error(path_ + ": image " + std::to_string(f.image_id) +
+                                 " has a pose that is not finite");
     }
     if (!q.isNull(7)) {
       const int bytes = q.bytes(7);
       if (bytes <= 0 || bytes % static_cast<int>(sizeof(float)) != 0)
         throw std::runtime_error(path_ + ": image " + std::to_string(f.image_id) +
                                  " has a damaged line-structure blob");
+      const std::string bad = badFloats(q.blob(7), bytes / static_cast<int>(sizeof(float)), false);
+      if (!bad.empty())
+        throw std::runtime_error(path_ + ": image " + std::to_string(f.image_id) +
+                                 " has a damaged line-structure blob (" + bad + ")");
       f.structure.create(1, bytes / static_cast<int>(sizeof(float)), CV_32F);
       std::memcpy(f.structure.data, q.blob(7), bytes);
     }

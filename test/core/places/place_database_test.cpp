@@ -11,6 +11,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <sstream>
 #include <thread>
 
@@ -463,6 +465,72 @@ TEST_F(PlaceDatabaseTest, SiftFeaturesAndPosesRoundTrip) {
   EXPECT_FALSE(frames[1].has_pose);
   EXPECT_TRUE(frames[1].structure.empty());
   EXPECT_EQ(db.imageCount(), 3);
+}
+
+// A stored value no reader can use (written by another program, or a damaged file): refused
+// when read, naming the file, the image and the value, and the file left as it was.
+TEST_F(PlaceDatabaseTest, StoredValuesThatCannotBeUsedAreRefusedWhenRead) {
+  const auto setBlob = [](const std::string& path, const std::string& sql,
+                          const std::vector<float>& values) {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+    sqlite3_stmt* st = nullptr;
+    ASSERT_EQ(sqlite3_prepare_v2(db, sql.c_str(), -1, &st, nullptr), SQLITE_OK) << sql;
+    sqlite3_bind_blob(st, 1, values.data(), static_cast<int>(values.size() * sizeof(float)),
+                      SQLITE_TRANSIENT);
+    EXPECT_EQ(sqlite3_step(st), SQLITE_DONE);
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+  };
+  const auto refusal = [](const std::function<void()>& read) -> std::string {
+    try {
+      read();
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const int values = 3 * settings_.bins;
+  const std::string first_histogram =
+      "UPDATE histograms SET data = ?1 WHERE rowid = (SELECT MIN(rowid) FROM histograms)";
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  struct Case {
+    std::string name, sql;
+    std::vector<float> blob;
+    std::string expected;
+  };
+  std::vector<float> with_nan(values, 0.1f), negative(values, 0.1f), infinite(4, 0.5f);
+  with_nan[5] = nan;
+  negative[2] = -0.5f;
+  infinite[3] = std::numeric_limits<float>::infinity();
+  const std::vector<Case> cases = {
+      {"nan_bin", first_histogram, with_nan, "histogram (value 5 is nan)"},
+      {"negative_bin", first_histogram, negative, "histogram (value 2 is -0.5"},
+      {"infinite_structure", "UPDATE structure SET data = ?1", infinite,
+       "line-structure blob (value 3 is infinite)"},
+      {"infinite_pose", "UPDATE poses SET x_m = 9e999 WHERE ?1 IS NOT NULL", {0.0f},
+       "has a pose that is not finite"}};
+  for (const Case& c : cases) {
+    const std::string path = file(c.name + ".sqlite");
+    {
+      std::vector<TrainingImage> imgs = images(0, 2);
+      imgs[0].features = cv::Mat(2, 128, CV_32F, cv::Scalar(3));
+      imgs[0].pose = std::array<double, 3>{1.0, 2.0, 0.5};
+      imgs[0].structure = (cv::Mat_<float>(1, 4) << 0.5f, 0.0f, 0.125f, 1e-3f);
+      PlaceDatabase db = PlaceDatabase::create(path, settings_);
+      db.addImages("lab", imgs);
+    }
+    setBlob(path, c.sql, c.blob);
+    const std::string before = contents(path);
+    const PlaceDatabase db = PlaceDatabase::open(path, true);
+    const std::string e = refusal([&] {
+      db.loadIndex();
+      db.loadFrames();
+    });
+    EXPECT_NE(e.find(path + ": image 1 has"), std::string::npos) << c.name << ": " << e;
+    EXPECT_NE(e.find(c.expected), std::string::npos) << c.name << ": " << e;
+    EXPECT_EQ(contents(path), before) << c.name;
+  }
 }
 
 TEST_F(PlaceDatabaseTest, WholeImageDescriptorsRoundTripAndRefuseOtherSettings) {
