@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The core library and its unit tests built alone (test/standalone: no catkin, no ROS) with
-# AddressSanitizer + UndefinedBehaviorSanitizer, then every unit test and every fuzz target's replay
+# AddressSanitizer + UndefinedBehaviorSanitizer (its value checks; its pointer checks are ASan's
+# here: test/standalone/CMakeLists.txt), then every unit test and every fuzz target's replay
 # of its seed corpus and regression inputs (test/fuzz) run under them. Any sanitizer report fails
 # the test that caused it. Ends with `sanitizers: N passed, M failed`; exits non-zero on a failure.
 # Part of scripts/run_tests.sh. Build in .ws/sanitize (git-ignored).
-# Usage: scripts/check_core.sh [build|test]   (~6.5 minutes on two cores from scratch: 5 to build, 1 to test)
+# Usage: scripts/check_core.sh [build|test]   (~6.5 minutes on two cores from scratch: 5 to build, 1.5 to test)
 #   build: only build the tree; test: only run the tests of a built tree; no argument: both.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
