@@ -21,6 +21,7 @@ GRID = {
     "line_object_window_share": ["0.03", "0.06", "0.1"],
     "line_max_object_share": ["0.05", "0.1", "0.2", "1"],
     "dark_chroma_sigma": ["2", "3", "5"],
+    "line_min_elongation": ["0", "3", "6", "10"],
 }
 
 

@@ -7,6 +7,9 @@
 //   evaluate_field_localization --field FILE --camera FILE --list FILE [--output DIR]
 //   evaluate_field_localization --help   (every option with its default, unit and range)
 //
+// --initial_pose X_M Y_M YAW_DEG starts each filter about that pose instead (a known start: does
+// the filter hold the pose, or do its checks move it?).
+//
 // --camera: a camera file (world/robot_camera.h, config/cameras/): the intrinsics, and the head
 // chain that turns each line's head_pitch_rad / head_yaw_rad into the camera's pose on the robot,
 // leaned by the line's torso_pitch_rad where the file has a torso_pitch_reference_rad.
@@ -81,6 +84,10 @@ int main(int argc, char** argv) {
              "times each image is given to the filter (one second of a 30 Hz camera)");
   std::string priors_dir = "config/color_priors";
   cli.option("priors_dir", &priors_dir, "folder of the lighting priors");
+  std::vector<double> initial_pose;
+  cli.option("initial_pose", &initial_pose,
+             "X_M Y_M YAW_DEG: start every image's filter from this pose (particles spread 0.05 m "
+             "and 0.05 rad about it), not from nothing: does the filter hold a pose it is given?");
   // Real images: the shipped priors are of simulated venues (RbpfConfig::adapt_priors_to_image).
   cfg.adapt_priors_to_image = true;
   cli.option("threads", &cfg.threads, "threads (the result is the same for any count)");
@@ -89,6 +96,9 @@ int main(int argc, char** argv) {
   cli.fields(localization::RbpfConfig::fields(), &cfg);
   cli.parse(argc, argv);
   try {
+    if (!initial_pose.empty() && initial_pose.size() != 3)
+      throw std::runtime_error("--initial_pose takes three numbers (x_m y_m yaw_deg), not " +
+                               std::to_string(initial_pose.size()));
     const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));
     const world::RobotCamera camera =
         world::RobotCamera::loadYaml(ros_params::resolvePackagePath(camera_file));
@@ -122,7 +132,14 @@ int main(int argc, char** argv) {
           item.head_yaw_rad, item.head_pitch_rad, item.torso_pitch_rad.value_or(std::nan("")));
       const auto t0 = Clock::now();
       localization::RbpfLocalizer rbpf(map, camera.camera, priors, cfg);
-      rbpf.initUniform();
+      if (initial_pose.empty()) {
+        rbpf.initUniform();
+      } else {
+        const double sd_m = 0.05, sd_rad = 0.05;
+        rbpf.initGaussian(
+            math::SE2(initial_pose[0], initial_pose[1], math::degToRad(initial_pose[2])),
+            Eigen::Vector3d(sd_m * sd_m, sd_m * sd_m, sd_rad * sd_rad).asDiagonal());
+      }
       int goals = -1;
       double pitch_offset = 0.0, mirror_evidence = 0.0;
       // The relocalization checks that ended, how many found the particles lost, and the largest

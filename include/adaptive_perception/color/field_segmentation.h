@@ -32,7 +32,8 @@
 //      bright (a white top-hat of the smoothed luma with a window wider than a line, at least
 //      line_contrast_sigma carpet standard deviations), with few objects (darker than the carpet
 //      and of another chroma) about them, in strokes larger than line_min_area_share of the image
-//      (grass texture leaves specks).
+//      and at least line_min_elongation times as long as they are wide (grass texture and a
+//      robot's white parts leave specks and blobs; paint is long and narrow).
 //
 // The defaults and the measurements that chose them: docs/field_segmentation.md.
 #include <opencv2/core.hpp>
@@ -76,6 +77,14 @@ struct FieldSegmentationConfig {
   double line_blur_px = 1.5;
   /// Line strokes covering less than this share of the image are dropped.
   double line_min_area_share = 2e-4;
+  /// Line strokes less elongated than this are dropped: a stroke's length is 4 standard deviations
+  /// of its pixels along their major axis, its width its area over that length, and the ratio
+  /// length / width (= length^2 / area) is about 1.33 l / t for a straight bar l long and t wide.
+  /// 6: a bar at least about 4.5 times as long as wide. The shortest painted lines of a field are
+  /// far longer (a goal area's 0.6 m sides of 0.05 m paint, 12 times), and stay so in perspective
+  /// until seen nearly end-on; the grass's bright blades, a ball's panels and a robot's torso are
+  /// not. The penalty and centre marks (crosses of 0.1 m bars) are dropped too. 0 turns it off.
+  double line_min_elongation = 6.0;
   /// A line pixel lies on the carpet: within a square window of line_object_window_share of the
   /// image width about it (twice the top-hat's), at most line_max_object_share of the field's
   /// pixels are objects: darker than the carpet's mean and more than dark_chroma_sigma of the

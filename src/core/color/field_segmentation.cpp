@@ -44,6 +44,9 @@ const config::Fields<FieldSegmentationConfig>& FieldSegmentationConfig::fields()
                "(px)")
           .add("line_min_area_share", &C::line_min_area_share, closed(0, 1),
                "line strokes smaller than this share of the image are grass texture")
+          .add("line_min_elongation", &C::line_min_elongation, closed(0, 1000),
+               "line strokes less elongated than this (length^2 / area, length 4 sd along the "
+               "major axis; about 1.33 length / width for a bar) are specks or blobs, not paint")
           .add("line_object_window_share", &C::line_object_window_share, config::aboveZero(0.5),
                "window about a line pixel where objects on the field are counted, as a share of "
                "the image width")
@@ -385,16 +388,34 @@ FieldSegmentation segmentFieldYuv(const cv::Mat& yuv, const FieldSegmentationCon
       const bool line = pale(p) && on_carpet && tophat.at<std::uint8_t>(r, c) >= min_contrast;
       out.labels.at<std::uint8_t>(r, c) = line ? world::kWhite : world::kGreen;
     }
-  // Grass texture leaves specks; a painted line is a long stroke.
+  // Grass texture leaves specks; a painted line is a long, narrow stroke.
   const cv::Mat lines = out.labels == world::kWhite;
   cv::Mat comp, stats, centroids;
   const int n = cv::connectedComponentsWithStats(lines, comp, stats, centroids, 8, CV_32S);
-  const double min_area = cfg.line_min_area_share * rows * cols;
+  // Second moments of each stroke about its centroid.
+  std::vector<Eigen::Vector3d> moments(n, Eigen::Vector3d::Zero());  // xx, yy, xy
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const int id = comp.at<int>(r, c);
-      if (id > 0 && id < n && stats.at<int>(id, cv::CC_STAT_AREA) < min_area)
-        out.labels.at<std::uint8_t>(r, c) = world::kGreen;
+      if (id <= 0) continue;
+      const double dx = c - centroids.at<double>(id, 0), dy = r - centroids.at<double>(id, 1);
+      moments[id] += Eigen::Vector3d(dx * dx, dy * dy, dx * dy);
+    }
+  const double min_area = cfg.line_min_area_share * rows * cols;
+  std::vector<char> drop(n, 0);
+  for (int id = 1; id < n; ++id) {
+    const double area = stats.at<int>(id, cv::CC_STAT_AREA);
+    const Eigen::Vector3d m = moments[id] / area;
+    // The larger eigenvalue of the covariance [[xx, xy], [xy, yy]].
+    const double major_var =
+        0.5 * (m[0] + m[1]) + std::sqrt(0.25 * (m[0] - m[1]) * (m[0] - m[1]) + m[2] * m[2]);
+    const double length = 4.0 * std::sqrt(major_var);
+    drop[id] = area < min_area || length * length < cfg.line_min_elongation * area;
+  }
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const int id = comp.at<int>(r, c);
+      if (id > 0 && id < n && drop[id]) out.labels.at<std::uint8_t>(r, c) = world::kGreen;
     }
   return out;
 }

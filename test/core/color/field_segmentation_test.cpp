@@ -148,6 +148,35 @@ TEST(FieldSegmentation, ABallOnTheCarpetIsNotALine) {
   EXPECT_GT(double(cv::countNonZero(found & s.lines)) / cv::countNonZero(s.lines), 0.9);
 }
 
+TEST(FieldSegmentation, BrightBlobsAreNotLinesButAShortDashIs) {
+  // Plain bright blobs on the carpet, narrower than the top-hat's window (so thin and bright as
+  // paint is) and larger than the smallest stroke kept (line_min_area_share: 15 px here), without
+  // dark parts beside them: a disc of radius 5 px (a sunlit tuft, a ball's white side; length^2 /
+  // area 1.3) and a 7 x 7 px square (1.3). And a dash of paint 28 x 4 px (10.7: a line cut short by
+  // the image's edge or by a robot standing on it).
+  Scene s = drawScene();
+  const cv::Point disc(40, 130);
+  const cv::Rect square(150, 200, 7, 7), dash(130, 120, 28, 4);
+  cv::circle(s.bgr, disc, 5, cv::Scalar(235, 235, 235), cv::FILLED);
+  cv::rectangle(s.bgr, square, cv::Scalar(235, 235, 235), cv::FILLED);
+  cv::rectangle(s.bgr, dash, cv::Scalar(235, 235, 235), cv::FILLED);
+  cv::Mat blobs = cv::Mat::zeros(kH, kW, CV_8UC1);
+  cv::circle(blobs, disc, 8, 255, cv::FILLED);
+  cv::rectangle(blobs, cv::Rect(147, 197, 13, 13), 255, cv::FILLED);
+  cv::Mat dash_mask = cv::Mat::zeros(kH, kW, CV_8UC1);
+  dash_mask(dash).setTo(255);
+  const auto seg = ap::color::segmentField(s.bgr, {});
+  const cv::Mat found = seg.labels == ap::world::kWhite;
+  EXPECT_EQ(cv::countNonZero(found & blobs), 0);
+  EXPECT_GT(double(cv::countNonZero(found & dash_mask)) / cv::countNonZero(dash_mask), 0.9);
+  EXPECT_GT(double(cv::countNonZero(found & s.lines)) / cv::countNonZero(s.lines), 0.9);
+  // Without the elongation check the blobs are taken for paint: what the check does.
+  ap::color::FieldSegmentationConfig off;
+  off.line_min_elongation = 0.0;
+  const auto unchecked = ap::color::segmentField(s.bgr, off);
+  EXPECT_GT(cv::countNonZero((unchecked.labels == ap::world::kWhite) & blobs), 80);
+}
+
 TEST(FieldSegmentation, TheRobotsOwnArmAtTheBottomDoesNotHideTheCarpetAboveIt) {
   // The robot's own arm (grey-blue) fills the bottom 100 rows of the image's left 80 columns,
   // taller than the 50 rows of carpet above it there: the whole column holds more arm than
