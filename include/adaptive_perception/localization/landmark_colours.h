@@ -10,9 +10,10 @@
 // A pixel's similarity to a colour is the cosine between its chroma (U - 128, V - 128) and the
 // colour's hue (0 for a pixel paler than min_chroma); a band's score is its pixels' mean, a
 // template's the sum over its hued bands. Each landmark in view is found in a window around where
-// the pose puts it (up to its width sideways, one and a half bands up or down: the pose is a few
-// centimetres and degrees off, and one band's height is all that tells pink over cyan from cyan
-// over pink), at the shift where its own bands or its mirror twin's fit best; both templates are
+// the pose puts it (up to its width sideways, one and a half hued bands up or down: the pose is a
+// few centimetres and degrees off, and one band's height is all that tells pink over cyan from cyan
+// over pink), at the shift where its own bands or its mirror twin's fit best, a template counting
+// only where it lies wholly in the image; both templates are
 // scored at that one place (the two poses see the landmark at the same pixels; scored each at its
 // own best shift, the mirror's pink band found the pose's pink band and fitted as well), and the
 // evidence is concentration * (mirror's score - pose's score), summed over the landmarks seen

@@ -123,10 +123,14 @@ LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
     const auto t = bandTemplate(c, renderer.map(), camera, optical_from_map);
     if (!t) continue;
     // The search window: the landmark shifted by up to its width sideways and one and a half of
-    // its tallest band up or down (the pose's error; a band's height is all that tells pink over
-    // cyan from cyan over pink).
+    // its tallest hued band up or down (the pose's error; a band's height is all that tells pink
+    // over cyan from cyan over pink). Not the white base's: on the development field it is twice
+    // a hued band's height, and a window of one and a half bases let the mirror's template slide
+    // its hued bands onto the base of a backlit landmark, whose white looks yellow there.
     int band_px = 1;
-    for (const auto& r : t->rows) band_px = std::max(band_px, r[1] - r[0]);
+    for (std::size_t k = 0; k < t->rows.size(); ++k)
+      if (hue(t->pose_colours[k]) || hue(t->mirror_colours[k]))
+        band_px = std::max(band_px, t->rows[k][1] - t->rows[k][0]);
     const int du = std::max(3, t->u1 - t->u0), dv = std::max(2, 3 * band_px / 2);
     const cv::Rect window = cv::Rect(t->u0 - du, t->rows.back()[0] - dv, t->u1 - t->u0 + 2 * du,
                                      t->rows.front()[1] - t->rows.back()[0] + 2 * dv) &
@@ -150,16 +154,18 @@ LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
       cv::integral(sim, sums[static_cast<std::size_t>(colour)], CV_64F);
     }
     // A template's score at a shift: the sum over its hued bands of the mean similarity inside
-    // the band (NaN where too little of it is in the image).
+    // the band (NaN where a band is cut by the image's edge, or too few pixels are scored: a
+    // landmark half out of view was scored on its last column, and fitted either template).
     const auto score = [&](const std::vector<std::uint8_t>& colours, int su, int sv) {
       double total = 0.0;
       int bands = 0, pixels = 0;
       for (std::size_t k = 0; k < colours.size(); ++k) {
         const cv::Mat& sum = sums[colours[k]];
         if (sum.empty()) continue;  // white: no hue
-        const cv::Rect band = cv::Rect(t->u0 + su - window.x, t->rows[k][0] + sv - window.y,
-                                       t->u1 - t->u0, t->rows[k][1] - t->rows[k][0]) &
-                              cv::Rect(0, 0, window.width, window.height);
+        const cv::Rect whole(t->u0 + su - window.x, t->rows[k][0] + sv - window.y,
+                             t->u1 - t->u0, t->rows[k][1] - t->rows[k][0]);
+        const cv::Rect band = whole & cv::Rect(0, 0, window.width, window.height);
+        if (band != whole) return std::nan("");
         if (band.area() <= 0) continue;
         total += (sum.at<double>(band.y + band.height, band.x + band.width) -
                   sum.at<double>(band.y, band.x + band.width) -

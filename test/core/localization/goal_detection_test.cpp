@@ -257,5 +257,30 @@ TEST(LandmarkColours, TheHuesTellAPoseFromItsMirror) {
   EXPECT_EQ(none.mirror_minus_pose_nats, 0.0);
 }
 
+TEST(LandmarkColours, ABacklitLandmarkDoesNotSendThePoseToItsMirror) {
+  // punt3 of the development set, against the hall's windows: its two landmarks (pink over cyan at
+  // the left, pink over green at the right edge, cut by it) are backlit. Their paints as the
+  // camera shows them there: the pink band dark red, the cyan and green bands dark and all but
+  // neutral, the white base yellow-brown (chroma 26 levels, more than the hued bands have).
+  Scene s;
+  s.paints = {{world::kPink, {48, 20, 15}},
+              {world::kCyan, {15, 25, 20}},
+              {world::kGreen, {22, 16, 5}},
+              {world::kWhite, {81, 65, 22}}};
+  const math::SE2 pose(0.568, -1.091, 124.0 * M_PI / 180.0);
+  const Eigen::Isometry3d head = s.nao.baseToOptical(-0.0031, -0.0031);
+  const cv::Mat yuv = s.render(pose, head);
+  const LandmarkColourConfig config;
+  // The mirror's yellow-over-pink would fit if its bands could slide a whole band down onto the
+  // yellowish base (a window of one and a half bases), or if the landmark at the image's edge
+  // were scored on the column left in view; neither may give the mirror evidence.
+  const LandmarkColourEvidence e = landmarkMirrorEvidence(yuv, s.renderer, pose, head, config);
+  EXPECT_LE(e.mirror_minus_pose_nats, 0.0);
+  // Seen from the mirror the same pixels must not favour staying there either.
+  const LandmarkColourEvidence m =
+      landmarkMirrorEvidence(yuv, s.renderer, math::pointMirror(pose), head, config);
+  EXPECT_GE(m.mirror_minus_pose_nats, 0.0);
+}
+
 }  // namespace
 }  // namespace adaptive_perception::localization
