@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -139,9 +140,19 @@ void RbpfLocalizer::weighParticle(size_t i, const math::SE2& odom_delta, double 
 void RbpfLocalizer::setImage(const cv::Mat& yuv) {
   std::shared_ptr<const BackgroundDensity> background;
   if (config_.likelihood.background_from_image) {
+    // The field's boundary from the image shrunk (ImageLikelihoodConfig::background_width_px),
+    // the colours above it from the whole image.
+    const int width = config_.likelihood.background_width_px;
+    cv::Mat small = yuv;
+    if (yuv.cols > width) {
+      const double f = static_cast<double>(width) / yuv.cols;
+      cv::resize(yuv, small, cv::Size(), f, f, cv::INTER_AREA);
+    }
     const color::FieldSegmentation seg =
-        color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
-    background = std::make_shared<const BackgroundDensity>(yuv, seg.labels == world::kBackground,
+        color::segmentFieldYuv(small, color::FieldSegmentationConfig());
+    cv::Mat above = seg.labels == world::kBackground;
+    if (small.size() != yuv.size()) cv::resize(above, above, yuv.size(), 0, 0, cv::INTER_NEAREST);
+    background = std::make_shared<const BackgroundDensity>(yuv, above,
                                                            config_.likelihood.outlier_probability);
   }
   search_.setBackground(background);

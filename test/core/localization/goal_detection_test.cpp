@@ -212,6 +212,31 @@ TEST(GoalDetection, AGlobalStartTakesItsPoolAndTheLeanFromTheGoal) {
   EXPECT_EQ(rbpf.step(math::SE2(), 1.0 / 30, yuv, s.head).camera_pitch_offset_rad, 0.0);
 }
 
+// The room's colours from the image (background_from_image), its boundary found on the image
+// shrunk to background_width_px (320 of 640 here) or at full size: either way the filter given
+// the true pose keeps it (the rendered room is one colour, which the density learns).
+TEST(GoalDetection, AKnownStartHoldsWithTheRoomsColoursFromTheImage) {
+  const Scene s;
+  const std::vector<color::LightingPrior> priors = {
+      color::LightingPrior::loadYaml(kConfig + "color_priors/dark.yaml"),
+      color::LightingPrior::loadYaml(kConfig + "color_priors/bright.yaml")};
+  const cv::Mat yuv = s.render(s.pose, s.head);
+  for (const int width : {320, 640}) {
+    RbpfConfig cfg;
+    cfg.particles = 200;
+    cfg.threads = 2;
+    cfg.relocalization.interval_s = 0.0;
+    cfg.likelihood.background_from_image = true;
+    cfg.likelihood.background_width_px = width;
+    RbpfLocalizer rbpf(s.map, s.nao.camera, priors, cfg);
+    rbpf.initGaussian(s.pose, Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal());
+    for (int k = 0; k < 5; ++k) rbpf.step(math::SE2(), k == 0 ? 0.0 : 1.0 / 30, yuv, s.head);
+    const PoseEstimate e = rbpf.estimate();
+    EXPECT_LT(std::hypot(e.pose.x_m - s.pose.x_m, e.pose.y_m - s.pose.y_m), 0.1) << width;
+    EXPECT_LT(std::abs(math::wrapAngle(e.pose.yaw_rad - s.pose.yaw_rad)), 0.03) << width;
+  }
+}
+
 TEST(LandmarkColours, TheHuesTellAPoseFromItsMirror) {
   const Scene s;
   // punt5 of the development set: the landmark yellow over pink in view.

@@ -269,6 +269,29 @@ TEST(GlobalLocalization, AGoalsProposalsMakeTheirOwnPool) {
 
 // Strides are given for an image reference_width_px wide: a camera three times as wide samples
 // every third pixel as far apart, the goal search's grid included.
+// The image's own background colours (ImageLikelihoodConfig::background_from_image): a histogram
+// of the marked pixels in cubes of 16 levels, mixed with the uniform density over the YUV cube.
+// By hand: 600 pixels of one colour marked, weight w = 0.1: that colour's cube has density
+// w / 256^3 + (1 - w) / 16^3, every other cube w / 256^3.
+TEST(BackgroundDensity, IsTheMarkedColoursHistogramMixedWithTheUniformDensity) {
+  cv::Mat yuv(30, 40, CV_8UC3, cv::Scalar(60, 100, 110));
+  yuv(cv::Rect(0, 0, 40, 15)).setTo(cv::Scalar(200, 120, 130));
+  cv::Mat mask = cv::Mat::zeros(30, 40, CV_8UC1);
+  mask(cv::Rect(0, 0, 40, 15)).setTo(255);
+  const double w = 0.1, uniform = 1.0 / (256.0 * 256.0 * 256.0);
+  const BackgroundDensity d(yuv, mask, w);
+  EXPECT_NEAR(d.logDensity({200, 120, 130}), std::log(w * uniform + (1 - w) / 4096.0), 1e-6);
+  // Another colour of the same cube (levels 192-207, 112-127, 128-143), and one of another cube.
+  EXPECT_NEAR(d.logDensity({207, 112, 143}), std::log(w * uniform + (1 - w) / 4096.0), 1e-6);
+  EXPECT_NEAR(d.logDensity({60, 100, 110}), std::log(w * uniform), 1e-6);
+  // Fewer than kMinPixels marked: the uniform density.
+  cv::Mat few = cv::Mat::zeros(30, 40, CV_8UC1);
+  few(cv::Rect(0, 0, 40, 5)).setTo(255);  // 200 pixels
+  EXPECT_NEAR(BackgroundDensity(yuv, few, w).logDensity({200, 120, 130}), std::log(uniform), 1e-9);
+  EXPECT_THROW(BackgroundDensity(yuv, cv::Mat::zeros(10, 10, CV_8UC1), w), std::invalid_argument);
+  EXPECT_THROW(BackgroundDensity(yuv, mask, 0.0), std::invalid_argument);
+}
+
 TEST(RbpfConfig, ForCameraScalesEveryStrideToTheCamerasWidth) {
   RbpfConfig config;
   world::PinholeCamera wide;
