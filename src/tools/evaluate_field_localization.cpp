@@ -1,7 +1,6 @@
 // evaluate_field_localization: global localization of a robot from single real camera images: for
 // each image of a list, rbpf_localizer's filter starts from nothing (uniform over the field, the
-// lighting at its priors adapted to the image without a pose: adapt_priors_to_image, on here; the
-// room's colours from the image itself: background_from_image, on here) and
+// lighting at its priors adapted to the image without a pose: adapt_priors_to_image, on here) and
 // is given the same image again and again, as a robot standing still would see it; the estimate
 // after --frames images is compared with the true position, if the list has one.
 //
@@ -89,21 +88,18 @@ int main(int argc, char** argv) {
   cli.option("initial_pose", &initial_pose,
              "X_M Y_M YAW_DEG: start every image's filter from this pose (particles spread 0.05 m "
              "and 0.05 rad about it), not from nothing: does the filter hold a pose it is given?");
-  // Real images: the shipped priors are of simulated venues (RbpfConfig::adapt_priors_to_image),
-  // and a real room is not the uniform noise the simulator's is (background_from_image: on the NAO
-  // development images the window's white pillars, taken for a goal's posts near the camera,
-  // outscored the truth by 6.3 nats under the uniform density; docs/field_localization.md).
+  // Real images: the shipped priors are of simulated venues (RbpfConfig::adapt_priors_to_image).
   cfg.adapt_priors_to_image = true;
-  cfg.likelihood.background_from_image = true;
   cli.option("threads", &cfg.threads, "threads (the result is the same for any count)");
   cli.seed(&cfg.seed);
   const std::string& output = cli.resultsFolder("images.csv and one drawing per image");
   cli.fields(localization::RbpfConfig::fields(), &cfg);
   cli.parse(argc, argv);
+  if (!initial_pose.empty() &&
+      (initial_pose.size() != 3 ||
+       !std::all_of(initial_pose.begin(), initial_pose.end(), [](double v) { return std::isfinite(v); })))
+    cli.fail("--initial_pose takes three finite numbers (x_m y_m yaw_deg)");
   try {
-    if (!initial_pose.empty() && initial_pose.size() != 3)
-      throw std::runtime_error("--initial_pose takes three numbers (x_m y_m yaw_deg), not " +
-                               std::to_string(initial_pose.size()));
     const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));
     const world::RobotCamera camera =
         world::RobotCamera::loadYaml(ros_params::resolvePackagePath(camera_file));

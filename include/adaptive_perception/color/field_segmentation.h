@@ -83,7 +83,7 @@ struct FieldSegmentationConfig {
   /// 6: a bar at least about 4.5 times as long as wide. The shortest painted lines of a field are
   /// far longer (a goal area's 0.6 m sides of 0.05 m paint, 12 times), and stay so in perspective
   /// until seen nearly end-on; the grass's bright blades, a ball's panels and a robot's torso are
-  /// not. The penalty and centre marks (crosses of 0.1 m bars) are dropped too. 0 turns it off.
+  /// not. The penalty marks (crosses of 0.1 m bars, 1.33) are dropped too. 0 turns it off.
   double line_min_elongation = 6.0;
   /// A line pixel lies on the carpet: within a square window of line_object_window_share of the
   /// image width about it (twice the top-hat's), at most line_max_object_share of the field's

@@ -13,7 +13,7 @@
 // the pose puts it (up to its width sideways, one and a half hued bands up or down: the pose is a
 // few centimetres and degrees off, and one band's height is all that tells pink over cyan from cyan
 // over pink), at the shift where its own bands or its mirror twin's fit best, a template counting
-// only where it lies wholly in the image; both templates are
+// only where its hued bands lie wholly in the image; both templates are
 // scored at that one place (the two poses see the landmark at the same pixels; scored each at its
 // own best shift, the mirror's pink band found the pose's pink band and fitted as well), and the
 // evidence is concentration * (mirror's score - pose's score), summed over the landmarks seen

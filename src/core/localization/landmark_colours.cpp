@@ -154,7 +154,7 @@ LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
       cv::integral(sim, sums[static_cast<std::size_t>(colour)], CV_64F);
     }
     // A template's score at a shift: the sum over its hued bands of the mean similarity inside
-    // the band (NaN where a band is cut by the image's edge, or too few pixels are scored: a
+    // the band (NaN where a hued band is cut by the image's edge, or too few pixels are scored: a
     // landmark half out of view was scored on its last column, and fitted either template).
     const auto score = [&](const std::vector<std::uint8_t>& colours, int su, int sv) {
       double total = 0.0;
@@ -164,9 +164,9 @@ LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
         if (sum.empty()) continue;  // white: no hue
         const cv::Rect whole(t->u0 + su - window.x, t->rows[k][0] + sv - window.y,
                              t->u1 - t->u0, t->rows[k][1] - t->rows[k][0]);
+        if (whole.area() <= 0) continue;  // a band thinner than a row
         const cv::Rect band = whole & cv::Rect(0, 0, window.width, window.height);
         if (band != whole) return std::nan("");
-        if (band.area() <= 0) continue;
         total += (sum.at<double>(band.y + band.height, band.x + band.width) -
                   sum.at<double>(band.y, band.x + band.width) -
                   sum.at<double>(band.y + band.height, band.x) + sum.at<double>(band.y, band.x)) /

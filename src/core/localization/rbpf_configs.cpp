@@ -71,7 +71,7 @@ const config::Fields<ImageLikelihoodConfig>& ImageLikelihoodConfig::fields() {
           .add("background_from_image", &C::background_from_image,
                "a pixel the map shows as background scores the density of the image's own "
                "colours above the field's boundary (pose-free segmentation), not the uniform one")
-          .add("background_width_px", &C::background_width_px, config::closed(16, 10000),
+          .add("background_width_px", &C::background_width_px, config::closed(64, 10000),
                "that segmentation runs on the image shrunk to at most this width (px)");
   return f;
 }

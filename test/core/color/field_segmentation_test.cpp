@@ -152,7 +152,7 @@ TEST(FieldSegmentation, BrightBlobsAreNotLinesButAShortDashIs) {
   // Plain bright blobs on the carpet, narrower than the top-hat's window (so thin and bright as
   // paint is) and larger than the smallest stroke kept (line_min_area_share: 15 px here), without
   // dark parts beside them: a disc of radius 5 px (a sunlit tuft, a ball's white side; length^2 /
-  // area 1.3) and a 7 x 7 px square (1.3). And a dash of paint 28 x 4 px (10.7: a line cut short by
+  // area 1.3) and a 7 x 7 px square (1.3). And a dash of paint 28 x 4 px (9.3: a line cut short by
   // the image's edge or by a robot standing on it).
   Scene s = drawScene();
   const cv::Point disc(40, 130);

@@ -221,6 +221,15 @@ TEST(GoalDetection, AKnownStartHoldsWithTheRoomsColoursFromTheImage) {
       color::LightingPrior::loadYaml(kConfig + "color_priors/dark.yaml"),
       color::LightingPrior::loadYaml(kConfig + "color_priors/bright.yaml")};
   const cv::Mat yuv = s.render(s.pose, s.head);
+  // What the shrinking rests on: the background found at 320 px, scaled back, is the one found at
+  // 640 px but for a few pixels along the boundary.
+  cv::Mat small, above_small;
+  cv::resize(yuv, small, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+  cv::resize(color::segmentFieldYuv(small, {}).labels == world::kBackground, above_small,
+             yuv.size(), 0, 0, cv::INTER_NEAREST);
+  const cv::Mat above = color::segmentFieldYuv(yuv, {}).labels == world::kBackground;
+  EXPECT_LT(cv::countNonZero(above != above_small), 0.01 * yuv.total());
+  EXPECT_GT(cv::countNonZero(above), 0.1 * yuv.total());
   for (const int width : {320, 640}) {
     RbpfConfig cfg;
     cfg.particles = 200;
@@ -305,6 +314,14 @@ TEST(LandmarkColours, ABacklitLandmarkDoesNotSendThePoseToItsMirror) {
   const LandmarkColourEvidence m =
       landmarkMirrorEvidence(yuv, s.renderer, math::pointMirror(pose), head, config);
   EXPECT_GE(m.mirror_minus_pose_nats, 0.0);
+  // The same view with the paints' own hues: the landmarks are scored (the one at the right edge
+  // where a shift within its window brings its hued bands wholly into the image) and tell the
+  // pose from its mirror.
+  const Scene lit;
+  const LandmarkColourEvidence seen =
+      landmarkMirrorEvidence(lit.render(pose, head), lit.renderer, pose, head, config);
+  EXPECT_GE(seen.landmarks, 1);
+  EXPECT_LT(seen.mirror_minus_pose_nats, -2.0);
 }
 
 }  // namespace

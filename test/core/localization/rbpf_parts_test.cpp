@@ -267,8 +267,6 @@ TEST(GlobalLocalization, AGoalsProposalsMakeTheirOwnPool) {
   EXPECT_THROW(GlobalLocalization{config}, std::invalid_argument);
 }
 
-// Strides are given for an image reference_width_px wide: a camera three times as wide samples
-// every third pixel as far apart, the goal search's grid included.
 // The image's own background colours (ImageLikelihoodConfig::background_from_image): a histogram
 // of the marked pixels in cubes of 16 levels, mixed with the uniform density over the YUV cube.
 // By hand: 600 pixels of one colour marked, weight w = 0.1: that colour's cube has density
@@ -292,6 +290,8 @@ TEST(BackgroundDensity, IsTheMarkedColoursHistogramMixedWithTheUniformDensity) {
   EXPECT_THROW(BackgroundDensity(yuv, mask, 0.0), std::invalid_argument);
 }
 
+// Strides are given for an image reference_width_px wide: a camera three times as wide samples
+// every third pixel as far apart, the goal search's grid included.
 TEST(RbpfConfig, ForCameraScalesEveryStrideToTheCamerasWidth) {
   RbpfConfig config;
   world::PinholeCamera wide;
