@@ -96,8 +96,8 @@ int main(int argc, char** argv) {
   cli.fields(localization::RbpfConfig::fields(), &cfg);
   cli.parse(argc, argv);
   if (!initial_pose.empty() &&
-      (initial_pose.size() != 3 ||
-       !std::all_of(initial_pose.begin(), initial_pose.end(), [](double v) { return std::isfinite(v); })))
+      (initial_pose.size() != 3 || !std::all_of(initial_pose.begin(), initial_pose.end(),
+                                                [](double v) { return std::isfinite(v); })))
     cli.fail("--initial_pose takes three finite numbers (x_m y_m yaw_deg)");
   try {
     const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));

@@ -162,8 +162,8 @@ LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
       for (std::size_t k = 0; k < colours.size(); ++k) {
         const cv::Mat& sum = sums[colours[k]];
         if (sum.empty()) continue;  // white: no hue
-        const cv::Rect whole(t->u0 + su - window.x, t->rows[k][0] + sv - window.y,
-                             t->u1 - t->u0, t->rows[k][1] - t->rows[k][0]);
+        const cv::Rect whole(t->u0 + su - window.x, t->rows[k][0] + sv - window.y, t->u1 - t->u0,
+                             t->rows[k][1] - t->rows[k][0]);
         if (whole.area() <= 0) continue;  // a band thinner than a row
         const cv::Rect band = whole & cv::Rect(0, 0, window.width, window.height);
         if (band != whole) return std::nan("");
