@@ -119,6 +119,9 @@ class PixelClassifier {
   std::uint8_t classify(const Eigen::Vector3d& yuv) const;
   const std::vector<Eigen::Vector3d>& means() const { return means_; }
   const std::vector<Eigen::Matrix3d>& covs() const { return covs_; }
+  const std::vector<Eigen::Matrix3d>& inverseCovs() const { return inv_covs_; }
+  /// log of the k-th colour's Gaussian normaliser, -0.5 log((2 pi)^3 det Sigma).
+  double logNorm(int k) const { return log_norms_[k]; }
   const std::vector<std::uint8_t>& classes() const { return classes_; }
 
  private:

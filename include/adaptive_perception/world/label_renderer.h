@@ -4,8 +4,9 @@
 //
 // It is the inner loop of the particle filter (one call per particle per frame on a pixel
 // subsample), so per camera pose it precomputes what does not depend on the pixel (the ray origin
-// terms of every primitive, culls primitives behind the camera) and per pixel does only a few
-// multiply-adds per primitive, with no allocation.
+// terms of every primitive; each primitive's box projected into the image, culling those outside
+// the view or behind the camera) and per pixel tests only the primitives whose box holds it, with
+// no allocation. The culling is exact: castRay, which culls nothing, gives the same labels.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
@@ -50,15 +51,35 @@ class LabelRenderer {
   RayHit castRay(const Eigen::Vector3d& origin_m, const Eigen::Vector3d& dir) const;
 
  private:
+  /// A box in the optical frame's normalised image plane (x / z, y / z); the default is
+  /// unbounded.
+  struct ViewBox {
+    static constexpr double kNone = 1e300;
+    double x0 = -kNone, x1 = kNone, y0 = -kNone, y1 = kNone;
+    bool contains(double rx, double ry) const {
+      return rx >= x0 && rx <= x1 && ry >= y0 && ry <= y1;
+    }
+    bool overlaps(const ViewBox& b) const {
+      return x0 <= b.x1 && b.x0 <= x1 && y0 <= b.y1 && b.y0 <= y1;
+    }
+  };
+  // The view box of the map-frame box [lo, hi] for a camera at `origin` with map <- optical
+  // rotation `r` (row-major).
+  static ViewBox viewBoxOf(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                           const double* origin, const double* r);
+
   struct PoseSetup;  // per-pose precomputation, on the stack of each render call
+  // (rx, ry): the ray in the normalised image plane, tested against each primitive's view box
+  // before the primitive itself; (dx, dy, dz): the ray in the map frame.
   template <bool kFullHit>
-  void trace(const PoseSetup& s, double dx, double dy, double dz, RayHit* hit,
+  void trace(const PoseSetup& s, double rx, double ry, double dx, double dy, double dz, RayHit* hit,
              std::uint8_t* label) const;
   void setup(const Eigen::Vector3d& origin, const Eigen::Matrix3d* rot, PoseSetup* s) const;
 
   FieldMap map_;
   PinholeCamera camera_;
   std::vector<Eigen::Vector3f> rays_optical_;  // per pixel, z = 1
+  ViewBox image_box_;                          // the rays' box: primitives outside are culled
 
   // Flattened primitives for the hot loop.
   struct QuadP {

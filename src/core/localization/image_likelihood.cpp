@@ -191,9 +191,31 @@ double ImageLikelihood::logLikelihood(const SampledImage& image, const math::SE2
   std::fill(std::begin(slot), std::end(slot), static_cast<std::int8_t>(-1));
   for (int k = 0; k < mc.numColors(); ++k) slot[mc.classes[k]] = static_cast<std::int8_t>(k);
   const std::vector<double> mode_p = lighting.predictedModeProbabilities();
-  std::vector<double> mode_ll(lighting.numModes(), 0.0);
-  std::vector<color::PixelClassifier> cls;
-  for (int j = 0; j < lighting.numModes(); ++j) cls.push_back(lighting.mode(j).classifier());
+  const int modes = lighting.numModes(), colours = mc.numColors();
+  std::vector<double> mode_ll(modes, 0.0);
+  // Eq. (9) per (mode, colour), flattened for the pixel loop: log(1 - outlier) + the Gaussian's
+  // log normaliser, its mean and the six entries of its symmetric inverse covariance.
+  struct Gauss {
+    double log_scale, m0, m1, m2, a00, a01, a02, a11, a12, a22;
+  };
+  std::vector<Gauss> gauss(static_cast<size_t>(modes) * colours);
+  for (int m = 0; m < modes; ++m) {
+    const color::PixelClassifier cls = lighting.mode(m).classifier();
+    for (int k = 0; k < colours; ++k) {
+      const Eigen::Vector3d& mu = cls.means()[k];
+      const Eigen::Matrix3d& a = cls.inverseCovs()[k];
+      gauss[static_cast<size_t>(m) * colours + k] = {log_in + cls.logNorm(k),
+                                                     mu.x(),
+                                                     mu.y(),
+                                                     mu.z(),
+                                                     a(0, 0),
+                                                     a(0, 1) + a(1, 0),
+                                                     a(0, 2) + a(2, 0),
+                                                     a(1, 1),
+                                                     a(1, 2) + a(2, 1),
+                                                     a(2, 2)};
+    }
+  }
   int used = 0;
   color::ColorObservation obs;
   obs.counts.assign(mc.numColors(), 0);
@@ -209,9 +231,21 @@ double ImageLikelihood::logLikelihood(const SampledImage& image, const math::SE2
     for (int e = 1; e <= 8; ++e) t[e] = std::log(e / 8.0);
     return t;
   }();
-  std::vector<double> pixel_ll(lighting.numModes());
   const bool own_background = !image.background_log_density.empty();
   for (size_t j = 0; j < pixels.size(); ++j) {
+    const Eigen::Vector3d& yuv = pixel_yuv[j];
+    // Background (or an unmodelled colour): the uniform density, or the image's own
+    // background's. Every pixel must contribute, or poses that see more background would
+    // score higher for having fewer terms.
+    const double background = own_background ? image.background_log_density[j] : kLogUniformYuv;
+    const auto pixelLogLikelihood = [&](int m, int k) {
+      if (k < 0) return background;
+      const Gauss& g = gauss[static_cast<size_t>(m) * colours + k];
+      const double d0 = yuv.x() - g.m0, d1 = yuv.y() - g.m1, d2 = yuv.z() - g.m2;
+      const double q = d0 * (g.a00 * d0 + g.a01 * d1 + g.a02 * d2) +
+                       d1 * (g.a11 * d1 + g.a12 * d2) + g.a22 * d2 * d2;
+      return math::logAddExp(g.log_scale - 0.5 * q, log_out);
+    };
     std::uint8_t cand[5];
     int eighths[5];
     int nc = 0;
@@ -234,32 +268,28 @@ double ImageLikelihood::logLikelihood(const SampledImage& image, const math::SE2
         }
       }
     }
-    for (int m = 0; m < lighting.numModes(); ++m) {
-      double ll = -std::numeric_limits<double>::infinity();
-      for (int c = 0; c < nc; ++c) {
-        // Background (or an unmodelled colour): the uniform density, or the image's own
-        // background's. Every pixel must contribute, or poses that see more background would
-        // score higher for having fewer terms.
-        const int k = slot[cand[c]];
-        double v = own_background ? image.background_log_density[j] : kLogUniformYuv;
-        if (k >= 0) v = math::logAddExp(log_in + cls[m].logLikelihood(pixel_yuv[j], k), log_out);
-        // One colour all around (most pixels): no mixture.
-        ll = nc == 1 ? v : math::logAddExp(ll, v + kLogEighths[eighths[c]]);
-      }
-      pixel_ll[m] = ll;
-    }
-    for (int m = 0; m < lighting.numModes(); ++m) mode_ll[m] += pixel_ll[m];
     const int k = slot[labels[j]];
+    if (nc == 1) {
+      // One colour all around (most pixels): no mixture.
+      for (int m = 0; m < modes; ++m) mode_ll[m] += pixelLogLikelihood(m, k);
+    } else {
+      for (int m = 0; m < modes; ++m) {
+        double ll = -std::numeric_limits<double>::infinity();
+        for (int c = 0; c < nc; ++c)
+          ll = math::logAddExp(ll, pixelLogLikelihood(m, slot[cand[c]]) + kLogEighths[eighths[c]]);
+        mode_ll[m] += ll;
+      }
+    }
     if (k < 0) continue;
     ++used;
     ++obs.counts[k];
-    obs.means[k] += pixel_yuv[j];
+    obs.means[k] += yuv;
   }
   double best = -std::numeric_limits<double>::infinity();
-  for (int m = 0; m < lighting.numModes(); ++m)
+  for (int m = 0; m < modes; ++m)
     best = std::max(best, std::log(std::max(mode_p[m], 1e-300)) + mode_ll[m]);
   double sum = 0.0;
-  for (int m = 0; m < lighting.numModes(); ++m)
+  for (int m = 0; m < modes; ++m)
     sum += std::exp(std::log(std::max(mode_p[m], 1e-300)) + mode_ll[m] - best);
   const double ll = best + std::log(sum);
   for (int k = 0; k < mc.numColors(); ++k)

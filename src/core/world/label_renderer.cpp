@@ -11,6 +11,7 @@ namespace {
 constexpr int kMaxQuads = 64;
 constexpr int kMaxCylinders = 32;
 constexpr int kMaxSpheres = 8;
+
 }  // namespace
 
 struct LabelRenderer::PoseSetup {
@@ -19,14 +20,40 @@ struct LabelRenderer::PoseSetup {
   int n_quads = 0;
   int quad_idx[kMaxQuads];
   double quad_num[kMaxQuads];  // n . (p0 - o): the numerator of the ray parameter
+  ViewBox quad_box[kMaxQuads];
   int n_cyl = 0;
   int cyl_idx[kMaxCylinders];
   double cyl_ocx[kMaxCylinders], cyl_ocy[kMaxCylinders], cyl_c[kMaxCylinders];
+  ViewBox cyl_box[kMaxCylinders];
   int n_sph = 0;
   int sph_idx[kMaxSpheres];
   double sph_oc[kMaxSpheres][3], sph_c[kMaxSpheres];
+  ViewBox sph_box[kMaxSpheres];
 };
 
+// The corners' box, which bounds the projection of the whole (convex) box while
+// every corner lies in front of the camera. A box reaching to or behind the image plane gets no
+// bound. The margin absorbs rounding (rays and corners are projected by different routes).
+LabelRenderer::ViewBox LabelRenderer::viewBoxOf(const Eigen::Vector3d& lo,
+                                                const Eigen::Vector3d& hi, const double* o,
+                                                const double* r) {
+  constexpr double kMinDepthM = 1e-3, kMargin = 1e-6;
+  ViewBox b{ViewBox::kNone, -ViewBox::kNone, ViewBox::kNone, -ViewBox::kNone};
+  for (int c = 0; c < 8; ++c) {
+    const double p[3] = {(c & 1 ? hi : lo).x() - o[0], (c & 2 ? hi : lo).y() - o[1],
+                         (c & 4 ? hi : lo).z() - o[2]};
+    // optical = r^T (p - o)
+    const double x = r[0] * p[0] + r[3] * p[1] + r[6] * p[2];
+    const double y = r[1] * p[0] + r[4] * p[1] + r[7] * p[2];
+    const double z = r[2] * p[0] + r[5] * p[1] + r[8] * p[2];
+    if (!(z > kMinDepthM)) return ViewBox{};
+    b.x0 = std::min(b.x0, x / z);
+    b.x1 = std::max(b.x1, x / z);
+    b.y0 = std::min(b.y0, y / z);
+    b.y1 = std::max(b.y1, y / z);
+  }
+  return ViewBox{b.x0 - kMargin, b.x1 + kMargin, b.y0 - kMargin, b.y1 + kMargin};
+}
 LabelRenderer::LabelRenderer(const FieldMap& map, const PinholeCamera& camera)
     : map_(map), camera_(camera) {
   camera_.validate();
@@ -40,6 +67,13 @@ LabelRenderer::LabelRenderer(const FieldMap& map, const PinholeCamera& camera)
     for (int u = 0; u < camera_.width_px; ++u)
       rays_optical_[static_cast<size_t>(v) * camera_.width_px + u] =
           camera_.rayThrough(u, v).cast<float>();
+  image_box_ = ViewBox{ViewBox::kNone, -ViewBox::kNone, ViewBox::kNone, -ViewBox::kNone};
+  for (const Eigen::Vector3f& r : rays_optical_) {
+    image_box_.x0 = std::min<double>(image_box_.x0, r.x());
+    image_box_.x1 = std::max<double>(image_box_.x1, r.x());
+    image_box_.y0 = std::min<double>(image_box_.y0, r.y());
+    image_box_.y1 = std::max<double>(image_box_.y1, r.y());
+  }
   for (const auto& q : map.quads()) {
     const Eigen::Vector2d e = q.p1_m - q.p0_m;
     const double len = e.norm();
@@ -58,6 +92,7 @@ void LabelRenderer::setup(const Eigen::Vector3d& o, const Eigen::Matrix3d* rot,
   s->ox = o.x();
   s->oy = o.y();
   s->oz = o.z();
+  const double origin[3] = {o.x(), o.y(), o.z()};
   Eigen::Vector3d fwd(0, 0, 0);
   if (rot) {
     for (int i = 0; i < 3; ++i)
@@ -78,6 +113,14 @@ void LabelRenderer::setup(const Eigen::Vector3d& o, const Eigen::Matrix3d* rot,
         }
       if (!any_front) continue;
     }
+    ViewBox box;
+    if (rot) {
+      const Eigen::Vector3d a(q.p0x, q.p0y, q.z0),
+          b(q.p0x + q.len * q.ex, q.p0y + q.len * q.ey, q.z1);
+      box = viewBoxOf(a.cwiseMin(b), a.cwiseMax(b), origin, s->r);
+      if (!box.overlaps(image_box_)) continue;
+    }
+    s->quad_box[s->n_quads] = box;
     s->quad_idx[s->n_quads] = i;
     s->quad_num[s->n_quads] = q.nx * (q.p0x - o.x()) + q.ny * (q.p0y - o.y());
     ++s->n_quads;
@@ -94,6 +137,14 @@ void LabelRenderer::setup(const Eigen::Vector3d& o, const Eigen::Matrix3d* rot,
                            std::max((c.zmin - o.z()) * fwd.z(), (c.zmax - o.z()) * fwd.z());
       if (along + reach <= 0.0) continue;
     }
+    ViewBox box;
+    if (rot) {
+      const double r = std::sqrt(c.r2);
+      box = viewBoxOf(Eigen::Vector3d(c.cx - r, c.cy - r, c.zmin),
+                      Eigen::Vector3d(c.cx + r, c.cy + r, c.zmax), origin, s->r);
+      if (!box.overlaps(image_box_)) continue;
+    }
+    s->cyl_box[s->n_cyl] = box;
     s->cyl_idx[s->n_cyl] = i;
     s->cyl_ocx[s->n_cyl] = ocx;
     s->cyl_ocy[s->n_cyl] = ocy;
@@ -104,6 +155,13 @@ void LabelRenderer::setup(const Eigen::Vector3d& o, const Eigen::Matrix3d* rot,
   for (int i = 0; i < static_cast<int>(map_.spheres().size()); ++i) {
     const Sphere& sp = map_.spheres()[i];
     const Eigen::Vector3d oc = o - sp.centre_m;
+    ViewBox box;
+    if (rot) {
+      const Eigen::Vector3d half = Eigen::Vector3d::Constant(sp.radius_m);
+      box = viewBoxOf(sp.centre_m - half, sp.centre_m + half, origin, s->r);
+      if (!box.overlaps(image_box_)) continue;
+    }
+    s->sph_box[s->n_sph] = box;
     s->sph_idx[s->n_sph] = i;
     for (int k = 0; k < 3; ++k) s->sph_oc[s->n_sph][k] = oc[k];
     s->sph_c[s->n_sph] = oc.squaredNorm() - sp.radius_m * sp.radius_m;
@@ -112,8 +170,8 @@ void LabelRenderer::setup(const Eigen::Vector3d& o, const Eigen::Matrix3d* rot,
 }
 
 template <bool kFullHit>
-inline void LabelRenderer::trace(const PoseSetup& s, double dx, double dy, double dz, RayHit* hit,
-                                 std::uint8_t* label) const {
+inline void LabelRenderer::trace(const PoseSetup& s, double rx, double ry, double dx, double dy,
+                                 double dz, RayHit* hit, std::uint8_t* label) const {
   double best_t = std::numeric_limits<double>::infinity();
   std::uint8_t color = kBackground;
   SurfaceKind kind = SurfaceKind::kNone;
@@ -129,6 +187,7 @@ inline void LabelRenderer::trace(const PoseSetup& s, double dx, double dy, doubl
     }
   }
   for (int k = 0; k < s.n_quads; ++k) {
+    if (!s.quad_box[k].contains(rx, ry)) continue;
     const QuadP& q = quads_[s.quad_idx[k]];
     const double denom = q.nx * dx + q.ny * dy;
     if (denom == 0.0) continue;
@@ -146,6 +205,7 @@ inline void LabelRenderer::trace(const PoseSetup& s, double dx, double dy, doubl
   }
   const double a_xy = dx * dx + dy * dy;
   for (int k = 0; k < s.n_cyl; ++k) {
+    if (!s.cyl_box[k].contains(rx, ry)) continue;
     const double b = s.cyl_ocx[k] * dx + s.cyl_ocy[k] * dy;
     const double disc = b * b - a_xy * s.cyl_c[k];
     if (disc < 0.0 || b >= 0.0) continue;  // missed, or moving away from the axis
@@ -168,6 +228,7 @@ inline void LabelRenderer::trace(const PoseSetup& s, double dx, double dy, doubl
   if (s.n_sph > 0) {
     const double a = a_xy + dz * dz;
     for (int k = 0; k < s.n_sph; ++k) {
+      if (!s.sph_box[k].contains(rx, ry)) continue;
       const double b = s.sph_oc[k][0] * dx + s.sph_oc[k][1] * dy + s.sph_oc[k][2] * dz;
       const double disc = b * b - a * s.sph_c[k];
       if (disc < 0.0 || b >= 0.0) continue;
@@ -225,7 +286,7 @@ void LabelRenderer::renderImage(const Eigen::Isometry3d& map_to_optical,
     const double dx = s.r[0] * r.x() + s.r[1] * r.y() + s.r[2];
     const double dy = s.r[3] * r.x() + s.r[4] * r.y() + s.r[5];
     const double dz = s.r[6] * r.x() + s.r[7] * r.y() + s.r[8];
-    trace<false>(s, dx, dy, dz, nullptr, labels + i);
+    trace<false>(s, r.x(), r.y(), dx, dy, dz, nullptr, labels + i);
   }
 }
 
@@ -245,7 +306,7 @@ void LabelRenderer::renderPixels(const Eigen::Isometry3d& map_to_optical, const 
     const double dx = s.r[0] * r.x() + s.r[1] * r.y() + s.r[2];
     const double dy = s.r[3] * r.x() + s.r[4] * r.y() + s.r[5];
     const double dz = s.r[6] * r.x() + s.r[7] * r.y() + s.r[8];
-    trace<false>(s, dx, dy, dz, nullptr, out + i);
+    trace<false>(s, r.x(), r.y(), dx, dy, dz, nullptr, out + i);
   }
 }
 
@@ -263,8 +324,9 @@ void LabelRenderer::renderHitImage(const Eigen::Isometry3d& map_to_optical,
   setup(map_to_optical.translation(), &rot, &s);
   hits->resize(rays_optical_.size());
   for (size_t i = 0; i < rays_optical_.size(); ++i) {
-    const Eigen::Vector3d d = rot * rays_optical_[i].cast<double>();
-    trace<true>(s, d.x(), d.y(), d.z(), &(*hits)[i], nullptr);
+    const Eigen::Vector3f& r = rays_optical_[i];
+    const Eigen::Vector3d d = rot * r.cast<double>();
+    trace<true>(s, r.x(), r.y(), d.x(), d.y(), d.z(), &(*hits)[i], nullptr);
   }
 }
 
@@ -272,7 +334,7 @@ RayHit LabelRenderer::castRay(const Eigen::Vector3d& origin, const Eigen::Vector
   PoseSetup s;
   setup(origin, nullptr, &s);
   RayHit hit;
-  trace<true>(s, dir.x(), dir.y(), dir.z(), &hit, nullptr);
+  trace<true>(s, 0.0, 0.0, dir.x(), dir.y(), dir.z(), &hit, nullptr);  // no rotation: no boxes
   return hit;
 }
 

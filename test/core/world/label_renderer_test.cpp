@@ -120,17 +120,60 @@ TEST_F(LabelRendererTest, AllEntryPointsAgree) {
     renderer_.renderImage(pose, image.data());
     renderer_.renderPixels(pose, all, &listed);
     ASSERT_EQ(image, listed);
-    for (int k = 0; k < 200; ++k) {
-      const int i = rng.uniformInt(0, static_cast<int>(all.size()) - 1);
+    // castRay has no camera rotation and so no per-pose culling: every pixel must agree.
+    int disagree = 0;
+    for (size_t i = 0; i < all.size(); ++i) {
       const Eigen::Vector3d dir = pose.linear() * cam.rayThrough(all[i].u, all[i].v);
-      EXPECT_EQ(renderer_.castRay(pose.translation(), dir).color, image[i]);
+      disagree += renderer_.castRay(pose.translation(), dir).color != image[i];
     }
+    EXPECT_EQ(disagree, 0) << "trial " << trial;
     for (auto c : image) ++histogram[c];
   }
   // The random views show the main classes.
   EXPECT_GT(histogram[kGreen], 0);
   EXPECT_GT(histogram[kWhite], 0);
   EXPECT_GT(histogram[kBackground], 0);
+}
+
+// Per camera pose the renderer skips every primitive whose box, projected into the image, does not
+// hold the pixel. Cameras right at the primitives (their boxes reach behind the image plane, or
+// fill the view) and beside them looking past: renderImage agrees with castRay, which skips
+// nothing.
+TEST_F(LabelRendererTest, CullingNearPrimitivesChangesNoPixel) {
+  adaptive_perception::math::Rng rng(11);
+  const FieldMap& map = renderer_.map();
+  const PinholeCamera& cam = renderer_.camera();
+  std::vector<Eigen::Vector3d> near;
+  for (const Cylinder& c : map.cylinders())
+    near.push_back({c.cx_m, c.cy_m, 0.5 * (c.bands.front().z0_m + c.bands.back().z1_m)});
+  for (const auto& q : map.quads())
+    near.push_back({0.5 * (q.p0_m.x() + q.p1_m.x()), 0.5 * (q.p0_m.y() + q.p1_m.y()),
+                    0.5 * (q.z0_m + q.z1_m)});
+  ASSERT_FALSE(near.empty());
+  std::vector<std::uint8_t> image(cam.width_px * cam.height_px);
+  int disagree = 0, non_ground = 0;
+  for (const Eigen::Vector3d& target : near) {
+    for (int trial = 0; trial < 6; ++trial) {
+      const double dist = trial < 3 ? 0.02 + 0.05 * trial : rng.uniform(0.2, 1.5);
+      const double az = rng.uniform(-kPi, kPi);
+      const Eigen::Vector3d pos =
+          target + dist * Eigen::Vector3d(std::cos(az), std::sin(az), rng.uniform(-0.5, 0.5));
+      const Eigen::Vector3d forward =
+          trial % 2 == 0 ? Eigen::Vector3d(target - pos)
+                         : Eigen::Vector3d(rng.uniform(-1, 1), rng.uniform(-1, 1), -0.3);
+      const Eigen::Isometry3d pose = lookAlong(pos, forward);
+      renderer_.renderImage(pose, image.data());
+      for (int v = 0; v < cam.height_px; ++v)
+        for (int u = 0; u < cam.width_px; ++u) {
+          const std::uint8_t c = image[static_cast<size_t>(v) * cam.width_px + u];
+          const Eigen::Vector3d dir = pose.linear() * cam.rayThrough(u, v);
+          disagree += renderer_.castRay(pose.translation(), dir).color != c;
+          non_ground += c != kGreen && c != kWhite && c != kBackground;
+        }
+    }
+  }
+  EXPECT_EQ(disagree, 0);
+  EXPECT_GT(non_ground, 0);  // the views do show the primitives
 }
 
 // Independent check by projection: a point in the middle of a beacon band, seen from a camera with
