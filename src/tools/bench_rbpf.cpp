@@ -97,11 +97,12 @@ int main(int argc, char** argv) {
     localization::RbpfLocalizer rbpf(map, cam, priors, cfg);
     rbpf.initGaussian(start, Eigen::Vector3d(0.01, 0.01, 0.01).asDiagonal());
     const auto t0 = std::chrono::steady_clock::now();
-    int flips = 0, relocalizations = 0;
+    int flips = 0, relocalizations = 0, resamplings = 0;
     for (int k = 0; k < frames; ++k) {
       const auto r = rbpf.step(deltas[k], 1.0 / rate_hz, images[k], heads[k]);
       flips += r.mirror_flipped;
       relocalizations += r.relocalized;
+      resamplings += r.resampled;
     }
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double fps = frames / s;
@@ -109,10 +110,11 @@ int main(int argc, char** argv) {
     std::printf(
         "%5d particles, %d thread(s), %dx%d at %.0f Hz, stride %d (%zu pixels), relocalization "
         "check every %.1f s over %d poses: %.1f frames/s (final position error %.3f m, mirror "
-        "flips %d, relocalizations %d)\n",
+        "flips %d, relocalizations %d, resamplings %d)\n",
         n, t, width, height, rate_hz, rbpf.config().likelihood.pixel_stride, rbpf.pixels().size(),
         cfg.relocalization.interval_s, cfg.relocalization.pool_size, fps,
-        std::hypot(e.x_m - end_truth.x_m, e.y_m - end_truth.y_m), flips, relocalizations);
+        std::hypot(e.x_m - end_truth.x_m, e.y_m - end_truth.y_m), flips, relocalizations,
+        resamplings);
     char buf[96];
     if (first) {
       std::snprintf(buf, sizeof buf, " frames_per_s=%.1f", fps);

@@ -36,6 +36,7 @@
 
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/io/head_image_list.h"
+#include "adaptive_perception/localization/goal_detection.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
 #include "adaptive_perception/ros/params.h"
 #include "adaptive_perception/world/label_renderer.h"
@@ -59,6 +60,20 @@ cv::Mat drawEstimate(const cv::Mat& bgr, const world::FieldMap& map,
   cv::addWeighted(bgr, 0.4, colours, 0.6, 0.0, colours);
   colours.copyTo(out, drawn);
   return out;
+}
+
+// The goals the detector saw (the global search's proposals come from them): each post's box and
+// the crossbar between the posts' tops; the best goal in magenta, the others in cyan.
+void drawGoalSightings(const std::vector<localization::GoalSighting>& sightings, cv::Mat* image) {
+  for (size_t i = 0; i < sightings.size(); ++i) {
+    const cv::Scalar colour = i == 0 ? cv::Scalar(255, 0, 255) : cv::Scalar(255, 255, 0);
+    const localization::GoalSighting& g = sightings[i];
+    for (const localization::GoalPostSighting* p : {&g.left, &g.right})
+      cv::rectangle(*image, cv::Point2d(p->u_px - 0.5 * p->width_px, p->foot_v_px - p->height_px),
+                    cv::Point2d(p->u_px + 0.5 * p->width_px, p->foot_v_px), colour, 2);
+    cv::line(*image, cv::Point2d(g.left.u_px, g.left.foot_v_px - g.left.height_px),
+             cv::Point2d(g.right.u_px, g.right.foot_v_px - g.right.height_px), colour, 1);
+  }
 }
 
 }  // namespace
@@ -180,10 +195,14 @@ int main(int argc, char** argv) {
                     goals, pitch_offset, mirror_evidence, checks, relocalizations, max_check_score);
       std::cout << line << std::endl;
       csv << line << "\n";
-      cv::imwrite((fs::path(output) / (name + ".png")).string(),
-                  drawEstimate(bgr, map, camera.camera,
-                               world::planarToIsometry(est.pose) *
-                                   localization::leanCamera(base_to_optical, pitch_offset)));
+      cv::Mat drawing = drawEstimate(
+          bgr, map, camera.camera,
+          world::planarToIsometry(est.pose) * localization::leanCamera(base_to_optical, pitch_offset));
+      drawGoalSightings(localization::detectGoals(yuv,
+                                                  color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()),
+                                                  camera.camera, base_to_optical, map, cfg.goals),
+                        &drawing);
+      cv::imwrite((fs::path(output) / (name + ".png")).string(), drawing);
     }
     double median = -1.0;
     int within = 0;

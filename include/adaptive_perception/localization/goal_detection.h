@@ -9,7 +9,7 @@
 // needed). A post is a vertical run of white pixels standing on the ground (not cut by the
 // image's side); a goal is two posts whose feet a body lean of at most max_pitch_offset_rad puts
 // the goal's width apart, each as wide and at least as tall as a post standing there, joined by a
-// white crossbar at the posts' height. Fields whose goals are panels (goal_post_diameter_m 0) or
+// white crossbar at the posts' height, with a mouth that is mostly not white (a frame). Fields whose goals are panels (goal_post_diameter_m 0) or
 // not white have none: nothing is found. goalPoses() turns a sighting into the robot's pose for
 // each of the field's goals (two on a point-symmetric field: which one the robot sees is for the
 // mirror test, the landmarks, to decide); sampleGoalPoses() draws poses with the sighting's
@@ -58,6 +58,12 @@ struct GoalDetectionConfig {
   // it, is white.
   double max_pitch_offset_rad = 0.15;
   double crossbar_min_white_share = 0.6;
+  // A goal is a white frame: at most this share of its mouth (between the posts, from a quarter to
+  // three quarters of the crossbar's height) may be white. Two window mullions against a bright
+  // sky (a white "crossbar" anywhere between them) are not a goal; a goal before a white wall is
+  // not seen as one either (the uniform part of the search's pool still holds its pose). A half:
+  // the majority of the mouth must show what is behind the goal.
+  double mouth_max_white_share = 0.5;
   // Uncertainty of a sighting for sampleGoalPoses(): each post's bearing (its column) by
   // goal_bearing_sd_rad, the ratio of the posts' ranges (their feet's rows) by goal_range_ratio_sd
   // (standard deviation of its log). The ranges themselves follow from the goal's width.
@@ -85,6 +91,7 @@ struct GoalSighting {
   // looking down) that puts the feet the goal's width apart: a legged robot's stance tilts its
   // camera (on the NAO development points by -0.03 to 0.09 rad).
   double pitch_offset_rad = 0.0;
+  double mouth_white_share = 0.0;  // of the mouth, below the crossbar
 };
 
 /// The goals in `yuv` (CV_8UC3, Y U V) whose posts and crossbar are all in view and that are seen

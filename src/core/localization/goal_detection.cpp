@@ -36,6 +36,9 @@ const config::Fields<GoalDetectionConfig>& GoalDetectionConfig::fields() {
                "be the field's (carpet or paint)")
           .add("goal_crossbar_min_white_share", &C::crossbar_min_white_share, config::closed(0, 1),
                "share of a goal's crossbar that must be white")
+          .add("goal_mouth_max_white_share", &C::mouth_max_white_share, config::closed(0, 1),
+               "largest share of a goal's mouth (between the posts, below the crossbar) that may be "
+               "white")
           .add("goal_range_ratio_sd", &C::goal_range_ratio_sd, config::closed(0, 2),
                "uncertainty of the log of the ratio of a goal's two posts' ranges")
           .add("goal_bearing_sd_rad", &C::goal_bearing_sd_rad, config::closed(0, 1),
@@ -245,6 +248,26 @@ double crossbarShare(const Geometry& g, const cv::Mat& white, const Eigen::Vecto
   return samples > 0 ? static_cast<double>(hits) / samples : 0.0;
 }
 
+/// The share of the goal's mouth (between the posts, from a quarter to three quarters of the
+/// crossbar's height, away from the posts) that is white, under camera `g`.
+double mouthShare(const Geometry& g, const cv::Mat& white, const Eigen::Vector2d& a,
+                  const Eigen::Vector2d& b, const world::FieldDimensions& d) {
+  int hits = 0, samples = 0;
+  for (int k = 4; k <= 36; ++k) {
+    const Eigen::Vector2d xy = a + (k / 40.0) * (b - a);
+    for (double h : {0.25, 0.5, 0.75}) {
+      const auto px = g.project(Eigen::Vector3d(xy.x(), xy.y(), h * d.goal_height_m));
+      if (!px) continue;
+      const int u = static_cast<int>(std::lround(px->x())),
+                v = static_cast<int>(std::lround(px->y()));
+      if (u < 0 || u >= white.cols || v < 0 || v >= white.rows) continue;
+      ++samples;
+      hits += white.at<std::uint8_t>(v, u) != 0;
+    }
+  }
+  return samples > 0 ? static_cast<double>(hits) / samples : 1.0;
+}
+
 /// The map's goal posts grouped by goal: {left, right} as seen from the field.
 std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> mapGoals(const world::FieldMap& map) {
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> goals;
@@ -328,6 +351,9 @@ std::vector<GoalSighting> detectGoals(const cv::Mat& yuv, const color::FieldSegm
       if (!standsThere(c, s.left, d, config) || !standsThere(c, s.right, d, config)) continue;
       s.crossbar_white_share = crossbarShare(c, white, s.left.foot_m, s.right.foot_m, d);
       if (s.crossbar_white_share < config.crossbar_min_white_share) continue;
+      // A frame, not a white patch: what the mouth shows is not the posts' white.
+      s.mouth_white_share = mouthShare(c, white, s.left.foot_m, s.right.foot_m, d);
+      if (s.mouth_white_share > config.mouth_max_white_share) continue;
       // Seen from the carpet (a pose that sees it from outside is a look-alike beyond the field).
       const std::vector<math::SE2> poses = goalPoses(s, map);
       if (poses.empty() || !map.isFree(poses.front().x_m, poses.front().y_m, 0.0)) continue;

@@ -232,29 +232,6 @@ void FieldMap::indexGround() {
     }
 }
 
-ColorClass FieldMap::groundColorAt(double x, double y) const {
-  if (!(std::fabs(x) <= carpet_half_length_m_ && std::fabs(y) <= carpet_half_width_m_))
-    return kBackground;
-  const int cx = std::clamp(static_cast<int>((x + carpet_half_length_m_) / ground_cell_m_), 0,
-                            ground_cols_ - 1);
-  const int cy = std::clamp(static_cast<int>((y + carpet_half_width_m_) / ground_cell_m_), 0,
-                            ground_rows_ - 1);
-  const size_t cell = static_cast<size_t>(cy) * ground_cols_ + cx;
-  const int nr = static_cast<int>(rects_.size());
-  for (int k = ground_begin_[cell]; k < ground_begin_[cell + 1]; ++k) {
-    const int i = ground_shapes_[k];
-    if (i < nr) {
-      const GroundRect& g = rects_[i];
-      if (x >= g.x0_m && x <= g.x1_m && y >= g.y0_m && y <= g.y1_m) return g.color;
-    } else {
-      const GroundRing& g = rings_[i - nr];
-      const double r2 = (x - g.cx_m) * (x - g.cx_m) + (y - g.cy_m) * (y - g.cy_m);
-      if (r2 >= g.r_inner_m * g.r_inner_m && r2 <= g.r_outer_m * g.r_outer_m) return g.color;
-    }
-  }
-  return kGreen;
-}
-
 bool FieldMap::isFree(double x, double y, double margin) const {
   if (std::fabs(x) > carpet_half_length_m_ - margin || std::fabs(y) > carpet_half_width_m_ - margin)
     return false;

@@ -1,5 +1,7 @@
 // Goal sightings and the landmarks' hues, on images rendered from the map at known poses (the
 // renderer's geometry, independent of the detector's inversion of it).
+#include "adaptive_perception/localization/goal_detection.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 
 #include "adaptive_perception/color/color_space.h"
 #include "adaptive_perception/color/field_segmentation.h"
-#include "adaptive_perception/localization/goal_detection.h"
 #include "adaptive_perception/localization/landmark_colours.h"
 #include "adaptive_perception/localization/rbpf_localizer.h"
 #include "adaptive_perception/world/label_renderer.h"
@@ -48,9 +49,9 @@ struct Scene {
         if (label == world::kWhite) rgb = {235, 235, 235};
         if (paints.count(label)) rgb = paints.at(label);
         const Eigen::Vector3d p = color::rgbToYuv(rgb);
-        yuv.at<cv::Vec3b>(v, u) = cv::Vec3b(cv::saturate_cast<std::uint8_t>(p[0]),
-                                            cv::saturate_cast<std::uint8_t>(p[1]),
-                                            cv::saturate_cast<std::uint8_t>(p[2]));
+        yuv.at<cv::Vec3b>(v, u) =
+            cv::Vec3b(cv::saturate_cast<std::uint8_t>(p[0]), cv::saturate_cast<std::uint8_t>(p[1]),
+                      cv::saturate_cast<std::uint8_t>(p[2]));
       }
     }
     return yuv;
@@ -116,6 +117,43 @@ TEST(GoalDetection, MeasuresTheBodysLeanTheHeadChainDoesNotKnow) {
     math::SE2 best;
     EXPECT_LT(nearest(goalPoses(goals[0], s.map), pose, &best), 0.47) << "head yaw " << head_yaw;
   }
+}
+
+// Two window mullions against a bright sky look like posts with a white crossbar anywhere
+// between them (the NAO development point punt3): what a goal's mouth shows must not be white.
+TEST(GoalDetection, AWhiteFrameAroundAWhiteMouthIsNotAGoal) {
+  const Scene s;
+  cv::Mat yuv = s.render(s.pose, s.head);
+  ASSERT_EQ(s.detect(yuv, s.head).size(), 1u);  // the control: the goal before a dark room
+  // The room seen through the goal's mouth, from 0.3 m up to the crossbar, turned white (sky);
+  // below that it stays dark, so the mouth's white does not reach the posts' feet.
+  cv::Mat labels(s.nao.camera.height_px, s.nao.camera.width_px, CV_8UC1);
+  s.renderer.renderImage(world::planarToIsometry(s.pose) * s.head, labels.data);
+  const Eigen::Isometry3d optical_from_map = (world::planarToIsometry(s.pose) * s.head).inverse();
+  const Eigen::Vector3d sky = color::rgbToYuv(Eigen::Vector3d(235, 238, 240));
+  int painted = 0;
+  for (double y = -0.75; y <= 0.75; y += 0.005) {
+    for (double z = 0.3; z <= 0.8; z += 0.005) {
+      Eigen::Vector2d uv;
+      if (!s.nao.camera.project(optical_from_map * Eigen::Vector3d(-4.52, y, z), &uv)) continue;
+      const int u = static_cast<int>(std::lround(uv.x())),
+                v = static_cast<int>(std::lround(uv.y()));
+      if (u < 0 || v < 0 || u >= yuv.cols || v >= yuv.rows) continue;
+      if (labels.at<std::uint8_t>(v, u) != world::kBackground) continue;
+      yuv.at<cv::Vec3b>(v, u) =
+          cv::Vec3b(static_cast<std::uint8_t>(sky[0]), static_cast<std::uint8_t>(sky[1]),
+                    static_cast<std::uint8_t>(sky[2]));
+      ++painted;
+    }
+  }
+  ASSERT_GT(painted, 100);
+  EXPECT_TRUE(s.detect(yuv, s.head).empty());
+  // Without the mouth check the frame passes for a goal: the check is what refuses it.
+  GoalDetectionConfig lax;
+  lax.mouth_max_white_share = 1.0;
+  EXPECT_EQ(
+      detectGoals(yuv, color::segmentFieldYuv(yuv, {}), s.nao.camera, s.head, s.map, lax).size(),
+      1u);
 }
 
 TEST(GoalDetection, NothingWithoutPostsOrWithoutAGoalInView) {
@@ -279,7 +317,8 @@ TEST(LandmarkColours, TheHuesTellAPoseFromItsMirror) {
   // Painted otherwise than the hues the test assumes (a paler pink, an orange-yellow, a darker
   // sky-blue, as a real camera shows them), the truth still wins by more than a nat per band.
   Scene other = s;
-  other.paints = {{world::kPink, {230, 120, 160}}, {world::kYellow, {230, 200, 60}},
+  other.paints = {{world::kPink, {230, 120, 160}},
+                  {world::kYellow, {230, 200, 60}},
                   {world::kCyan, {60, 130, 190}}};
   const LandmarkColourEvidence repainted =
       landmarkMirrorEvidence(other.render(pose, head), s.renderer, pose, head, config);
