@@ -195,12 +195,12 @@ int main(int argc, char** argv) {
                     goals, pitch_offset, mirror_evidence, checks, relocalizations, max_check_score);
       std::cout << line << std::endl;
       csv << line << "\n";
-      cv::Mat drawing = drawEstimate(
-          bgr, map, camera.camera,
-          world::planarToIsometry(est.pose) * localization::leanCamera(base_to_optical, pitch_offset));
-      drawGoalSightings(localization::detectGoals(yuv,
-                                                  color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()),
-                                                  camera.camera, base_to_optical, map, cfg.goals),
+      cv::Mat drawing = drawEstimate(bgr, map, camera.camera,
+                                     world::planarToIsometry(est.pose) *
+                                         localization::leanCamera(base_to_optical, pitch_offset));
+      drawGoalSightings(localization::detectGoals(
+                            yuv, color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()),
+                            camera.camera, base_to_optical, map, cfg.goals),
                         &drawing);
       cv::imwrite((fs::path(output) / (name + ".png")).string(), drawing);
     }

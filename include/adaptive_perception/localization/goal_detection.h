@@ -9,14 +9,14 @@
 // needed). A post is a vertical run of white pixels standing on the ground (not cut by the
 // image's side); a goal is two posts whose feet a body lean of at most max_pitch_offset_rad puts
 // the goal's width apart, each as wide and at least as tall as a post standing there, joined by a
-// white crossbar at the posts' height, with a mouth that is mostly not white (a frame). Fields whose goals are panels (goal_post_diameter_m 0) or
-// not white have none: nothing is found. goalPoses() turns a sighting into the robot's pose for
-// each of the field's goals (two on a point-symmetric field: which one the robot sees is for the
-// mirror test, the landmarks, to decide); sampleGoalPoses() draws poses with the sighting's
-// uncertainty: the posts' bearings (their columns) are sharp, their ranges (their feet's rows)
-// are not, and a goal seen nearly head-on tells little about where along the circle through its
-// posts (the points that see them the same angle apart) the robot stands; the image likelihood
-// decides that.
+// white crossbar at the posts' height, with a mouth that is mostly not white (a frame). Fields
+// whose goals are panels (goal_post_diameter_m 0) or not white have none: nothing is found.
+// goalPoses() turns a sighting into the robot's pose for each of the field's goals (two on a
+// point-symmetric field: which one the robot sees is for the mirror test, the landmarks, to
+// decide); sampleGoalPoses() draws poses with the sighting's uncertainty: the posts' bearings
+// (their columns) are sharp, their ranges (their feet's rows) are not, and a goal seen nearly
+// head-on tells little about where along the circle through its posts (the points that see them the
+// same angle apart) the robot stands; the image likelihood decides that.
 //
 // "White" is the goal's paint under this image's light: chroma near neutral and luma near the line
 // paint's (the pose-free segmentation's colours). A post stands on the field: the pixels below its

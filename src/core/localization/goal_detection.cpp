@@ -36,9 +36,10 @@ const config::Fields<GoalDetectionConfig>& GoalDetectionConfig::fields() {
                "be the field's (carpet or paint)")
           .add("goal_crossbar_min_white_share", &C::crossbar_min_white_share, config::closed(0, 1),
                "share of a goal's crossbar that must be white")
-          .add("goal_mouth_max_white_share", &C::mouth_max_white_share, config::closed(0, 1),
-               "largest share of a goal's mouth (between the posts, below the crossbar) that may be "
-               "white")
+          .add(
+              "goal_mouth_max_white_share", &C::mouth_max_white_share, config::closed(0, 1),
+              "largest share of a goal's mouth (between the posts, below the crossbar) that may be "
+              "white")
           .add("goal_range_ratio_sd", &C::goal_range_ratio_sd, config::closed(0, 2),
                "uncertainty of the log of the ratio of a goal's two posts' ranges")
           .add("goal_bearing_sd_rad", &C::goal_bearing_sd_rad, config::closed(0, 1),
@@ -310,8 +311,9 @@ std::vector<GoalSighting> detectGoals(const cv::Mat& yuv, const color::FieldSegm
                                       const GoalDetectionConfig& config) {
   if (yuv.type() != CV_8UC3 || yuv.cols != camera.width_px || yuv.rows != camera.height_px ||
       seg.labels.type() != CV_8UC1 || seg.labels.size() != yuv.size())
-    throw std::invalid_argument("detectGoals: needs a CV_8UC3 image of the camera's size and its "
-                                "segmentation's labels (CV_8UC1) of the same size");
+    throw std::invalid_argument(
+        "detectGoals: needs a CV_8UC3 image of the camera's size and its "
+        "segmentation's labels (CV_8UC1) of the same size");
   const world::FieldDimensions& d = map.dimensions();
   // (White posts: the detector's paint.)
   if (d.goal_post_diameter_m <= 0.0 || d.goal_color_minus_x != world::kWhite ||
