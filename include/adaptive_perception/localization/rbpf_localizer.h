@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "adaptive_perception/color/switching_color_filter.h"
+#include "adaptive_perception/localization/centre_circle.h"
 #include "adaptive_perception/localization/global_localization.h"
 #include "adaptive_perception/localization/goal_detection.h"
 #include "adaptive_perception/localization/image_likelihood.h"
@@ -64,6 +65,7 @@ struct RbpfConfig {
   RelocalizationConfig relocalization;  // the check that the particles are not lost
   MirrorTestConfig mirror_test;         // which half of the field
   GoalDetectionConfig goals;            // goals seen, for the global search's pool
+  CentreCircleConfig circle;            // the centre circle seen, for the same pool
   // The body's lean beyond the head chain's camera pose, as the goal seen at a global start
   // measures it (GoalSighting::pitch_offset_rad, applied by leanCamera()), is added to every
   // camera pose until the particles are placed anew (initUniform(), initGaussian(): a pose given
@@ -189,8 +191,9 @@ class RbpfLocalizer {
   /// A lighting filter at the priors (the particles' start, and the searches' lighting).
   const color::SwitchingColorFilter& priorLighting() const { return prior_lighting_; }
 
-  /// `count` poses drawn around the goals this image shows (goal_detection.h), shared among the
-  /// sightings; none on a field without goal posts. The sightings go to `seen` when given.
+  /// `count` poses drawn around the goals this image shows (goal_detection.h) and its centre
+  /// circle (centre_circle.h), shared among the sightings; none on a field without either. The
+  /// goal sightings go to `seen` when given.
   std::vector<math::SE2> goalProposals(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
                                        std::uint64_t frame_seed, int count,
                                        std::vector<GoalSighting>* seen = nullptr) const;

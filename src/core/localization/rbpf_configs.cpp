@@ -43,7 +43,8 @@ const config::Fields<RbpfConfig>& RbpfConfig::fields() {
           .nest(&C::global, GlobalLocalizationConfig::fields())
           .nest(&C::relocalization, RelocalizationConfig::fields())
           .nest(&C::mirror_test, MirrorTestConfig::fields())
-          .nest(&C::goals, GoalDetectionConfig::fields());
+          .nest(&C::goals, GoalDetectionConfig::fields())
+          .nest(&C::circle, CentreCircleConfig::fields());
   return f;
 }
 

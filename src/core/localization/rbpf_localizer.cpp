@@ -163,20 +163,33 @@ std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
                                                     const Eigen::Isometry3d& base_to_optical,
                                                     std::uint64_t frame_seed, int count,
                                                     std::vector<GoalSighting>* seen) const {
-  if (likelihood_->map().dimensions().goal_post_diameter_m <= 0.0) return {};
+  const world::FieldDimensions& d = likelihood_->map().dimensions();
+  if (d.goal_post_diameter_m <= 0.0 && !centreCircleFindable(likelihood_->map(), config_.circle))
+    return {};
   const color::FieldSegmentation seg =
       color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
   const std::vector<GoalSighting> sightings = detectGoals(
       yuv, seg, likelihood_->camera(), base_to_optical, likelihood_->map(), config_.goals);
-  // Each sighting gets its share of the proposals (sampled under its own lean: the best's is the
-  // one the particles use, and the others are rare).
+  // The centre circle where no goal is seen (a goal's posts place the robot more sharply).
+  const std::optional<CentreCircleSighting> circle =
+      sightings.empty()
+          ? detectCentreCircle(seg, likelihood_->camera(), base_to_optical, likelihood_->map(),
+                               config_.circle, math::mixSeeds(frame_seed, 0xc12c))
+          : std::nullopt;
+  // Each sighting gets its share of the proposals (a goal's sampled under its own lean: the
+  // best's is the one the particles use, and the others are rare).
   std::vector<math::SE2> proposals;
   math::Rng rng(math::mixSeeds(frame_seed, 0x60a1));
-  for (const GoalSighting& s : sightings) {
-    const int share = count / static_cast<int>(sightings.size());
-    if (share < 2) break;
-    for (const math::SE2& p : sampleGoalPoses(s, likelihood_->map(), config_.goals, share, rng))
-      proposals.push_back(p);
+  const int sources = static_cast<int>(sightings.size()) + (circle ? 1 : 0);
+  const int share = sources > 0 ? count / sources : 0;
+  if (share >= 2) {
+    for (const GoalSighting& s : sightings)
+      for (const math::SE2& p : sampleGoalPoses(s, likelihood_->map(), config_.goals, share, rng))
+        proposals.push_back(p);
+    if (circle)
+      for (const math::SE2& p :
+           centreCirclePoses(*circle, likelihood_->map(), config_.circle, share, rng))
+        proposals.push_back(p);
   }
   if (seen) *seen = sightings;
   return proposals;
@@ -267,8 +280,7 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
         pitch_offset_rad_ = sightings.front().pitch_offset_rad;
     }
   }
-  const Eigen::Isometry3d base_to_optical =
-      leanCamera(head_base_to_optical, pitch_offset_rad_);
+  const Eigen::Isometry3d base_to_optical = leanCamera(head_base_to_optical, pitch_offset_rad_);
   r.camera_pitch_offset_rad = pitch_offset_rad_;
   if (offsets_camera_.matrix() != base_to_optical.matrix()) {
     likelihood_->setOffsets(base_to_optical, &image_);
@@ -333,9 +345,9 @@ RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, doubl
       return count >= 2 ? goalProposals(yuv, head_base_to_optical, frame_seed, count)
                         : std::vector<math::SE2>();
     };
-    if (auto contest = relocalization_.observe(&search_, delta, dt_s, yuv, priorLighting(),
-                                               base_to_optical, frame_seed,
-                                               config_.global.search_frames, poses(), propose)) {
+    if (auto contest =
+            relocalization_.observe(&search_, delta, dt_s, yuv, priorLighting(), base_to_optical,
+                                    frame_seed, config_.global.search_frames, poses(), propose)) {
       const RelocalizationConfig& rc = config_.relocalization;
       r.relocalization_checked = true;
       r.relocalized = applyContest(std::move(*contest), priorLighting(), frame_seed, rc.margin,

@@ -1,0 +1,208 @@
+#include "adaptive_perception/localization/centre_circle.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "adaptive_perception/math/angles.h"
+
+namespace adaptive_perception::localization {
+
+const config::Fields<CentreCircleConfig>& CentreCircleConfig::fields() {
+  using C = CentreCircleConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("circle_max_range_m", &C::max_range_m, config::aboveZero(100),
+               "line pixels farther than this on the ground are not used to find the centre "
+               "circle (m)")
+          .add("circle_inlier_tolerance_m", &C::inlier_tolerance_m, config::aboveZero(1),
+               "a line point fits the centre circle or the halfway line within this (m)")
+          .add("circle_min_halfway_length_m", &C::min_halfway_length_m, config::aboveZero(100),
+               "the halfway line through the circle's centre must be seen this long (m)")
+          .add("circle_pixel_stride", &C::pixel_stride, config::closed(1, 64),
+               "every this many pixels of a 640-wide image is looked at for the centre circle")
+          .add("circle_iterations", &C::iterations, config::closed(1, 100000),
+               "RANSAC draws for the centre circle")
+          .add("circle_position_sd_m", &C::position_sd_m, config::closed(0, 10),
+               "spread of the poses drawn around a centre circle sighting (m)")
+          .add("circle_heading_sd_rad", &C::heading_sd_rad, config::closed(0, 3.2),
+               "spread of the headings drawn around a centre circle sighting with its halfway "
+               "line (rad)");
+  return f;
+}
+
+namespace {
+
+/// The line pixels on the ground (base_link), within max_range_m.
+std::vector<Eigen::Vector2d> groundLinePoints(const cv::Mat& labels,
+                                              const world::PinholeCamera& camera,
+                                              const Eigen::Isometry3d& base_to_optical,
+                                              const CentreCircleConfig& config) {
+  std::vector<Eigen::Vector2d> points;
+  const Eigen::Vector3d o = base_to_optical.translation();
+  if (o.z() <= 0.0) return points;
+  const int stride = std::max(1, config.pixel_stride * labels.cols / 640);
+  for (int v = stride / 2; v < labels.rows; v += stride) {
+    for (int u = stride / 2; u < labels.cols; u += stride) {
+      if (labels.at<std::uint8_t>(v, u) != world::kWhite) continue;
+      const Eigen::Vector3d ray = base_to_optical.linear() * camera.rayThrough(u, v);
+      if (ray.z() > -1e-6) continue;
+      const Eigen::Vector3d p = o + (-o.z() / ray.z()) * ray;
+      if ((p.head<2>() - o.head<2>()).norm() <= config.max_range_m) points.push_back(p.head<2>());
+    }
+  }
+  return points;
+}
+
+/// The arc (radians) the points cover about `centre`: the circle less its widest empty gap.
+double arcCovered(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& centre) {
+  if (points.size() < 2) return 0.0;
+  std::vector<double> angles;
+  for (const Eigen::Vector2d& p : points)
+    angles.push_back(std::atan2(p.y() - centre.y(), p.x() - centre.x()));
+  std::sort(angles.begin(), angles.end());
+  double gap = angles.front() + 2.0 * M_PI - angles.back();
+  for (size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+  return 2.0 * M_PI - gap;
+}
+
+std::vector<Eigen::Vector2d> inliersOf(const std::vector<Eigen::Vector2d>& points,
+                                       const Eigen::Vector2d& centre, double radius, double tol) {
+  std::vector<Eigen::Vector2d> in;
+  for (const Eigen::Vector2d& p : points)
+    if (std::abs((p - centre).norm() - radius) <= tol) in.push_back(p);
+  return in;
+}
+
+/// Twice the arc a straight line fits to within `tol` of a circle of `radius` (see the header).
+double minArcRad(double radius, double tol) { return 8.0 * std::sqrt(tol / (2.0 * radius)); }
+
+}  // namespace
+
+bool centreCircleFindable(const world::FieldMap& map, const CentreCircleConfig& config) {
+  const double radius = 0.5 * map.dimensions().centre_circle_diameter_m;
+  return radius > 0.0 && minArcRad(radius, config.inlier_tolerance_m) <= M_PI;
+}
+
+std::optional<CentreCircleSighting> detectCentreCircle(const color::FieldSegmentation& seg,
+                                                       const world::PinholeCamera& camera,
+                                                       const Eigen::Isometry3d& base_to_optical,
+                                                       const world::FieldMap& map,
+                                                       const CentreCircleConfig& config,
+                                                       std::uint64_t seed) {
+  const double radius = 0.5 * map.dimensions().centre_circle_diameter_m;
+  const double tol = config.inlier_tolerance_m;
+  if (!centreCircleFindable(map, config) || seg.labels.empty()) return std::nullopt;
+  const double min_arc_rad = minArcRad(radius, tol);
+  const std::vector<Eigen::Vector2d> points =
+      groundLinePoints(seg.labels, camera, base_to_optical, config);
+  if (points.size() < 3) return std::nullopt;
+  // RANSAC: two points on the circle put its centre at one of two places.
+  math::Rng rng(seed);
+  std::optional<Eigen::Vector2d> best;
+  size_t best_count = 0;
+  const int n = static_cast<int>(points.size());
+  for (int it = 0; it < config.iterations; ++it) {
+    const Eigen::Vector2d a = points[rng.uniformInt(0, n - 1)],
+                          b = points[rng.uniformInt(0, n - 1)];
+    const Eigen::Vector2d mid = 0.5 * (a + b), ab = b - a;
+    const double half = 0.5 * ab.norm();
+    if (half < 2.0 * tol || half >= radius) continue;
+    const Eigen::Vector2d normal = Eigen::Vector2d(-ab.y(), ab.x()).normalized();
+    const double h = std::sqrt(radius * radius - half * half);
+    for (double side : {-1.0, 1.0}) {
+      const Eigen::Vector2d c = mid + side * h * normal;
+      size_t count = 0;
+      for (const Eigen::Vector2d& p : points) count += std::abs((p - c).norm() - radius) <= tol;
+      if (count > best_count) best_count = count, best = c;
+    }
+  }
+  if (!best) return std::nullopt;
+  // Least squares on the inliers (Gauss-Newton on the centre, the radius known).
+  Eigen::Vector2d c = *best;
+  for (int iter = 0; iter < 5; ++iter) {
+    const std::vector<Eigen::Vector2d> in = inliersOf(points, c, radius, tol);
+    if (in.size() < 3) return std::nullopt;
+    Eigen::Matrix2d jtj = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d jtr = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& p : in) {
+      const Eigen::Vector2d d = c - p;
+      const double dist = d.norm();
+      if (dist < 1e-9) continue;
+      const Eigen::Vector2d j = d / dist;  // d(dist - R) / dc
+      jtj += j * j.transpose();
+      jtr += j * (dist - radius);
+    }
+    if (std::abs(jtj.determinant()) < 1e-12) break;
+    c -= jtj.ldlt().solve(jtr);
+  }
+  const std::vector<Eigen::Vector2d> in = inliersOf(points, c, radius, tol);
+  CentreCircleSighting s;
+  s.centre_m = c;
+  s.inliers = static_cast<int>(in.size());
+  s.arc_rad = arcCovered(in, c);
+  if (s.arc_rad < min_arc_rad) return std::nullopt;
+  // The halfway line: the direction through the centre that the most other line points lie on
+  // (a half-degree histogram of their directions modulo pi, each point within the tolerance of
+  // the line voting for the directions it fits).
+  std::vector<Eigen::Vector2d> rest;
+  for (const Eigen::Vector2d& p : points)
+    if (std::abs((p - c).norm() - radius) > tol) rest.push_back(p);
+  constexpr int kBins = 360;
+  std::vector<std::vector<double>> along(kBins);
+  for (const Eigen::Vector2d& p : rest) {
+    const Eigen::Vector2d d = p - c;
+    const double r = d.norm();
+    if (r < tol) continue;
+    const double dir = std::atan2(d.y(), d.x());
+    // The directions theta with |r sin(dir - theta)| <= tol.
+    const double spread = std::asin(std::min(1.0, tol / r));
+    const int b0 = static_cast<int>(std::floor((dir - spread) / M_PI * kBins)),
+              b1 = static_cast<int>(std::floor((dir + spread) / M_PI * kBins));
+    for (int b = b0; b <= b1; ++b) {
+      const int k = ((b % kBins) + kBins) % kBins;
+      // Signed position along the direction k (the sign flips with each half turn).
+      const double theta = (k + 0.5) * M_PI / kBins;
+      along[k].push_back(d.x() * std::cos(theta) + d.y() * std::sin(theta));
+    }
+  }
+  double best_length = 0.0;
+  for (int k = 0; k < kBins; ++k) {
+    if (along[k].size() < 3) continue;
+    const auto [lo, hi] = std::minmax_element(along[k].begin(), along[k].end());
+    // The extent, counting only as much of it as the points fill (a few scattered points far
+    // apart are not a line): points per tolerance-long piece.
+    const double extent = *hi - *lo;
+    const double filled = std::min(extent, along[k].size() * tol);
+    if (filled > best_length) {
+      best_length = filled;
+      s.halfway_direction_rad = (k + 0.5) * M_PI / kBins;
+    }
+  }
+  if (best_length < config.min_halfway_length_m) s.halfway_direction_rad.reset();
+  return s;
+}
+
+std::vector<math::SE2> centreCirclePoses(const CentreCircleSighting& s, const world::FieldMap& map,
+                                         const CentreCircleConfig& config, int count,
+                                         math::Rng& rng) {
+  std::vector<math::SE2> poses;
+  // The robot at p with heading psi sees the centre (the map's origin) at c: p = -R(psi) c. The
+  // halfway line runs along the map's y axis: psi + direction = pi / 2 (modulo pi).
+  for (int k = 0; k < count / 2; ++k) {
+    const double psi =
+        s.halfway_direction_rad
+            ? 0.5 * M_PI - *s.halfway_direction_rad + rng.gaussian(0.0, config.heading_sd_rad)
+            : 2.0 * M_PI * (k + rng.uniform()) / std::max(1, count / 2);
+    const Eigen::Vector2d c = s.centre_m + Eigen::Vector2d(rng.gaussian(0.0, config.position_sd_m),
+                                                           rng.gaussian(0.0, config.position_sd_m));
+    const Eigen::Vector2d p = -(Eigen::Rotation2Dd(psi).toRotationMatrix() * c);
+    const math::SE2 pose(p.x(), p.y(), math::wrapAngle(psi));
+    if (std::abs(p.x()) > map.carpetHalfLength() || std::abs(p.y()) > map.carpetHalfWidth())
+      continue;
+    poses.push_back(pose);
+    poses.push_back(math::pointMirror(pose));
+  }
+  return poses;
+}
+
+}  // namespace adaptive_perception::localization
