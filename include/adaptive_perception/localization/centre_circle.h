@@ -9,12 +9,13 @@
 // points, then least squares on its inliers). A circle is kept only when its inliers cover twice
 // the arc a straight line fits: a line fits a circle of radius R to within a tolerance t over
 // 4 sqrt(t / (2 R)) radians (0.8 rad for R = 0.75 m, t = 0.06 m; the SPL circle must be seen over
-// 1.6 rad). A circle that would have to be seen over more than half its arc is too small for the
-// tolerance and is not looked for (the four-legged field's, R = 0.18 m: 3.3 rad). The
-// halfway line is then the line through the circle's centre that most of the remaining line
-// points lie on. centreCirclePoses() turns a sighting into robot poses: with the halfway line, two
-// (a point-mirrored pair: which half the robot is in is for the landmarks to decide); without it,
-// a ring of headings about the centre. Fields without a centre circle get nothing.
+// 1.6 rad), and where it lies in view at least min_painted_share of it is paint. A circle that
+// would have to be seen over more than half its arc is too small for the tolerance and is not
+// looked for (the four-legged field's, R = 0.18 m: 3.3 rad). The halfway line is then the line
+// through the circle's centre that most of the remaining line points lie on. centreCirclePoses()
+// turns a sighting into robot poses: with the halfway line, two (a point-mirrored pair: which half
+// the robot is in is for the landmarks to decide); without it, a ring of headings about the centre.
+// Fields without a centre circle get nothing.
 #include <Eigen/Geometry>
 #include <optional>
 #include <vector>
@@ -38,6 +39,16 @@ struct CentreCircleConfig {
   // The halfway line: at least this many metres of it (its points' extent along it) on the
   // inliers of a line through the circle's centre.
   double min_halfway_length_m = 0.5;
+  // Where the circle lies in view (in the image, within max_range_m), at least this share of it
+  // must be paint: line fragments can fill a wide arc of a circle that is not there (a circle
+  // through the corner of two lines), and then most of that circle is carpet. Half: robots and
+  // balls on the circle, and paint the segmentation missed, cost a painted circle less than
+  // that; fragments fill little of a false one.
+  double min_painted_share = 0.5;
+  // ... counting only where the circle's paint is at least this many pixels across in the image:
+  // thinner, the segmentation does not resolve it (the far side of the circle seen from its near
+  // side: 0.05 m of paint 3 m from a camera 0.5 m up spans 1.6 rows of a 640 x 480 NAO image).
+  double min_line_width_px = 2.0;
   // Every this many pixels in x and y is a line pixel looked at (of a 640-wide image; scaled).
   int pixel_stride = 2;
   // RANSAC draws (pairs of points).
@@ -53,6 +64,7 @@ struct CentreCircleConfig {
 struct CentreCircleSighting {
   Eigen::Vector2d centre_m{0, 0};  // base_link
   double arc_rad = 0.0;            // the arc its inliers cover
+  double painted_share = 0.0;      // of the circle in view, the share that is paint
   int inliers = 0;
   // The halfway line's direction in base_link (radians, modulo pi), when seen.
   std::optional<double> halfway_direction_rad;

@@ -1,6 +1,7 @@
 #include "adaptive_perception/localization/centre_circle.h"
 
 #include <algorithm>
+#include <bitset>
 #include <cmath>
 
 #include "adaptive_perception/math/angles.h"
@@ -18,6 +19,11 @@ const config::Fields<CentreCircleConfig>& CentreCircleConfig::fields() {
                "a line point fits the centre circle or the halfway line within this (m)")
           .add("circle_min_halfway_length_m", &C::min_halfway_length_m, config::aboveZero(100),
                "the halfway line through the circle's centre must be seen this long (m)")
+          .add("circle_min_painted_share", &C::min_painted_share, config::closed(0, 1),
+               "share of the centre circle in view that must be line paint")
+          .add("circle_min_line_width_px", &C::min_line_width_px, config::closed(0, 100),
+               "the centre circle's paint is looked for only where it is at least this wide in the "
+               "image (px)")
           .add("circle_pixel_stride", &C::pixel_stride, config::closed(1, 64),
                "every this many pixels of a 640-wide image is looked at for the centre circle")
           .add("circle_iterations", &C::iterations, config::closed(1, 100000),
@@ -32,7 +38,9 @@ const config::Fields<CentreCircleConfig>& CentreCircleConfig::fields() {
 
 namespace {
 
-/// The line pixels on the ground (base_link), within max_range_m.
+/// The line pixels on the ground (base_link), within max_range_m. A column's run of white that
+/// reaches the horizon stands up from the ground (a goal post taller than the camera is high), so
+/// none of its pixels is paint.
 std::vector<Eigen::Vector2d> groundLinePoints(const cv::Mat& labels,
                                               const world::PinholeCamera& camera,
                                               const Eigen::Isometry3d& base_to_optical,
@@ -41,28 +49,26 @@ std::vector<Eigen::Vector2d> groundLinePoints(const cv::Mat& labels,
   const Eigen::Vector3d o = base_to_optical.translation();
   if (o.z() <= 0.0) return points;
   const int stride = std::max(1, config.pixel_stride * labels.cols / 640);
-  for (int v = stride / 2; v < labels.rows; v += stride) {
-    for (int u = stride / 2; u < labels.cols; u += stride) {
-      if (labels.at<std::uint8_t>(v, u) != world::kWhite) continue;
-      const Eigen::Vector3d ray = base_to_optical.linear() * camera.rayThrough(u, v);
-      if (ray.z() > -1e-6) continue;
-      const Eigen::Vector3d p = o + (-o.z() / ray.z()) * ray;
-      if ((p.head<2>() - o.head<2>()).norm() <= config.max_range_m) points.push_back(p.head<2>());
+  for (int u = stride / 2; u < labels.cols; u += stride) {
+    for (int v = 0; v < labels.rows;) {
+      if (labels.at<std::uint8_t>(v, u) != world::kWhite) {
+        ++v;
+        continue;
+      }
+      int end = v;
+      while (end < labels.rows && labels.at<std::uint8_t>(end, u) == world::kWhite) ++end;
+      const bool stands = (base_to_optical.linear() * camera.rayThrough(u, v)).z() > -1e-6;
+      for (int r = v; r < end && !stands; ++r) {
+        if (r % stride != stride / 2) continue;
+        const Eigen::Vector3d ray = base_to_optical.linear() * camera.rayThrough(u, r);
+        if (ray.z() > -1e-6) continue;
+        const Eigen::Vector3d p = o + (-o.z() / ray.z()) * ray;
+        if ((p.head<2>() - o.head<2>()).norm() <= config.max_range_m) points.push_back(p.head<2>());
+      }
+      v = end;
     }
   }
   return points;
-}
-
-/// The arc (radians) the points cover about `centre`: the circle less its widest empty gap.
-double arcCovered(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& centre) {
-  if (points.size() < 2) return 0.0;
-  std::vector<double> angles;
-  for (const Eigen::Vector2d& p : points)
-    angles.push_back(std::atan2(p.y() - centre.y(), p.x() - centre.x()));
-  std::sort(angles.begin(), angles.end());
-  double gap = angles.front() + 2.0 * M_PI - angles.back();
-  for (size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
-  return 2.0 * M_PI - gap;
 }
 
 std::vector<Eigen::Vector2d> inliersOf(const std::vector<Eigen::Vector2d>& points,
@@ -71,6 +77,52 @@ std::vector<Eigen::Vector2d> inliersOf(const std::vector<Eigen::Vector2d>& point
   for (const Eigen::Vector2d& p : points)
     if (std::abs((p - centre).norm() - radius) <= tol) in.push_back(p);
   return in;
+}
+
+constexpr int kArcBins = 180;  // two degrees each
+using ArcBins = std::bitset<kArcBins>;
+
+int arcBin(const Eigen::Vector2d& d) {
+  const int k = static_cast<int>((std::atan2(d.y(), d.x()) + M_PI) / (2.0 * M_PI) * kArcBins);
+  return std::clamp(k, 0, kArcBins - 1);
+}
+
+/// The circle's two-degree bins in view (their middle point in the image, within max_range_m,
+/// its paint at least min_line_width_px across), and those of them whose pixel, or one next to
+/// it, is line paint.
+struct CircleView {
+  ArcBins in_view, painted;
+};
+CircleView viewOf(const cv::Mat& labels, const world::PinholeCamera& camera,
+                  const Eigen::Isometry3d& base_to_optical, const Eigen::Vector2d& centre,
+                  double radius, double line_width_m, const CentreCircleConfig& config) {
+  const Eigen::Isometry3d optical_from_base = base_to_optical.inverse();
+  const Eigen::Vector2d o = base_to_optical.translation().head<2>();
+  const auto pixel = [&](const Eigen::Vector2d& g, Eigen::Vector2d* out) {
+    return camera.project(optical_from_base * Eigen::Vector3d(g.x(), g.y(), 0.0), out);
+  };
+  CircleView view;
+  for (int k = 0; k < kArcBins; ++k) {
+    const double a = -M_PI + (k + 0.5) * 2.0 * M_PI / kArcBins;
+    const Eigen::Vector2d radial(std::cos(a), std::sin(a));
+    const Eigen::Vector2d q = centre + radius * radial;
+    if ((q - o).norm() > config.max_range_m) continue;
+    Eigen::Vector2d uv, inner, outer;
+    if (!pixel(q, &uv) || !pixel(q - 0.5 * line_width_m * radial, &inner) ||
+        !pixel(q + 0.5 * line_width_m * radial, &outer))
+      continue;
+    // Paint thinner than min_line_width_px in the image is beyond what the segmentation resolves.
+    if ((outer - inner).norm() < config.min_line_width_px) continue;
+    const int u = static_cast<int>(std::lround(uv.x())), v = static_cast<int>(std::lround(uv.y()));
+    if (u < 1 || v < 1 || u >= labels.cols - 1 || v >= labels.rows - 1) continue;
+    view.in_view.set(k);
+    bool paint = false;
+    for (int dv = -1; dv <= 1 && !paint; ++dv)
+      for (int du = -1; du <= 1 && !paint; ++du)
+        paint = labels.at<std::uint8_t>(v + dv, u + du) == world::kWhite;
+    view.painted.set(k, paint);
+  }
+  return view;
 }
 
 /// Twice the arc a straight line fits to within `tol` of a circle of `radius` (see the header).
@@ -96,10 +148,16 @@ std::optional<CentreCircleSighting> detectCentreCircle(const color::FieldSegment
   const std::vector<Eigen::Vector2d> points =
       groundLinePoints(seg.labels, camera, base_to_optical, config);
   if (points.size() < 3) return std::nullopt;
-  // RANSAC: two points on the circle put its centre at one of two places.
+  // RANSAC: two points on the circle put its centre at one of two places. A candidate scores the
+  // arc its inliers cover (two-degree bins with an inlier), not their count (the carpet near the
+  // camera holds far more pixels per metre, and a circle through a stretch of thick near line
+  // would outnumber the true circle's far arc), less the arc in view that holds none (a circle
+  // through fragments of several lines covers a wide arc, and misses more).
+  const double line_width_m = map.dimensions().line_width_m;
+  const int min_bins = static_cast<int>(std::ceil(min_arc_rad / (2.0 * M_PI) * kArcBins));
   math::Rng rng(seed);
   std::optional<Eigen::Vector2d> best;
-  size_t best_count = 0;
+  int best_score = 0;
   const int n = static_cast<int>(points.size());
   for (int it = 0; it < config.iterations; ++it) {
     const Eigen::Vector2d a = points[rng.uniformInt(0, n - 1)],
@@ -111,9 +169,15 @@ std::optional<CentreCircleSighting> detectCentreCircle(const color::FieldSegment
     const double h = std::sqrt(radius * radius - half * half);
     for (double side : {-1.0, 1.0}) {
       const Eigen::Vector2d c = mid + side * h * normal;
-      size_t count = 0;
-      for (const Eigen::Vector2d& p : points) count += std::abs((p - c).norm() - radius) <= tol;
-      if (count > best_count) best_count = count, best = c;
+      ArcBins covered;
+      for (const Eigen::Vector2d& p : points)
+        if (std::abs((p - c).norm() - radius) <= tol) covered.set(arcBin(p - c));
+      const int count = static_cast<int>(covered.count());
+      if (count < min_bins || count <= best_score) continue;
+      const CircleView view =
+          viewOf(seg.labels, camera, base_to_optical, c, radius, line_width_m, config);
+      const int score = count - static_cast<int>((view.in_view & ~covered).count());
+      if (score > best_score) best_score = score, best = c;
     }
   }
   if (!best) return std::nullopt;
@@ -139,8 +203,21 @@ std::optional<CentreCircleSighting> detectCentreCircle(const color::FieldSegment
   CentreCircleSighting s;
   s.centre_m = c;
   s.inliers = static_cast<int>(in.size());
-  s.arc_rad = arcCovered(in, c);
+  ArcBins covered;
+  for (const Eigen::Vector2d& p : in) covered.set(arcBin(p - c));
+  s.arc_rad = static_cast<double>(covered.count()) / kArcBins * 2.0 * M_PI;
   if (s.arc_rad < min_arc_rad) return std::nullopt;
+  // Line fragments can fill a wide arc of a circle that is not there (a circle through two lines'
+  // corner); the circle's own paint must then be missing along much of it. Where the circle lies
+  // in view (in the image, within range), it must be paint.
+  const CircleView view =
+      viewOf(seg.labels, camera, base_to_optical, c, radius, line_width_m, config);
+  const double painted_arc_rad = static_cast<double>(view.painted.count()) / kArcBins * 2.0 * M_PI;
+  s.painted_share = view.in_view.any() ? static_cast<double>(view.painted.count()) /
+                                             static_cast<double>(view.in_view.count())
+                                       : 0.0;
+  if (s.painted_share < config.min_painted_share || painted_arc_rad < min_arc_rad)
+    return std::nullopt;
   // The halfway line: the direction through the centre that the most other line points lie on
   // (a half-degree histogram of their directions modulo pi, each point within the tolerance of
   // the line voting for the directions it fits).
