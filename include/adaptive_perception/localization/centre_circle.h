@@ -6,16 +6,16 @@
 // Contract: detectCentreCircle() takes the pose-free segmentation's line pixels, puts each on the
 // ground under the head chain's camera (base_link; the robot's pose on the field is not needed),
 // and looks for a circle of the field's centre-circle radius through them (RANSAC over pairs of
-// points, then least squares on its inliers). A circle is kept only when its inliers cover twice
-// the arc a straight line fits: a line fits a circle of radius R to within a tolerance t over
-// 4 sqrt(t / (2 R)) radians (0.8 rad for R = 0.75 m, t = 0.06 m; the SPL circle must be seen over
-// 1.6 rad), and where it lies in view at least min_painted_share of it is paint. A circle that
-// would have to be seen over more than half its arc is too small for the tolerance and is not
-// looked for (the four-legged field's, R = 0.18 m: 3.3 rad). The halfway line is then the line
-// through the circle's centre that most of the remaining line points lie on. centreCirclePoses()
-// turns a sighting into robot poses: with the halfway line, two (a point-mirrored pair: which half
-// the robot is in is for the landmarks to decide); without it, a ring of headings about the centre.
-// Fields without a centre circle get nothing.
+// points, then least squares on its inliers). A circle is kept only when its inliers cover
+// min_arc_over_line times the arc a straight line fits: a line stays within t of a circle of
+// radius R (on either side) over 4 sqrt(t / R) radians (1.13 rad for R = 0.75 m, t = 0.06 m), and
+// where the circle lies in view at least min_painted_share of it is paint. A circle whose arc
+// would have to exceed half of it is too small for the tolerance and is not looked for (the
+// four-legged field's, R = 0.18 m: 3.2 rad). The halfway line is then the line through the
+// circle's centre along which the remaining line points fill the longest stretch.
+// centreCirclePoses() turns a sighting into robot poses: with the halfway line, two (a
+// point-mirrored pair: which half the robot is in is for the landmarks to decide); without it, a
+// ring of headings about the centre. Fields without a centre circle get nothing.
 #include <Eigen/Geometry>
 #include <optional>
 #include <vector>
@@ -45,6 +45,12 @@ struct CentreCircleConfig {
   // balls on the circle, and paint the segmentation missed, cost a painted circle less than
   // that; fragments fill little of a false one.
   double min_painted_share = 0.5;
+  // The inliers' arc over the widest a straight line fits (above): 1.4 asks for 1.6 rad (92
+  // degrees) on the SPL field. Twice (2.26 rad) would miss the circle the NAO's top camera sees
+  // from 1-2 m beside it (punt3, and rendered views of that kind in centre_circle_test): its near
+  // side lies below the image. The paint check and the RANSAC score (the arc in view the inliers
+  // miss counts against a candidate) refuse what a lower bar lets through.
+  double min_arc_over_line = 1.4;
   // ... counting only where the circle's paint is at least this many pixels across in the image:
   // thinner, the segmentation does not resolve it (the far side of the circle seen from its near
   // side: 0.05 m of paint 3 m from a camera 0.5 m up spans 1.6 rows of a 640 x 480 NAO image).

@@ -6,7 +6,8 @@
 // subsample), so per camera pose it precomputes what does not depend on the pixel (the ray origin
 // terms of every primitive; each primitive's box projected into the image, culling those outside
 // the view or behind the camera) and per pixel tests only the primitives whose box holds it, with
-// no allocation. The culling is exact: castRay, which culls nothing, gives the same labels.
+// no allocation. The culling is exact: castRay, which culls nothing, gives the same labels
+// for the same (float) pixel rays.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>

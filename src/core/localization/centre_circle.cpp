@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bitset>
 #include <cmath>
+#include <stdexcept>
 
 #include "adaptive_perception/math/angles.h"
 
@@ -19,6 +20,9 @@ const config::Fields<CentreCircleConfig>& CentreCircleConfig::fields() {
                "a line point fits the centre circle or the halfway line within this (m)")
           .add("circle_min_halfway_length_m", &C::min_halfway_length_m, config::aboveZero(100),
                "the halfway line through the circle's centre must be seen this long (m)")
+          .add("circle_min_arc_over_line", &C::min_arc_over_line, config::closed(1, 10),
+               "the centre circle's points must cover this many times the arc a straight line "
+               "fits")
           .add("circle_min_painted_share", &C::min_painted_share, config::closed(0, 1),
                "share of the centre circle in view that must be line paint")
           .add("circle_min_line_width_px", &C::min_line_width_px, config::closed(0, 100),
@@ -113,7 +117,8 @@ CircleView viewOf(const cv::Mat& labels, const world::PinholeCamera& camera,
       continue;
     // Paint thinner than min_line_width_px in the image is beyond what the segmentation resolves.
     if ((outer - inner).norm() < config.min_line_width_px) continue;
-    const int u = static_cast<int>(std::lround(uv.x())), v = static_cast<int>(std::lround(uv.y()));
+    // project() puts pixel u's centre at u + 0.5 (rayThrough's convention).
+    const int u = static_cast<int>(std::floor(uv.x())), v = static_cast<int>(std::floor(uv.y()));
     if (u < 1 || v < 1 || u >= labels.cols - 1 || v >= labels.rows - 1) continue;
     view.in_view.set(k);
     bool paint = false;
@@ -125,14 +130,17 @@ CircleView viewOf(const cv::Mat& labels, const world::PinholeCamera& camera,
   return view;
 }
 
-/// Twice the arc a straight line fits to within `tol` of a circle of `radius` (see the header).
-double minArcRad(double radius, double tol) { return 8.0 * std::sqrt(tol / (2.0 * radius)); }
+/// The arc a circle's inliers must cover: min_arc_over_line times the arc a straight line fits
+/// within `tol` of a circle of `radius` (see the header).
+double minArcRad(double radius, double tol, const CentreCircleConfig& config) {
+  return config.min_arc_over_line * 4.0 * std::sqrt(tol / radius);
+}
 
 }  // namespace
 
 bool centreCircleFindable(const world::FieldMap& map, const CentreCircleConfig& config) {
   const double radius = 0.5 * map.dimensions().centre_circle_diameter_m;
-  return radius > 0.0 && minArcRad(radius, config.inlier_tolerance_m) <= M_PI;
+  return radius > 0.0 && minArcRad(radius, config.inlier_tolerance_m, config) <= M_PI;
 }
 
 std::optional<CentreCircleSighting> detectCentreCircle(const color::FieldSegmentation& seg,
@@ -143,8 +151,13 @@ std::optional<CentreCircleSighting> detectCentreCircle(const color::FieldSegment
                                                        std::uint64_t seed) {
   const double radius = 0.5 * map.dimensions().centre_circle_diameter_m;
   const double tol = config.inlier_tolerance_m;
-  if (!centreCircleFindable(map, config) || seg.labels.empty()) return std::nullopt;
-  const double min_arc_rad = minArcRad(radius, tol);
+  if (seg.labels.type() != CV_8UC1 || seg.labels.cols != camera.width_px ||
+      seg.labels.rows != camera.height_px)
+    throw std::invalid_argument(
+        "detectCentreCircle: needs the segmentation's labels (CV_8UC1) of "
+        "the camera's size");
+  if (!centreCircleFindable(map, config)) return std::nullopt;
+  const double min_arc_rad = minArcRad(radius, tol, config);
   const std::vector<Eigen::Vector2d> points =
       groundLinePoints(seg.labels, camera, base_to_optical, config);
   if (points.size() < 3) return std::nullopt;
@@ -229,7 +242,7 @@ std::optional<CentreCircleSighting> detectCentreCircle(const color::FieldSegment
   for (const Eigen::Vector2d& p : rest) {
     const Eigen::Vector2d d = p - c;
     const double r = d.norm();
-    if (r < tol) continue;
+    if (r < 2.0 * tol) continue;  // near the centre a point fits every direction
     const double dir = std::atan2(d.y(), d.x());
     // The directions theta with |r sin(dir - theta)| <= tol.
     const double spread = std::asin(std::min(1.0, tol / r));

@@ -259,8 +259,9 @@ double mouthShare(const Geometry& g, const cv::Mat& white, const Eigen::Vector2d
     for (double h : {0.25, 0.5, 0.75}) {
       const auto px = g.project(Eigen::Vector3d(xy.x(), xy.y(), h * d.goal_height_m));
       if (!px) continue;
-      const int u = static_cast<int>(std::lround(px->x())),
-                v = static_cast<int>(std::lround(px->y()));
+      // project() puts pixel u's centre at u + 0.5 (rayThrough's convention).
+      const int u = static_cast<int>(std::floor(px->x())),
+                v = static_cast<int>(std::floor(px->y()));
       if (u < 0 || u >= white.cols || v < 0 || v >= white.rows) continue;
       ++samples;
       hits += white.at<std::uint8_t>(v, u) != 0;
@@ -354,8 +355,10 @@ std::vector<GoalSighting> detectGoals(const cv::Mat& yuv, const color::FieldSegm
       s.crossbar_white_share = crossbarShare(c, white, s.left.foot_m, s.right.foot_m, d);
       if (s.crossbar_white_share < config.crossbar_min_white_share) continue;
       // A frame, not a white patch: what the mouth shows is not the posts' white.
+      // (A white net fills the mouth with the posts' white: no such check there.)
       s.mouth_white_share = mouthShare(c, white, s.left.foot_m, s.right.foot_m, d);
-      if (s.mouth_white_share > config.mouth_max_white_share) continue;
+      if (d.goal_net_color != world::kWhite && s.mouth_white_share > config.mouth_max_white_share)
+        continue;
       // Seen from the carpet (a pose that sees it from outside is a look-alike beyond the field).
       const std::vector<math::SE2> poses = goalPoses(s, map);
       if (poses.empty() || !map.isFree(poses.front().x_m, poses.front().y_m, 0.0)) continue;

@@ -194,7 +194,7 @@ double ImageLikelihood::logLikelihood(const SampledImage& image, const math::SE2
   const int modes = lighting.numModes(), colours = mc.numColors();
   std::vector<double> mode_ll(modes, 0.0);
   // Eq. (9) per (mode, colour), flattened for the pixel loop: log(1 - outlier) + the Gaussian's
-  // log normaliser, its mean and the six entries of its symmetric inverse covariance.
+  // log normaliser, its mean and the symmetric inverse covariance (each off-diagonal pair summed).
   struct Gauss {
     double log_scale, m0, m1, m2, a00, a01, a02, a11, a12, a22;
   };

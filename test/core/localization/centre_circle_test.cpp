@@ -119,6 +119,8 @@ TEST(CentreCircle, WithoutTheHalfwayLineTheHeadingsGoAllRound) {
   double min_heading = 10.0, max_heading = -10.0;
   for (const math::SE2& p : poses) {
     EXPECT_NEAR(std::hypot(p.x_m, p.y_m), 1.0, 0.5);
+    // Facing the centre: the origin lies ahead.
+    EXPECT_GT(-(std::cos(p.yaw_rad) * p.x_m + std::sin(p.yaw_rad) * p.y_m), 0.0);
     const double h = math::wrapAngle(p.yaw_rad);
     min_heading = std::min(min_heading, h);
     max_heading = std::max(max_heading, h);

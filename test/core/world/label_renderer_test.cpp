@@ -123,7 +123,8 @@ TEST_F(LabelRendererTest, AllEntryPointsAgree) {
     // castRay has no camera rotation and so no per-pose culling: every pixel must agree.
     int disagree = 0;
     for (size_t i = 0; i < all.size(); ++i) {
-      const Eigen::Vector3d dir = pose.linear() * cam.rayThrough(all[i].u, all[i].v);
+      const Eigen::Vector3d dir =
+          pose.linear() * cam.rayThrough(all[i].u, all[i].v).cast<float>().cast<double>();
       disagree += renderer_.castRay(pose.translation(), dir).color != image[i];
     }
     EXPECT_EQ(disagree, 0) << "trial " << trial;
@@ -141,15 +142,20 @@ TEST_F(LabelRendererTest, AllEntryPointsAgree) {
 // nothing.
 TEST_F(LabelRendererTest, CullingNearPrimitivesChangesNoPixel) {
   adaptive_perception::math::Rng rng(11);
-  const FieldMap& map = renderer_.map();
-  const PinholeCamera& cam = renderer_.camera();
+  FieldDimensions with_ball;
+  with_ball.ball_enabled = true;
+  with_ball.ball_xy_m = {1.0, -0.5};
+  const LabelRenderer renderer(FieldMap(with_ball), renderer_.camera());
+  const FieldMap& map = renderer.map();
+  const PinholeCamera& cam = renderer.camera();
   std::vector<Eigen::Vector3d> near;
   for (const Cylinder& c : map.cylinders())
     near.push_back({c.cx_m, c.cy_m, 0.5 * (c.bands.front().z0_m + c.bands.back().z1_m)});
   for (const auto& q : map.quads())
     near.push_back({0.5 * (q.p0_m.x() + q.p1_m.x()), 0.5 * (q.p0_m.y() + q.p1_m.y()),
                     0.5 * (q.z0_m + q.z1_m)});
-  ASSERT_FALSE(near.empty());
+  ASSERT_EQ(map.spheres().size(), 1u);
+  for (const auto& b : map.spheres()) near.push_back(b.centre_m);
   std::vector<std::uint8_t> image(cam.width_px * cam.height_px);
   int disagree = 0, non_ground = 0;
   for (const Eigen::Vector3d& target : near) {
@@ -162,12 +168,13 @@ TEST_F(LabelRendererTest, CullingNearPrimitivesChangesNoPixel) {
           trial % 2 == 0 ? Eigen::Vector3d(target - pos)
                          : Eigen::Vector3d(rng.uniform(-1, 1), rng.uniform(-1, 1), -0.3);
       const Eigen::Isometry3d pose = lookAlong(pos, forward);
-      renderer_.renderImage(pose, image.data());
+      renderer.renderImage(pose, image.data());
       for (int v = 0; v < cam.height_px; ++v)
         for (int u = 0; u < cam.width_px; ++u) {
           const std::uint8_t c = image[static_cast<size_t>(v) * cam.width_px + u];
-          const Eigen::Vector3d dir = pose.linear() * cam.rayThrough(u, v);
-          disagree += renderer_.castRay(pose.translation(), dir).color != c;
+          const Eigen::Vector3d dir =
+              pose.linear() * cam.rayThrough(u, v).cast<float>().cast<double>();
+          disagree += renderer.castRay(pose.translation(), dir).color != c;
           non_ground += c != kGreen && c != kWhite && c != kBackground;
         }
     }
