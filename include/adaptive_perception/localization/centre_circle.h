@@ -3,19 +3,20 @@
 // for the global search where no goal is in view (the NAO development point punt3 sees the
 // circle and the halfway line, and no goal).
 //
-// Contract: detectCentreCircle() takes the pose-free segmentation's line pixels, puts each on the
-// ground under the head chain's camera (base_link; the robot's pose on the field is not needed),
-// and looks for a circle of the field's centre-circle radius through them (RANSAC over pairs of
-// points, then least squares on its inliers). A circle is kept only when its inliers cover
-// min_arc_over_line times the arc a straight line fits: a line stays within t of a circle of
-// radius R (on either side) over 4 sqrt(t / R) radians (1.13 rad for R = 0.75 m, t = 0.06 m), and
-// where the circle lies in view at least min_painted_share of it is paint. A circle whose arc
-// would have to exceed half of it is too small for the tolerance and is not looked for (the
-// four-legged field's, R = 0.18 m: 3.2 rad). The halfway line is then the line through the
-// circle's centre along which the remaining line points fill the longest stretch.
-// centreCirclePoses() turns a sighting into robot poses: with the halfway line, two (a
-// point-mirrored pair: which half the robot is in is for the landmarks to decide); without it, a
-// ring of headings about the centre. Fields without a centre circle get nothing.
+// Contract: detectCentreCircle() takes the pose-free segmentation's line pixels with carpet
+// above them (not a post's or a landmark's white), puts each on the ground under the head chain's
+// camera (base_link; the robot's pose on the field is not needed), and looks for a circle of the
+// field's centre-circle radius through them (RANSAC over pairs of points, then least squares on its
+// inliers). A circle is kept only when its inliers cover one arc (gaps up to max_arc_gap_rad
+// bridged) of min_arc_over_line times the arc a straight line fits: a line stays within t of a
+// circle of radius R (on either side) over 4 sqrt(t / R) radians (1.13 rad for R = 0.75 m, t = 0.06
+// m), and where the circle lies in view at least min_painted_share of it is paint. A circle whose
+// arc would have to exceed half of it is too small for the tolerance and is not looked for (the
+// four-legged field's, R = 0.18 m: 3.2 rad). The halfway line is then the line through the circle's
+// centre along which the remaining line points fill the longest stretch. centreCirclePoses() turns
+// a sighting into robot poses: with the halfway line, two (a point-mirrored pair: which half the
+// robot is in is for the landmarks to decide); without it, a ring of headings about the centre.
+// Fields without a centre circle get nothing.
 #include <Eigen/Geometry>
 #include <optional>
 #include <vector>
@@ -51,6 +52,10 @@ struct CentreCircleConfig {
   // side lies below the image. The paint check and the RANSAC score (the arc in view the inliers
   // miss counts against a candidate) refuse what a lower bar lets through.
   double min_arc_over_line = 1.4;
+  // ... as one arc, gaps up to this wide bridged: a ball (0.1 m) on the line hides 7.6 degrees of
+  // the SPL circle; 10 degrees. Two straight lines through a circle that is not there fill two
+  // short arcs.
+  double max_arc_gap_rad = 0.175;
   // ... counting only where the circle's paint is at least this many pixels across in the image:
   // thinner, the segmentation does not resolve it (the far side of the circle seen from its near
   // side: 0.05 m of paint 3 m from a camera 0.5 m up spans 1.6 rows of a 640 x 480 NAO image).
@@ -69,8 +74,8 @@ struct CentreCircleConfig {
 
 struct CentreCircleSighting {
   Eigen::Vector2d centre_m{0, 0};  // base_link
-  double arc_rad = 0.0;            // the arc its inliers cover
-  double painted_share = 0.0;      // of the circle in view, the share that is paint
+  double arc_rad = 0.0;  // the longest arc its inliers cover (gaps up to max_arc_gap_rad bridged)
+  double painted_share = 0.0;  // of the circle in view, the share that is paint
   int inliers = 0;
   // The halfway line's direction in base_link (radians, modulo pi), when seen.
   std::optional<double> halfway_direction_rad;

@@ -23,6 +23,8 @@ const config::Fields<CentreCircleConfig>& CentreCircleConfig::fields() {
           .add("circle_min_arc_over_line", &C::min_arc_over_line, config::closed(1, 10),
                "the centre circle's points must cover this many times the arc a straight line "
                "fits")
+          .add("circle_max_arc_gap_rad", &C::max_arc_gap_rad, config::closed(0, 2 * M_PI),
+               "gaps in the centre circle's arc up to this wide are bridged (rad)")
           .add("circle_min_painted_share", &C::min_painted_share, config::closed(0, 1),
                "share of the centre circle in view that must be line paint")
           .add("circle_min_line_width_px", &C::min_line_width_px, config::closed(0, 100),
@@ -42,9 +44,9 @@ const config::Fields<CentreCircleConfig>& CentreCircleConfig::fields() {
 
 namespace {
 
-/// The line pixels on the ground (base_link), within max_range_m. A column's run of white that
-/// reaches the horizon stands up from the ground (a goal post taller than the camera is high), so
-/// none of its pixels is paint.
+/// The line pixels on the ground (base_link), within max_range_m. A column's run of white that does
+/// not have carpet right above it stands up from the ground (a goal post, a landmark's white base)
+/// or is cut by the image, so none of its pixels is taken for paint.
 std::vector<Eigen::Vector2d> groundLinePoints(const cv::Mat& labels,
                                               const world::PinholeCamera& camera,
                                               const Eigen::Isometry3d& base_to_optical,
@@ -61,7 +63,10 @@ std::vector<Eigen::Vector2d> groundLinePoints(const cv::Mat& labels,
       }
       int end = v;
       while (end < labels.rows && labels.at<std::uint8_t>(end, u) == world::kWhite) ++end;
-      const bool stands = (base_to_optical.linear() * camera.rayThrough(u, v)).z() > -1e-6;
+      // Paint lies on the carpet: carpet right above the run. A run under anything else stands up
+      // from the ground (a goal post, a landmark's white base, a robot) or reaches the horizon.
+      const bool stands = v == 0 || labels.at<std::uint8_t>(v - 1, u) != world::kGreen ||
+                          (base_to_optical.linear() * camera.rayThrough(u, v)).z() > -1e-6;
       for (int r = v; r < end && !stands; ++r) {
         if (r % stride != stride / 2) continue;
         const Eigen::Vector3d ray = base_to_optical.linear() * camera.rayThrough(u, r);
@@ -89,6 +94,28 @@ using ArcBins = std::bitset<kArcBins>;
 int arcBin(const Eigen::Vector2d& d) {
   const int k = static_cast<int>((std::atan2(d.y(), d.x()) + M_PI) / (2.0 * M_PI) * kArcBins);
   return std::clamp(k, 0, kArcBins - 1);
+}
+
+/// The longest run of set bins around the circle, gaps of up to `max_gap` bins bridged (radians).
+double longestArc(const ArcBins& bins, int max_gap) {
+  if (bins.none()) return 0.0;
+  if (bins.all()) return 2.0 * M_PI;
+  // Start just after an empty bin, so that no run wraps past the start.
+  int start = 0;
+  while (bins.test(start)) ++start;
+  int best = 0, run = 0, gap = 0;
+  for (int i = 1; i <= kArcBins; ++i) {
+    const int k = (start + i) % kArcBins;
+    if (bins.test(k)) {
+      run += (run > 0 ? gap : 0) + 1;
+      gap = 0;
+      best = std::max(best, run);
+    } else if (++gap > max_gap) {
+      run = 0;
+      gap = 0;
+    }
+  }
+  return std::min(best, kArcBins) * 2.0 * M_PI / kArcBins;
 }
 
 /// The circle's two-degree bins in view (their middle point in the image, within max_range_m,
@@ -218,7 +245,11 @@ std::optional<CentreCircleSighting> detectCentreCircle(const color::FieldSegment
   s.inliers = static_cast<int>(in.size());
   ArcBins covered;
   for (const Eigen::Vector2d& p : in) covered.set(arcBin(p - c));
-  s.arc_rad = static_cast<double>(covered.count()) / kArcBins * 2.0 * M_PI;
+  // One arc: two straight lines through a circle that is not there (a corner of the field, a line
+  // meeting the touch line) fill two short arcs, each at most a line's; the circle's paint is one
+  // long arc, broken only where something stands on it.
+  s.arc_rad = longestArc(
+      covered, static_cast<int>(std::floor(config.max_arc_gap_rad / (2.0 * M_PI) * kArcBins)));
   if (s.arc_rad < min_arc_rad) return std::nullopt;
   // Line fragments can fill a wide arc of a circle that is not there (a circle through two lines'
   // corner); the circle's own paint must then be missing along much of it. Where the circle lies
