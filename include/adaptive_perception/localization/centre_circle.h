@@ -4,7 +4,8 @@
 // circle and the halfway line, and no goal).
 //
 // Contract: detectCentreCircle() takes the pose-free segmentation's line pixels with carpet
-// above them (not a post's or a landmark's white), puts each on the ground under the head chain's
+// above them (not a post's white; a landmark's white base under a green band passes, see
+// docs/field_localization.md), puts each on the ground under the head chain's
 // camera (base_link; the robot's pose on the field is not needed), and looks for a circle of the
 // field's centre-circle radius through them (RANSAC over pairs of points, then least squares on its
 // inliers). A circle is kept only when its inliers cover one arc (gaps up to max_arc_gap_rad

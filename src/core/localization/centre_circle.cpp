@@ -45,8 +45,9 @@ const config::Fields<CentreCircleConfig>& CentreCircleConfig::fields() {
 namespace {
 
 /// The line pixels on the ground (base_link), within max_range_m. A column's run of white that does
-/// not have carpet right above it stands up from the ground (a goal post, a landmark's white base)
-/// or is cut by the image, so none of its pixels is taken for paint.
+/// not have carpet right above it stands up from the ground (a goal post; a landmark's white base,
+/// unless a green band sits on it) or is cut by the image, so none of its pixels is taken for
+/// paint.
 std::vector<Eigen::Vector2d> groundLinePoints(const cv::Mat& labels,
                                               const world::PinholeCamera& camera,
                                               const Eigen::Isometry3d& base_to_optical,
@@ -64,7 +65,8 @@ std::vector<Eigen::Vector2d> groundLinePoints(const cv::Mat& labels,
       int end = v;
       while (end < labels.rows && labels.at<std::uint8_t>(end, u) == world::kWhite) ++end;
       // Paint lies on the carpet: carpet right above the run. A run under anything else stands up
-      // from the ground (a goal post, a landmark's white base, a robot) or reaches the horizon.
+      // from the ground (a goal post, a robot, a landmark's white base under a band that is not
+      // green) or reaches the horizon.
       const bool stands = v == 0 || labels.at<std::uint8_t>(v - 1, u) != world::kGreen ||
                           (base_to_optical.linear() * camera.rayThrough(u, v)).z() > -1e-6;
       for (int r = v; r < end && !stands; ++r) {
