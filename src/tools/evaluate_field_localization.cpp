@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
     const std::string header =
         "image,x_m,y_m,heading_deg,spread_m,cluster_weight,true_x_m,true_y_m,position_error_m,ms,"
         "goals_seen,camera_pitch_offset_rad,mirror_evidence,checks,relocalizations,"
-        "max_check_score";
+        "max_check_score,white_gain_r,white_gain_g,white_gain_b,paint_luma";
     csv << header << "\n";
     std::cout << header << "\n";
     std::vector<double> errors;
@@ -185,21 +185,25 @@ int main(int argc, char** argv) {
       }
       const std::string name = fs::path(item.path).parent_path().filename().string() + "_" +
                                fs::path(item.path).stem().string();
+      const Eigen::Vector3d& gains = rbpf.whiteBalance().gains_rgb;
       char line[640];
       std::snprintf(line, sizeof line,
-                    "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f,%d,%.4f,%.2f,%d,%d,%.2f",
+                    "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f,%d,%.4f,%.2f,%d,%d,%.2f,%.3f,%.3f,%.3f,%.1f",
                     item.path.c_str(), est.pose.x_m, est.pose.y_m, math::radToDeg(est.pose.yaw_rad),
                     est.spread_m, est.cluster_weight,
                     item.truth_xy_m ? std::to_string(item.truth_xy_m->x()).c_str() : "",
                     item.truth_xy_m ? std::to_string(item.truth_xy_m->y()).c_str() : "", error, ms,
-                    goals, pitch_offset, mirror_evidence, checks, relocalizations, max_check_score);
+                    goals, pitch_offset, mirror_evidence, checks, relocalizations, max_check_score,
+                    gains[0], gains[1], gains[2], rbpf.whiteBalance().white_yuv[0]);
       std::cout << line << std::endl;
       csv << line << "\n";
       cv::Mat drawing = drawEstimate(bgr, map, camera.camera,
                                      world::planarToIsometry(est.pose) *
                                          localization::leanCamera(base_to_optical, pitch_offset));
+      const cv::Mat balanced = rbpf.whiteBalance().apply(yuv);  // as the localizer read it
       drawGoalSightings(localization::detectGoals(
-                            yuv, color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()),
+                            balanced,
+                            color::segmentFieldYuv(balanced, color::FieldSegmentationConfig()),
                             camera.camera, base_to_optical, map, cfg.goals),
                         &drawing);
       cv::imwrite((fs::path(output) / (name + ".png")).string(), drawing);

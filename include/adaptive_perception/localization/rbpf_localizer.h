@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "adaptive_perception/color/switching_color_filter.h"
+#include "adaptive_perception/color/white_balance.h"
 #include "adaptive_perception/localization/centre_circle.h"
 #include "adaptive_perception/localization/global_localization.h"
 #include "adaptive_perception/localization/goal_detection.h"
@@ -81,6 +82,18 @@ struct RbpfConfig {
   // adaptation pulls every mode to the first image's lighting, and a switching filter's other mode
   // would then no longer be the other lighting.
   bool adapt_priors_to_image = false;
+  // With adapt_priors_to_image, that image first gives the light's colour and brightness: the
+  // line paint the pose-free segmentation finds in it is white by the rules, and every image until
+  // the particles are placed anew is balanced so that this paint is grey at white_balance's
+  // paint_luma (color/white_balance.h), before the priors are adapted, the goals and the centre
+  // circle are looked for, and the particles and the mirror test read it. A tint of a tenth of a
+  // channel's level (a warm evening light, a camera balanced for daylight) or a light 0.7 times as
+  // bright otherwise moved the landmarks' hues and the goals' whiteness off what the thresholds
+  // and priors expect, and sent points of the NAO development session to the field's mirror
+  // (docs/field_localization.md). Off, or with adapt_priors_to_image off, images are used as they
+  // come.
+  bool balance_to_paint = true;
+  color::WhiteBalanceConfig white_balance;
   int threads = 1;
   std::uint64_t seed = 1;
 
@@ -171,6 +184,8 @@ class RbpfLocalizer {
   /// The particle with the highest weight.
   const Particle& best() const;
   const RbpfConfig& config() const { return config_; }
+  /// The white balance the images are read under (identity until one is taken: balance_to_paint).
+  const color::WhiteBalance& whiteBalance() const { return balance_; }
   const std::vector<world::PixelCoord>& pixels() const { return image_.pixels; }
 
  private:
@@ -197,12 +212,15 @@ class RbpfLocalizer {
   std::vector<math::SE2> goalProposals(const cv::Mat& yuv, const Eigen::Isometry3d& base_to_optical,
                                        std::uint64_t frame_seed, int count,
                                        std::vector<GoalSighting>* seen = nullptr) const;
-  /// Adapts the priors to this image (adapt_priors_to_image) when the particles were just placed.
-  void adaptPriorsIfPending(const cv::Mat& yuv);
+  /// When the particles were just placed (adapt_priors_to_image): the white balance taken from this
+  /// image's paint (balance_to_paint) and the priors adapted to the balanced image. Returns the
+  /// image balanced as every image since.
+  cv::Mat adaptToImage(const cv::Mat& yuv);
 
   std::vector<color::LightingPrior> priors_;  // as given; adapted copies go into the filters below
   RbpfConfig config_;
   bool adapt_pending_ = false;
+  color::WhiteBalance balance_;  // of the images since the particles were placed (balance_to_paint)
   color::SwitchingColorFilter prior_lighting_;
   std::shared_ptr<const ImageLikelihood> likelihood_;
   PoseSearch search_;

@@ -37,6 +37,10 @@ const config::Fields<RbpfConfig>& RbpfConfig::fields() {
           .add("adapt_priors_to_image", &C::adapt_priors_to_image,
                "the priors are adapted to the first image after a start, without a pose (a "
                "camera at a venue the priors were not learnt from, such as a real robot's)")
+          .add("balance_to_paint", &C::balance_to_paint,
+               "with adapt_priors_to_image, every image until the particles are placed anew is "
+               "balanced so that the first image's line paint is grey at white_balance_paint_luma")
+          .nest(&C::white_balance, color::WhiteBalanceConfig::fields())
           .nest(&C::likelihood, ImageLikelihoodConfig::fields())
           .nest(&C::motion, MotionModelConfig::fields())
           .nest(&C::search, PoseSearchConfig::fields())

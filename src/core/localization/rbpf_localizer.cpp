@@ -90,6 +90,7 @@ void RbpfLocalizer::resetSearches() {
 
 void RbpfLocalizer::initUniform() {
   adapt_pending_ = config_.adapt_priors_to_image;
+  balance_ = color::WhiteBalance();
   pitch_offset_rad_ = 0.0;
   particles_.clear();
   const color::SwitchingColorFilter lighting = priorLighting();
@@ -101,6 +102,7 @@ void RbpfLocalizer::initUniform() {
 
 void RbpfLocalizer::initGaussian(const math::SE2& mean, const Eigen::Matrix3d& cov) {
   adapt_pending_ = config_.adapt_priors_to_image;
+  balance_ = color::WhiteBalance();
   pitch_offset_rad_ = 0.0;
   particles_.clear();
   const color::SwitchingColorFilter lighting = priorLighting();
@@ -195,18 +197,29 @@ std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
   return proposals;
 }
 
-void RbpfLocalizer::adaptPriorsIfPending(const cv::Mat& yuv) {
-  if (!adapt_pending_) return;
-  const color::FieldSegmentation seg =
-      color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
-  // An image without carpet (the head up, a dark start-up frame) says nothing: the next one adapts.
-  if (cv::countNonZero(seg.labels == world::kGreen) < config_.model.min_pixels_per_color) return;
-  adapt_pending_ = false;
-  const std::vector<color::LightingPrior> adapted =
-      color::adaptPriorsToImage(priors_, yuv, seg, config_.model);
-  prior_lighting_ = color::SwitchingColorFilter(adapted, config_.model, config_.switching);
-  mirror_test_ = MirrorTest(adapted, config_.model, config_.switching, config_.mirror_test);
-  for (Particle& p : particles_) p.lighting = prior_lighting_;
+cv::Mat RbpfLocalizer::adaptToImage(const cv::Mat& yuv) {
+  if (adapt_pending_) {
+    color::FieldSegmentation seg = color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
+    // An image without carpet (the head up, a dark start-up frame) says nothing: the next one
+    // adapts.
+    if (cv::countNonZero(seg.labels == world::kGreen) >= config_.model.min_pixels_per_color) {
+      adapt_pending_ = false;
+      cv::Mat image = yuv;
+      if (config_.balance_to_paint) {
+        balance_ = color::whiteBalanceFromPaint(yuv, seg, config_.white_balance);
+        if (!balance_.identity) {
+          image = balance_.apply(yuv);
+          seg = color::segmentFieldYuv(image, color::FieldSegmentationConfig());
+        }
+      }
+      const std::vector<color::LightingPrior> adapted =
+          color::adaptPriorsToImage(priors_, image, seg, config_.model);
+      prior_lighting_ = color::SwitchingColorFilter(adapted, config_.model, config_.switching);
+      mirror_test_ = MirrorTest(adapted, config_.model, config_.switching, config_.mirror_test);
+      for (Particle& p : particles_) p.lighting = prior_lighting_;
+    }
+  }
+  return balance_.identity ? yuv : balance_.apply(yuv);
 }
 
 void RbpfLocalizer::resample(StepResult* r) {
@@ -260,10 +273,10 @@ bool RbpfLocalizer::applyContest(PoseContest contest, const color::SwitchingColo
 }
 
 RbpfLocalizer::StepResult RbpfLocalizer::step(const math::SE2& odom_delta, double dt_s,
-                                              const cv::Mat& yuv,
+                                              const cv::Mat& image,
                                               const Eigen::Isometry3d& head_base_to_optical) {
+  const cv::Mat yuv = adaptToImage(image);
   setImage(yuv);
-  adaptPriorsIfPending(yuv);
   const std::uint64_t frame_seed = math::mixSeeds(config_.seed, ++frame_);
   StepResult r;
   // A global search's first image: the goals it shows (and the camera pitch they measure).

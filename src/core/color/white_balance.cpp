@@ -1,0 +1,112 @@
+#include "adaptive_perception/color/white_balance.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+#include "adaptive_perception/color/color_space.h"
+#include "adaptive_perception/world/color_class.h"
+
+namespace adaptive_perception::color {
+
+const config::Fields<WhiteBalanceConfig>& WhiteBalanceConfig::fields() {
+  using C = WhiteBalanceConfig;
+  static const config::Fields<C> f =
+      config::Fields<C>()
+          .add("white_balance_bright_share", &C::bright_share, config::aboveZero(1),
+               "the brightest share of the paint pixels whose mean is taken as white")
+          .add("white_balance_min_paint_pixels", &C::min_paint_pixels, config::closed(1, 100000000),
+               "fewer paint pixels than this: no white balance")
+          .add("white_balance_max_gain", &C::max_gain, config::closed(1, 100),
+               "a channel gain beyond [1 / max_gain, max_gain] means the paint was not white: no "
+               "balance")
+          .add("white_balance_paint_luma", &C::paint_luma, config::closed(0, 255),
+               "the paint's luma after the balance (the exposure the thresholds were set at); 0: "
+               "its own")
+          .add("white_balance_max_exposure_gain", &C::max_exposure_gain, config::closed(1, 100),
+               "the exposure's gain (paint_luma over the paint's luma) is held within [1 / this, "
+               "this]");
+  return f;
+}
+
+namespace {
+
+// The 3x3 map of YUV about (0, 128, 128) that scales R, G and B by `gains`.
+Eigen::Matrix3d yuvMap(const Eigen::Vector3d& gains) {
+  Eigen::Matrix3d from_rgb, to_rgb;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d e = Eigen::Vector3d::Unit(k);
+    from_rgb.col(k) = rgbToYuv(e) - Eigen::Vector3d(0, 128, 128);
+    to_rgb.col(k) = yuvToRgb(e + Eigen::Vector3d(0, 128, 128));
+  }
+  return from_rgb * gains.asDiagonal() * to_rgb;
+}
+
+}  // namespace
+
+Eigen::Vector3d WhiteBalance::apply(const Eigen::Vector3d& yuv) const {
+  if (identity) return yuv;
+  const Eigen::Vector3d o(0, 128, 128);
+  return yuvMap(gains_rgb) * (yuv - o) + o;
+}
+
+cv::Mat WhiteBalance::apply(const cv::Mat& yuv) const {
+  if (yuv.type() != CV_8UC3)
+    throw std::invalid_argument("WhiteBalance::apply: expected a YUV (CV_8UC3) image");
+  if (identity) return yuv.clone();
+  const Eigen::Matrix3d m = yuvMap(gains_rgb);
+  const Eigen::Vector3d o(0, 128, 128);
+  const Eigen::Vector3d t = o - m * o;
+  cv::Matx34f a;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) a(r, c) = static_cast<float>(m(r, c));
+    a(r, 3) = static_cast<float>(t[r]);
+  }
+  cv::Mat out;
+  cv::transform(yuv, out, a);  // saturating: rounded and clipped to 0..255
+  return out;
+}
+
+WhiteBalance whiteBalanceFromPaint(const cv::Mat& yuv, const FieldSegmentation& segmentation,
+                                   const WhiteBalanceConfig& config) {
+  config.validate();
+  if (yuv.type() != CV_8UC3 || segmentation.labels.size() != yuv.size())
+    throw std::invalid_argument(
+        "whiteBalanceFromPaint: expected a YUV (CV_8UC3) image and labels of its size");
+  std::vector<cv::Vec3b> paint;
+  for (int r = 0; r < yuv.rows; ++r) {
+    const std::uint8_t* label = segmentation.labels.ptr<std::uint8_t>(r);
+    const cv::Vec3b* px = yuv.ptr<cv::Vec3b>(r);
+    for (int c = 0; c < yuv.cols; ++c)
+      if (label[c] == world::kWhite) paint.push_back(px[c]);
+  }
+  WhiteBalance out;
+  out.paint_pixels = static_cast<int>(paint.size());
+  if (out.paint_pixels < config.min_paint_pixels) return out;
+  // The brightest share by luma.
+  const auto keep = std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::lround(config.bright_share * paint.size())));
+  std::nth_element(paint.begin(), paint.begin() + (paint.size() - keep), paint.end(),
+                   [](const cv::Vec3b& a, const cv::Vec3b& b) { return a[0] < b[0]; });
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (auto it = paint.end() - static_cast<std::ptrdiff_t>(keep); it != paint.end(); ++it)
+    mean += Eigen::Vector3d((*it)[0], (*it)[1], (*it)[2]);
+  mean /= static_cast<double>(keep);
+  out.white_yuv = mean;
+  const Eigen::Vector3d rgb = yuvToRgb(mean);
+  const double luma = mean[0];
+  Eigen::Vector3d gains;
+  for (int k = 0; k < 3; ++k) {
+    if (rgb[k] <= 0.0) return out;
+    gains[k] = luma / rgb[k];
+    if (gains[k] > config.max_gain || gains[k] < 1.0 / config.max_gain) return out;
+  }
+  if (config.paint_luma > 0.0)
+    gains *= std::clamp(config.paint_luma / luma, 1.0 / config.max_exposure_gain,
+                        config.max_exposure_gain);
+  out.identity = false;
+  out.gains_rgb = gains;
+  return out;
+}
+
+}  // namespace adaptive_perception::color
