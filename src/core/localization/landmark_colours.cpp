@@ -6,8 +6,6 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <optional>
-#include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -196,8 +194,6 @@ LandmarkColourEvidence landmarkMirrorEvidence(const cv::Mat& yuv,
     int hued = 0;
     for (std::uint8_t colour : t->pose_colours) hued += hue(colour).has_value();
     if (std::max(mine, mirror) < config.min_fit_share * hued) continue;
-    if (std::getenv("AP_DEBUG_LANDMARKS"))
-      std::fprintf(stderr, "landmark (%.2f,%.2f) u %d-%d rows %d-%d mine %.3f mirror %.3f\n", c.cx_m, c.cy_m, t->u0, t->u1, t->rows.back()[0], t->rows.front()[1], mine, mirror);
     out.mirror_minus_pose_nats += config.concentration * (mirror - mine);
     ++out.landmarks;
   }
