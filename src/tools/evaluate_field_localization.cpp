@@ -76,6 +76,18 @@ void drawGoalSightings(const std::vector<localization::GoalSighting>& sightings,
   }
 }
 
+// The image as under another light: channels (0..1) raised to `gamma`, then scaled by the R, G, B
+// gains (none: 1), rounded and clipped.
+cv::Mat relight(const cv::Mat& bgr, const std::vector<double>& gains_rgb, double gamma) {
+  cv::Mat f;
+  bgr.convertTo(f, CV_32FC3, 1.0 / 255.0);
+  if (gamma != 1.0) cv::pow(f, gamma, f);
+  if (!gains_rgb.empty()) f = f.mul(cv::Scalar(gains_rgb[2], gains_rgb[1], gains_rgb[0]));
+  cv::Mat out;
+  f.convertTo(out, CV_8UC3, 255.0);
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -103,6 +115,15 @@ int main(int argc, char** argv) {
   cli.option("initial_pose", &initial_pose,
              "X_M Y_M YAW_DEG: start every image's filter from this pose (particles spread 0.05 m "
              "and 0.05 rad about it), not from nothing: does the filter hold a pose it is given?");
+  std::vector<double> light_rgb;
+  cli.option("light_rgb", &light_rgb,
+             "R G B: each image as under another light, its channels scaled by these gains "
+             "(after light_gamma; rounded and clipped to 0..255): does the localization hold "
+             "when the light changes?");
+  double light_gamma = 1.0;
+  cli.option("light_gamma", &light_gamma, config::closed(0.1, 10),
+             "each image's channels (0..1) raised to this power before light_rgb (above 1: "
+             "darker, shadows more than highlights)");
   // Real images: the shipped priors are of simulated venues (RbpfConfig::adapt_priors_to_image).
   cfg.adapt_priors_to_image = true;
   cli.option("threads", &cfg.threads, "threads (the result is the same for any count)");
@@ -114,6 +135,11 @@ int main(int argc, char** argv) {
       (initial_pose.size() != 3 || !std::all_of(initial_pose.begin(), initial_pose.end(),
                                                 [](double v) { return std::isfinite(v); })))
     cli.fail("--initial_pose takes three finite numbers (x_m y_m yaw_deg)");
+  if (!light_rgb.empty() &&
+      (light_rgb.size() != 3 || !std::all_of(light_rgb.begin(), light_rgb.end(), [](double v) {
+        return std::isfinite(v) && v > 0.0 && v <= 10.0;
+      })))
+    cli.fail("--light_rgb takes three gains in (0, 10] (R G B)");
   try {
     const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));
     const world::RobotCamera camera =
@@ -136,8 +162,9 @@ int main(int argc, char** argv) {
     double ms_total = 0.0;
     for (const io::HeadImage& item : list) {
       const std::string where = list_file + ":" + std::to_string(item.line) + ": ";
-      const cv::Mat bgr = cv::imread(item.path, cv::IMREAD_COLOR);
+      cv::Mat bgr = cv::imread(item.path, cv::IMREAD_COLOR);
       if (bgr.empty()) throw std::runtime_error(where + item.path + ": cannot read the image");
+      if (!light_rgb.empty() || light_gamma != 1.0) bgr = relight(bgr, light_rgb, light_gamma);
       if (bgr.cols != camera.camera.width_px || bgr.rows != camera.camera.height_px)
         throw std::runtime_error(where + item.path + " is " + std::to_string(bgr.cols) + "x" +
                                  std::to_string(bgr.rows) + " but the camera (" + camera.name +

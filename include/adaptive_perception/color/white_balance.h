@@ -15,13 +15,13 @@
 // bright two points' landmarks fell below LandmarkColourConfig::min_chroma's 15); so the balance
 // also brings the paint to one luma, paint_luma.
 //
-// Contract: whiteBalanceFromPaint() takes the brightest `bright_share` of the segmentation's paint
-// pixels (a line's border mixes in the carpet), their mean in RGB (BT.601 full range, as
+// Contract: whiteBalanceFromPaint() takes the segmentation's paint pixels that are mostly paint
+// (paint_share: a line's border mixes in the carpet), their mean in RGB (BT.601 full range, as
 // color_space.h converts), and scales R, G and B each so that this mean becomes grey of its own
 // luma; gains beyond [1 / max_gain, max_gain] are refused (no balance: what the segmentation took
 // for paint was not white). Then all three are scaled by paint_luma over that luma (0: not),
-// held within [1 / max_exposure_gain, max_exposure_gain]. With fewer than min_paint_pixels paint pixels there is no balance
-// (identity). The balance is an affine map of YUV (YUV and RGB are linear in each other), applied
+// held within [1 / max_exposure_gain, max_exposure_gain]. With fewer than min_paint_pixels such
+// pixels there is no balance (identity). The balance is an affine map of YUV (YUV and RGB are linear in each other), applied
 // per pixel with rounding and clipping to 0..255; deterministic.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -32,9 +32,11 @@
 namespace adaptive_perception::color {
 
 struct WhiteBalanceConfig {
-  /// The brightest share of the paint pixels whose mean is taken as white (0.5: the brighter half;
-  /// a line's border pixels are a mix of paint and carpet and pull the mean towards green).
-  double bright_share = 0.5;
+  /// A paint pixel counts towards white when its luma lies at least this share of the way from the
+  /// carpet's mean luma to the paint's (its 95th percentile): a pixel mostly paint, mixed linearly
+  /// with the carpet. The segmentation's paint takes in the border of a line and the blur of a
+  /// thin far one, which are part carpet and would pull the white towards green.
+  double paint_share = 0.5;
   /// Fewer paint pixels than this: no balance.
   int min_paint_pixels = 50;
   /// A channel's gain beyond [1 / max_gain, max_gain] means the "paint" was not white: no balance.
@@ -58,7 +60,7 @@ struct WhiteBalance {
   bool identity = true;
   Eigen::Vector3d gains_rgb = Eigen::Vector3d::Ones();  // R, G, B (colour and exposure)
   Eigen::Vector3d white_yuv = Eigen::Vector3d(0, 128, 128);  // the paint's mean it was taken from
-  int paint_pixels = 0;                                       // paint pixels the mean was taken over
+  int paint_pixels = 0;  // paint pixels the mean was taken over
 
   /// `yuv` (CV_8UC3: Y, U, V) with R, G and B scaled by gains_rgb; a copy of it when identity.
   /// std::invalid_argument for another type.

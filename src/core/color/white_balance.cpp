@@ -13,8 +13,9 @@ const config::Fields<WhiteBalanceConfig>& WhiteBalanceConfig::fields() {
   using C = WhiteBalanceConfig;
   static const config::Fields<C> f =
       config::Fields<C>()
-          .add("white_balance_bright_share", &C::bright_share, config::aboveZero(1),
-               "the brightest share of the paint pixels whose mean is taken as white")
+          .add("white_balance_paint_share", &C::paint_share, config::closed(0, 1),
+               "a paint pixel counts towards white when its luma is at least this share of the way "
+               "from the carpet's to the paint's (95th percentile)")
           .add("white_balance_min_paint_pixels", &C::min_paint_pixels, config::closed(1, 100000000),
                "fewer paint pixels than this: no white balance")
           .add("white_balance_max_gain", &C::max_gain, config::closed(1, 100),
@@ -81,17 +82,23 @@ WhiteBalance whiteBalanceFromPaint(const cv::Mat& yuv, const FieldSegmentation& 
       if (label[c] == world::kWhite) paint.push_back(px[c]);
   }
   WhiteBalance out;
-  out.paint_pixels = static_cast<int>(paint.size());
-  if (out.paint_pixels < config.min_paint_pixels) return out;
-  // The brightest share by luma.
-  const auto keep = std::max<std::size_t>(
-      1, static_cast<std::size_t>(std::lround(config.bright_share * paint.size())));
-  std::nth_element(paint.begin(), paint.begin() + (paint.size() - keep), paint.end(),
-                   [](const cv::Vec3b& a, const cv::Vec3b& b) { return a[0] < b[0]; });
+  if (static_cast<int>(paint.size()) < config.min_paint_pixels) return out;
+  // The paint's core: pixels at least paint_share paint, by luma, mixed linearly with the carpet
+  // (a line's border pixel and the blur of a thin far line are part carpet).
+  std::vector<int> lumas;
+  lumas.reserve(paint.size());
+  for (const cv::Vec3b& p : paint) lumas.push_back(p[0]);
+  const auto top = lumas.begin() + static_cast<std::ptrdiff_t>(0.95 * (lumas.size() - 1));
+  std::nth_element(lumas.begin(), top, lumas.end());
+  const double carpet = segmentation.carpet_mean_yuv[0];
+  const double bar = carpet + config.paint_share * (*top - carpet);
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (auto it = paint.end() - static_cast<std::ptrdiff_t>(keep); it != paint.end(); ++it)
-    mean += Eigen::Vector3d((*it)[0], (*it)[1], (*it)[2]);
-  mean /= static_cast<double>(keep);
+  int core = 0;
+  for (const cv::Vec3b& p : paint)
+    if (p[0] >= bar) mean += Eigen::Vector3d(p[0], p[1], p[2]), ++core;
+  out.paint_pixels = core;
+  if (core < config.min_paint_pixels) return out;
+  mean /= static_cast<double>(core);
   out.white_yuv = mean;
   const Eigen::Vector3d rgb = yuvToRgb(mean);
   const double luma = mean[0];

@@ -134,7 +134,7 @@ TEST(WhiteBalance, NoPaintOrPaintThatIsNotWhiteGivesNoBalance) {
   EXPECT_TRUE(ap::color::whiteBalanceFromPaint(yuv, none, {}).identity);
   // Too few paint pixels.
   ap::color::WhiteBalanceConfig few;
-  few.min_paint_pixels = cv::countNonZero(seg.labels == ap::world::kWhite) + 1;
+  few.min_paint_pixels = cv::countNonZero(seg.labels == ap::world::kWhite) + 1;  // or fewer
   EXPECT_TRUE(ap::color::whiteBalanceFromPaint(yuv, seg, few).identity);
   // "Paint" of a saturated green (RGB 40, 160, 20): R would need a gain of 2.7 to grey it.
   const cv::Mat green(kH, kW, CV_8UC3, cv::Scalar(20, 160, 40));  // BGR
@@ -152,9 +152,9 @@ TEST(WhiteBalance, BadInputIsRefusedNamingIt) {
   const ap::color::FieldSegmentation seg =
       ap::color::segmentFieldYuv(yuv, ap::color::FieldSegmentationConfig());
   ap::color::WhiteBalanceConfig cfg;
-  cfg.bright_share = 0.0;
+  cfg.paint_share = 1.5;
   EXPECT_TRUE(refusedNaming([&] { ap::color::whiteBalanceFromPaint(yuv, seg, cfg); },
-                            "white_balance_bright_share"));
+                            "white_balance_paint_share"));
   cfg = {};
   cfg.max_gain = 0.5;
   EXPECT_TRUE(refusedNaming([&] { ap::color::whiteBalanceFromPaint(yuv, seg, cfg); },

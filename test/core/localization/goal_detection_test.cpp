@@ -363,5 +363,67 @@ TEST(LandmarkColours, ABacklitLandmarkDoesNotSendThePoseToItsMirror) {
   EXPECT_LT(seen.mirror_minus_pose_nats, -2.0);
 }
 
+// The image `yuv` as under a light that scales R, G and B by `light` (rounded, clipped).
+cv::Mat underLight(const cv::Mat& yuv, const Eigen::Vector3d& light) {
+  cv::Mat out(yuv.size(), CV_8UC3);
+  for (int v = 0; v < yuv.rows; ++v)
+    for (int u = 0; u < yuv.cols; ++u) {
+      const cv::Vec3b& p = yuv.at<cv::Vec3b>(v, u);
+      const Eigen::Vector3d rgb =
+          color::yuvToRgb(Eigen::Vector3d(p[0], p[1], p[2])).cwiseProduct(light);
+      const Eigen::Vector3d q = color::rgbToYuv(rgb);
+      out.at<cv::Vec3b>(v, u) =
+          cv::Vec3b(cv::saturate_cast<std::uint8_t>(q[0]), cv::saturate_cast<std::uint8_t>(q[1]),
+                    cv::saturate_cast<std::uint8_t>(q[2]));
+    }
+  return out;
+}
+
+TEST(LandmarkColours, ADimCoolLightIsBalancedAwayBeforeTheHuesAreRead) {
+  // punt4's view of the development set, its landmarks' pink faded as it is there (chroma 19,
+  // luma 214): under a light 0.55 times as bright and cool (R, G, B by 0.47, 0.52, 0.55), where
+  // the pink's chroma falls to 6 levels, below LandmarkColourConfig::min_chroma.
+  Scene s;
+  s.paints[world::kPink] = {240, 200, 215};
+  const math::SE2 pose(-2.12, 0.03, 0.02);
+  const Eigen::Isometry3d head = s.nao.baseToOptical(0.006, 0.061);
+  const cv::Mat seen = s.render(pose, head);
+  const Eigen::Vector3d light(0.55 * 0.85, 0.55 * 0.95, 0.55);
+  const cv::Mat tinted = underLight(seen, light);
+  const LandmarkColourConfig config;
+  const LandmarkColourEvidence truth = landmarkMirrorEvidence(seen, s.renderer, pose, head, config);
+  ASSERT_GE(truth.landmarks, 1);
+  ASSERT_LT(truth.mirror_minus_pose_nats, -1.0);
+  // The localizer takes the balance from the paint of its first image.
+  RbpfConfig cfg;
+  cfg.particles = 50;
+  cfg.adapt_priors_to_image = true;
+  const std::vector<color::LightingPrior> priors = {
+      color::LightingPrior::loadYaml(kConfig + "color_priors/dark.yaml"),
+      color::LightingPrior::loadYaml(kConfig + "color_priors/bright.yaml")};
+  RbpfLocalizer rbpf(s.map, s.nao.camera, priors, cfg);
+  rbpf.initGaussian(pose, Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal());
+  rbpf.step(math::SE2(), 0.0, tinted, head);
+  const color::WhiteBalance& wb = rbpf.whiteBalance();
+  ASSERT_FALSE(wb.identity);
+  // Its gains undo the light (the rendered paint is grey, 235) up to the exposure, which brings
+  // the paint to paint_luma: gain * light = paint_luma / 235 in each channel.
+  const Eigen::Vector3d undone = wb.gains_rgb.cwiseProduct(light);
+  const double exposure = cfg.white_balance.paint_luma / 235.0;
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(undone[ch], exposure, 0.02) << "channel " << ch;
+  // Read after the balance, the landmark gives the evidence it gives under the light it was seen
+  // in; read as it comes, it does not.
+  const LandmarkColourEvidence balanced =
+      landmarkMirrorEvidence(wb.apply(tinted), s.renderer, pose, head, config);
+  EXPECT_EQ(balanced.landmarks, truth.landmarks);
+  // (Within 5%: the dim image's levels come out 1.8 times coarser after the balance.)
+  EXPECT_NEAR(balanced.mirror_minus_pose_nats, truth.mirror_minus_pose_nats,
+              0.05 * std::abs(truth.mirror_minus_pose_nats));
+  const LandmarkColourEvidence raw = landmarkMirrorEvidence(tinted, s.renderer, pose, head, config);
+  EXPECT_GT(std::abs(raw.mirror_minus_pose_nats - truth.mirror_minus_pose_nats),
+            0.5 * std::abs(truth.mirror_minus_pose_nats))
+      << raw.mirror_minus_pose_nats << " against " << truth.mirror_minus_pose_nats;
+}
+
 }  // namespace
 }  // namespace adaptive_perception::localization
