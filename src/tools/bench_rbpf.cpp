@@ -11,7 +11,9 @@
 // images starts every S seconds of the sequence (no kidnap: a check that wins here is a false
 // alarm, counted as `relocalizations`). The sequence runs at --rate_hz (10 by default; a NAO's
 // camera gives 30): the check's cost is spread over the frames of its interval, so a frame rate is
-// only meaningful at the rate the camera gives.
+// only meaningful at the rate the camera gives. --adapt_priors_to_image true runs the path a real
+// camera takes (the priors adapted to the first image, and every image white-balanced by its
+// paint unless --balance_to_paint false).
 //
 // Without --particles/--threads it sweeps 100, 300 and 1000 particles on 1 thread and on all cores.
 // Last line: `bench_rbpf: frames_per_s=... (for the first configuration) ...` with one key per
@@ -50,7 +52,8 @@ int main(int argc, char** argv) {
              "the sequence's frame rate, Hz (the camera's)");
   localization::RbpfConfig base;  // these fields as rbpf_localizer's parameters, the rest default
   cli.fields(localization::RbpfConfig::fields(), &base,
-             {"pixel_stride", "relocalization_interval_s", "relocalization_pool_size"});
+             {"pixel_stride", "relocalization_interval_s", "relocalization_pool_size",
+              "adapt_priors_to_image", "balance_to_paint"});
   cli.parse(argc, argv);
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::vector<std::pair<int, int>> configs;
