@@ -137,8 +137,8 @@ int main(int argc, char** argv) {
     cli.fail("--initial_pose takes three finite numbers (x_m y_m yaw_deg)");
   if (!light_rgb.empty() &&
       (light_rgb.size() != 3 || !std::all_of(light_rgb.begin(), light_rgb.end(), [](double v) {
-        return std::isfinite(v) && v > 0.0 && v <= 10.0;
-      })))
+         return std::isfinite(v) && v > 0.0 && v <= 10.0;
+       })))
     cli.fail("--light_rgb takes three gains in (0, 10] (R G B)");
   try {
     const world::FieldMap map = world::FieldMap::loadYaml(ros_params::resolvePackagePath(field));
@@ -214,25 +214,26 @@ int main(int argc, char** argv) {
                                fs::path(item.path).stem().string();
       const Eigen::Vector3d& gains = rbpf.whiteBalance().gains_rgb;
       char line[640];
-      std::snprintf(line, sizeof line,
-                    "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f,%d,%.4f,%.2f,%d,%d,%.2f,%.3f,%.3f,%.3f,%.1f",
-                    item.path.c_str(), est.pose.x_m, est.pose.y_m, math::radToDeg(est.pose.yaw_rad),
-                    est.spread_m, est.cluster_weight,
-                    item.truth_xy_m ? std::to_string(item.truth_xy_m->x()).c_str() : "",
-                    item.truth_xy_m ? std::to_string(item.truth_xy_m->y()).c_str() : "", error, ms,
-                    goals, pitch_offset, mirror_evidence, checks, relocalizations, max_check_score,
-                    gains[0], gains[1], gains[2], rbpf.whiteBalance().white_yuv[0]);
+      std::snprintf(
+          line, sizeof line,
+          "%s,%.3f,%.3f,%.1f,%.3f,%.3f,%s,%s,%.3f,%.0f,%d,%.4f,%.2f,%d,%d,%.2f,%.3f,%.3f,%.3f,%.1f",
+          item.path.c_str(), est.pose.x_m, est.pose.y_m, math::radToDeg(est.pose.yaw_rad),
+          est.spread_m, est.cluster_weight,
+          item.truth_xy_m ? std::to_string(item.truth_xy_m->x()).c_str() : "",
+          item.truth_xy_m ? std::to_string(item.truth_xy_m->y()).c_str() : "", error, ms, goals,
+          pitch_offset, mirror_evidence, checks, relocalizations, max_check_score, gains[0],
+          gains[1], gains[2], rbpf.whiteBalance().white_yuv[0]);
       std::cout << line << std::endl;
       csv << line << "\n";
       cv::Mat drawing = drawEstimate(bgr, map, camera.camera,
                                      world::planarToIsometry(est.pose) *
                                          localization::leanCamera(base_to_optical, pitch_offset));
       const cv::Mat balanced = rbpf.whiteBalance().apply(yuv);  // as the localizer read it
-      drawGoalSightings(localization::detectGoals(
-                            balanced,
-                            color::segmentFieldYuv(balanced, color::FieldSegmentationConfig()),
-                            camera.camera, base_to_optical, map, cfg.goals),
-                        &drawing);
+      drawGoalSightings(
+          localization::detectGoals(
+              balanced, color::segmentFieldYuv(balanced, color::FieldSegmentationConfig()),
+              camera.camera, base_to_optical, map, cfg.goals),
+          &drawing);
       cv::imwrite((fs::path(output) / (name + ".png")).string(), drawing);
     }
     double median = -1.0;

@@ -1,7 +1,7 @@
 #pragma once
-// White balance by the field's paint: the light's colour and brightness, measured on the one surface
-// of a field that is white by the rules, divided out of the whole image (von Kries scaling of R, G
-// and B), as a photographer's grey card is used.
+// White balance by the field's paint: the light's colour and brightness, measured on the one
+// surface of a field that is white by the rules, divided out of the whole image (von Kries scaling
+// of R, G and B), as a photographer's grey card is used.
 //
 // Why: a robot's camera balances its colours by its own guess (or not at all), and what it leaves
 // (a warm evening light, a camera fixed to daylight) tints every colour the same way. The colour
@@ -21,8 +21,8 @@
 // luma; gains beyond [1 / max_gain, max_gain] are refused (no balance: what the segmentation took
 // for paint was not white). Then all three are scaled by paint_luma over that luma (0: not),
 // held within [1 / max_exposure_gain, max_exposure_gain]. With fewer than min_paint_pixels such
-// pixels there is no balance (identity). The balance is an affine map of YUV (YUV and RGB are linear in each other), applied
-// per pixel with rounding and clipping to 0..255; deterministic.
+// pixels there is no balance (identity). The balance is an affine map of YUV (YUV and RGB are
+// linear in each other), applied per pixel with rounding and clipping to 0..255; deterministic.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
@@ -58,9 +58,9 @@ struct WhiteBalanceConfig {
 
 struct WhiteBalance {
   bool identity = true;
-  Eigen::Vector3d gains_rgb = Eigen::Vector3d::Ones();  // R, G, B (colour and exposure)
+  Eigen::Vector3d gains_rgb = Eigen::Vector3d::Ones();       // R, G, B (colour and exposure)
   Eigen::Vector3d white_yuv = Eigen::Vector3d(0, 128, 128);  // the paint's mean it was taken from
-  int paint_pixels = 0;  // paint pixels the mean was taken over
+  int paint_pixels = 0;                                      // paint pixels the mean was taken over
 
   /// `yuv` (CV_8UC3: Y, U, V) with R, G and B scaled by gains_rgb; a copy of it when identity.
   /// std::invalid_argument for another type.

@@ -140,8 +140,7 @@ TEST(WhiteBalance, NoPaintOrPaintThatIsNotWhiteGivesNoBalance) {
   const cv::Mat green(kH, kW, CV_8UC3, cv::Scalar(20, 160, 40));  // BGR
   ap::color::FieldSegmentation all_paint = seg;
   all_paint.labels.setTo(ap::world::kWhite);
-  EXPECT_TRUE(
-      ap::color::whiteBalanceFromPaint(ap::color::bgrToYuv(green), all_paint, {}).identity);
+  EXPECT_TRUE(ap::color::whiteBalanceFromPaint(ap::color::bgrToYuv(green), all_paint, {}).identity);
   // The identity copies the image.
   const ap::color::WhiteBalance identity;
   EXPECT_EQ(meanAbsDifference(identity.apply(yuv), yuv), 0.0);
