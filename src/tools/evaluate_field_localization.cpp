@@ -155,7 +155,7 @@ int main(int argc, char** argv) {
     const std::string header =
         "image,x_m,y_m,heading_deg,spread_m,cluster_weight,true_x_m,true_y_m,position_error_m,ms,"
         "goals_seen,camera_pitch_offset_rad,mirror_evidence,checks,relocalizations,"
-        "max_check_score,white_gain_r,white_gain_g,white_gain_b,paint_luma";
+        "max_check_score,white_gain_r,white_gain_g,white_gain_b,paint_luma_seen";
     csv << header << "\n";
     std::cout << header << "\n";
     std::vector<double> errors;
@@ -185,6 +185,7 @@ int main(int argc, char** argv) {
       }
       int goals = -1;
       double pitch_offset = 0.0, mirror_evidence = 0.0;
+      color::WhiteBalance balance;  // the last the images were read under
       // The relocalization checks that ended, how many found the particles lost, and the largest
       // margin a pose of a check's pool had over them (nan: no check ended).
       int checks = 0, relocalizations = 0;
@@ -193,6 +194,8 @@ int main(int argc, char** argv) {
         const auto r = rbpf.step(math::SE2(), k == 0 ? 0.0 : 1.0 / 30.0, yuv, base_to_optical);
         if (r.goal_sightings >= 0) goals = r.goal_sightings;
         mirror_evidence = r.mirror_evidence;
+        // (A restart inside a step forgets the balance until the next image sets it again.)
+        if (!rbpf.whiteBalance().identity) balance = rbpf.whiteBalance();
         pitch_offset = r.camera_pitch_offset_rad;
         if (r.relocalization_checked) {
           ++checks;
@@ -212,7 +215,7 @@ int main(int argc, char** argv) {
       }
       const std::string name = fs::path(item.path).parent_path().filename().string() + "_" +
                                fs::path(item.path).stem().string();
-      const Eigen::Vector3d& gains = rbpf.whiteBalance().gains_rgb;
+      const Eigen::Vector3d& gains = balance.gains_rgb;
       char line[640];
       std::snprintf(
           line, sizeof line,
@@ -222,13 +225,13 @@ int main(int argc, char** argv) {
           item.truth_xy_m ? std::to_string(item.truth_xy_m->x()).c_str() : "",
           item.truth_xy_m ? std::to_string(item.truth_xy_m->y()).c_str() : "", error, ms, goals,
           pitch_offset, mirror_evidence, checks, relocalizations, max_check_score, gains[0],
-          gains[1], gains[2], rbpf.whiteBalance().white_yuv[0]);
+          gains[1], gains[2], balance.white_yuv[0]);
       std::cout << line << std::endl;
       csv << line << "\n";
       cv::Mat drawing = drawEstimate(bgr, map, camera.camera,
                                      world::planarToIsometry(est.pose) *
                                          localization::leanCamera(base_to_optical, pitch_offset));
-      const cv::Mat balanced = rbpf.whiteBalance().apply(yuv);  // as the localizer read it
+      const cv::Mat balanced = balance.apply(yuv);  // as the localizer read it
       drawGoalSightings(
           localization::detectGoals(
               balanced, color::segmentFieldYuv(balanced, color::FieldSegmentationConfig()),

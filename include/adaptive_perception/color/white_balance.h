@@ -21,8 +21,9 @@
 // luma; gains beyond [1 / max_gain, max_gain] are refused (no balance: what the segmentation took
 // for paint was not white). Then all three are scaled by paint_luma over that luma (0: not),
 // held within [1 / max_exposure_gain, max_exposure_gain]. With fewer than min_paint_pixels such
-// pixels there is no balance (identity). The balance is an affine map of YUV (YUV and RGB are
-// linear in each other), applied per pixel with rounding and clipping to 0..255; deterministic.
+// pixels there is no balance (identity). Applied per pixel: to RGB, each channel scaled and clipped
+// to 0..255 there (a blown-out window stays white instead of taking the gains' tint), back to YUV,
+// rounded; deterministic.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
@@ -43,7 +44,7 @@ struct WhiteBalanceConfig {
   /// 2: a light that halves one channel against another is already far from any hall's lamps
   /// and daylight once the camera has balanced at all.
   double max_gain = 2.0;
-  /// The paint's luma after the balance. 220: where the paint's brightest half lies on the NAO
+  /// The paint's luma after the balance. 220: where the paint's core lies on the NAO
   /// development images (214-244 at the four points not facing the windows' light), at which the
   /// localizer's thresholds in levels were set, and 35 levels below clipping. 0: the paint keeps
   /// its own luma (colour only).
@@ -65,12 +66,12 @@ struct WhiteBalance {
   /// `yuv` (CV_8UC3: Y, U, V) with R, G and B scaled by gains_rgb; a copy of it when identity.
   /// std::invalid_argument for another type.
   cv::Mat apply(const cv::Mat& yuv) const;
-  /// One colour (Y, U, V) balanced, unrounded.
+  /// One colour (Y, U, V) balanced (clipped in RGB as the image is), unrounded.
   Eigen::Vector3d apply(const Eigen::Vector3d& yuv) const;
 };
 
 /// The balance that makes the paint segmentField found in `yuv` grey. std::invalid_argument when
-/// the image is not CV_8UC3 or the labels are not of its size.
+/// the image is not CV_8UC3 or the labels are not CV_8UC1 of its size.
 WhiteBalance whiteBalanceFromPaint(const cv::Mat& yuv, const FieldSegmentation& segmentation,
                                    const WhiteBalanceConfig& config);
 

@@ -94,6 +94,10 @@ struct RbpfConfig {
   // come.
   bool balance_to_paint = true;
   color::WhiteBalanceConfig white_balance;
+  // When the image the priors were adapted to gave no balance (no line paint in view, or none
+  // white enough), every this many images another is tried (36 ms at 640 x 480), and the first
+  // that gives one is adapted to again. 30: once a second of a NAO's camera. 0: never.
+  int balance_retry_images = 30;
   int threads = 1;
   std::uint64_t seed = 1;
 
@@ -221,6 +225,7 @@ class RbpfLocalizer {
   RbpfConfig config_;
   bool adapt_pending_ = false;
   color::WhiteBalance balance_;  // of the images since the particles were placed (balance_to_paint)
+  int unbalanced_images_ = 0;    // images since an adaptation that gave no balance
   color::SwitchingColorFilter prior_lighting_;
   std::shared_ptr<const ImageLikelihood> likelihood_;
   PoseSearch search_;

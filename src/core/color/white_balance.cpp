@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "adaptive_perception/color/color_space.h"
@@ -32,15 +33,28 @@ const config::Fields<WhiteBalanceConfig>& WhiteBalanceConfig::fields() {
 
 namespace {
 
-// The 3x3 map of YUV about (0, 128, 128) that scales R, G and B by `gains`.
-Eigen::Matrix3d yuvMap(const Eigen::Vector3d& gains) {
-  Eigen::Matrix3d from_rgb, to_rgb;
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d e = Eigen::Vector3d::Unit(k);
-    from_rgb.col(k) = rgbToYuv(e) - Eigen::Vector3d(0, 128, 128);
-    to_rgb.col(k) = yuvToRgb(e + Eigen::Vector3d(0, 128, 128));
+// The linear parts of BT.601 full range: YUV - (0, 128, 128) from RGB, and its inverse.
+Eigen::Matrix3d fromRgb() {
+  Eigen::Matrix3d m;
+  for (int k = 0; k < 3; ++k)
+    m.col(k) = rgbToYuv(Eigen::Vector3d::Unit(k)) - Eigen::Vector3d(0, 128, 128);
+  return m;
+}
+Eigen::Matrix3d toRgb() {
+  Eigen::Matrix3d m;
+  for (int k = 0; k < 3; ++k)
+    m.col(k) = yuvToRgb(Eigen::Vector3d::Unit(k) + Eigen::Vector3d(0, 128, 128));
+  return m;
+}
+
+// `m` and the offset `t` as the 3x4 matrix cv::transform takes.
+cv::Matx34f affine(const Eigen::Matrix3d& m, const Eigen::Vector3d& t) {
+  cv::Matx34f a;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) a(r, c) = static_cast<float>(m(r, c));
+    a(r, 3) = static_cast<float>(t[r]);
   }
-  return from_rgb * gains.asDiagonal() * to_rgb;
+  return a;
 }
 
 }  // namespace
@@ -48,32 +62,41 @@ Eigen::Matrix3d yuvMap(const Eigen::Vector3d& gains) {
 Eigen::Vector3d WhiteBalance::apply(const Eigen::Vector3d& yuv) const {
   if (identity) return yuv;
   const Eigen::Vector3d o(0, 128, 128);
-  return yuvMap(gains_rgb) * (yuv - o) + o;
+  const Eigen::Vector3d rgb =
+      (gains_rgb.asDiagonal() * (toRgb() * (yuv - o))).cwiseMax(0.0).cwiseMin(255.0);
+  return fromRgb() * rgb + o;
 }
 
 cv::Mat WhiteBalance::apply(const cv::Mat& yuv) const {
   if (yuv.type() != CV_8UC3)
-    throw std::invalid_argument("WhiteBalance::apply: expected a YUV (CV_8UC3) image");
+    throw std::invalid_argument("WhiteBalance::apply: expected a YUV (CV_8UC3) image, got type " +
+                                std::to_string(yuv.type()));
   if (identity) return yuv.clone();
-  const Eigen::Matrix3d m = yuvMap(gains_rgb);
+  // R, G and B scaled and clipped there (a blown-out window stays white, not tinted), then back.
   const Eigen::Vector3d o(0, 128, 128);
-  const Eigen::Vector3d t = o - m * o;
-  cv::Matx34f a;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) a(r, c) = static_cast<float>(m(r, c));
-    a(r, 3) = static_cast<float>(t[r]);
-  }
-  cv::Mat out;
-  cv::transform(yuv, out, a);  // saturating: rounded and clipped to 0..255
+  const Eigen::Matrix3d scaled = gains_rgb.asDiagonal() * toRgb();
+  cv::Mat f, rgb, out;
+  yuv.convertTo(f, CV_32FC3);
+  cv::transform(f, rgb, affine(scaled, -scaled * o));
+  cv::min(rgb, cv::Scalar::all(255.0), rgb);
+  cv::max(rgb, cv::Scalar::all(0.0), rgb);
+  cv::transform(rgb, f, affine(fromRgb(), o));
+  f.convertTo(out, CV_8UC3);  // rounded and saturated
   return out;
 }
 
 WhiteBalance whiteBalanceFromPaint(const cv::Mat& yuv, const FieldSegmentation& segmentation,
                                    const WhiteBalanceConfig& config) {
   config.validate();
-  if (yuv.type() != CV_8UC3 || segmentation.labels.size() != yuv.size())
+  if (yuv.type() != CV_8UC3)
+    throw std::invalid_argument("whiteBalanceFromPaint: expected a YUV (CV_8UC3) image, got type " +
+                                std::to_string(yuv.type()));
+  if (segmentation.labels.type() != CV_8UC1 || segmentation.labels.size() != yuv.size())
     throw std::invalid_argument(
-        "whiteBalanceFromPaint: expected a YUV (CV_8UC3) image and labels of its size");
+        "whiteBalanceFromPaint: the segmentation's labels must be CV_8UC1 of the image's size (" +
+        std::to_string(yuv.cols) + "x" + std::to_string(yuv.rows) + "), got type " +
+        std::to_string(segmentation.labels.type()) + " " +
+        std::to_string(segmentation.labels.cols) + "x" + std::to_string(segmentation.labels.rows));
   std::vector<cv::Vec3b> paint;
   for (int r = 0; r < yuv.rows; ++r) {
     const std::uint8_t* label = segmentation.labels.ptr<std::uint8_t>(r);

@@ -40,6 +40,9 @@ const config::Fields<RbpfConfig>& RbpfConfig::fields() {
           .add("balance_to_paint", &C::balance_to_paint,
                "with adapt_priors_to_image, every image until the particles are placed anew is "
                "balanced so that the first image's line paint is grey at white_balance_paint_luma")
+          .add("balance_retry_images", &C::balance_retry_images, config::closed(0, 1000000),
+               "when the adapted-to image gave no white balance, another image is tried every "
+               "this many images (0: never)")
           .nest(&C::white_balance, color::WhiteBalanceConfig::fields())
           .nest(&C::likelihood, ImageLikelihoodConfig::fields())
           .nest(&C::motion, MotionModelConfig::fields())

@@ -198,12 +198,24 @@ std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
 }
 
 cv::Mat RbpfLocalizer::adaptToImage(const cv::Mat& yuv) {
+  // Adapted, but the image it was adapted to gave no balance (no paint in view, or none white
+  // enough): every balance_retry_images images another is tried, and once one gives a balance the
+  // adaptation is made again on it.
+  if (!adapt_pending_ && config_.adapt_priors_to_image && config_.balance_to_paint &&
+      balance_.identity && config_.balance_retry_images > 0 &&
+      ++unbalanced_images_ % config_.balance_retry_images == 0 &&
+      !color::whiteBalanceFromPaint(yuv,
+                                    color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()),
+                                    config_.white_balance)
+           .identity)
+    adapt_pending_ = true;
   if (adapt_pending_) {
     color::FieldSegmentation seg = color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
     // An image without carpet (the head up, a dark start-up frame) says nothing: the next one
     // adapts.
     if (cv::countNonZero(seg.labels == world::kGreen) >= config_.model.min_pixels_per_color) {
       adapt_pending_ = false;
+      unbalanced_images_ = 0;
       cv::Mat image = yuv;
       if (config_.balance_to_paint) {
         balance_ = color::whiteBalanceFromPaint(yuv, seg, config_.white_balance);

@@ -45,7 +45,7 @@ ap::color::WhiteBalance balanceOf(const cv::Mat& yuv, const ap::color::WhiteBala
       yuv, ap::color::segmentFieldYuv(yuv, ap::color::FieldSegmentationConfig()), cfg);
 }
 
-// Mean absolute difference of two YUV images per channel, over the pixels neither clipped.
+// Mean absolute difference of two YUV images, over all pixels and channels.
 double meanAbsDifference(const cv::Mat& a, const cv::Mat& b) {
   cv::Mat d;
   cv::absdiff(a, b, d);
@@ -118,6 +118,28 @@ TEST(WhiteBalance, HoldsTheExposureGainWithinItsBound) {
   EXPECT_NEAR(wb.apply(wb.white_yuv)[0], 1.25 * wb.white_yuv[0], 0.5);
 }
 
+TEST(WhiteBalance, ClipsInRgbSoABlownOutPixelStaysWhite) {
+  // A pale pixel (RGB about 211, 197, 186) brightened twice clips in every channel: white, with no
+  // chroma left (clipped in YUV it kept its amplified chroma, 22.6 levels).
+  ap::color::WhiteBalance wb;
+  wb.identity = false;
+  wb.gains_rgb = Eigen::Vector3d(2.0, 2.0, 2.0);
+  const Eigen::Vector3d one = wb.apply(Eigen::Vector3d(200, 120, 136));
+  EXPECT_NEAR(one[0], 255.0, 0.5);
+  EXPECT_NEAR(one[1], 128.0, 0.5);
+  EXPECT_NEAR(one[2], 128.0, 0.5);
+  const cv::Mat image(2, 3, CV_8UC3, cv::Scalar(200, 120, 136));
+  const cv::Mat out = wb.apply(image);
+  for (int ch = 0; ch < 3; ++ch)
+    EXPECT_NEAR(out.at<cv::Vec3b>(1, 2)[ch], one[ch], 0.51) << "channel " << ch;
+  // Unclipped, the map is linear: a dark pixel doubles its distance from black and neutral (to
+  // 1e-4: color_space.h's rounded BT.601 constants invert each other to about 1e-5).
+  const Eigen::Vector3d dark = wb.apply(Eigen::Vector3d(40, 120, 136));
+  EXPECT_NEAR(dark[0], 80.0, 1e-4);
+  EXPECT_NEAR(dark[1], 112.0, 1e-4);
+  EXPECT_NEAR(dark[2], 144.0, 1e-4);
+}
+
 TEST(WhiteBalance, ANeutralLightIsLeftAsItIs) {
   const ap::color::WhiteBalance wb = balanceOf(drawField({1.0, 1.0, 1.0}), colourOnly());
   ASSERT_FALSE(wb.identity);
@@ -161,5 +183,8 @@ TEST(WhiteBalance, BadInputIsRefusedNamingIt) {
   cv::Mat small;
   cv::resize(yuv, small, {kW / 2, kH / 2});
   EXPECT_THROW(ap::color::whiteBalanceFromPaint(small, seg, {}), std::invalid_argument);
+  ap::color::FieldSegmentation wide = seg;
+  seg.labels.convertTo(wide.labels, CV_32S);
+  EXPECT_TRUE(refusedNaming([&] { ap::color::whiteBalanceFromPaint(yuv, wide, {}); }, "CV_8UC1"));
   EXPECT_THROW(ap::color::WhiteBalance().apply(cv::Mat(4, 4, CV_8UC1)), std::invalid_argument);
 }

@@ -420,9 +420,51 @@ TEST(LandmarkColours, ADimCoolLightIsBalancedAwayBeforeTheHuesAreRead) {
   EXPECT_NEAR(balanced.mirror_minus_pose_nats, truth.mirror_minus_pose_nats,
               0.05 * std::abs(truth.mirror_minus_pose_nats));
   const LandmarkColourEvidence raw = landmarkMirrorEvidence(tinted, s.renderer, pose, head, config);
+  EXPECT_EQ(raw.landmarks, 0);  // every band below min_chroma
   EXPECT_GT(std::abs(raw.mirror_minus_pose_nats - truth.mirror_minus_pose_nats),
             0.5 * std::abs(truth.mirror_minus_pose_nats))
       << raw.mirror_minus_pose_nats << " against " << truth.mirror_minus_pose_nats;
+  // Without balance_to_paint the images are read as they come; a new start forgets the balance.
+  RbpfConfig off = cfg;
+  off.balance_to_paint = false;
+  RbpfLocalizer plain(s.map, s.nao.camera, priors, off);
+  plain.initGaussian(pose, Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal());
+  plain.step(math::SE2(), 0.0, tinted, head);
+  EXPECT_TRUE(plain.whiteBalance().identity);
+  rbpf.initUniform();
+  EXPECT_TRUE(rbpf.whiteBalance().identity);
+}
+
+TEST(LandmarkColours, ABalanceIsTakenLaterWhenTheFirstImageShowsNoPaint) {
+  // The first image after a start shows carpet only (the head down at a bare patch): the priors
+  // are adapted to it, without a balance; the balance comes from the first retried image that
+  // shows paint, balance_retry_images later.
+  Scene s;
+  const math::SE2 pose(-2.12, 0.03, 0.02);
+  const Eigen::Isometry3d head = s.nao.baseToOptical(0.006, 0.061);
+  const Eigen::Vector3d light(0.9, 0.8, 0.6);
+  const cv::Mat view = underLight(s.render(pose, head), light);
+  cv::Mat carpet = view.clone();
+  carpet.setTo(view.at<cv::Vec3b>(view.rows - 1, view.cols / 2));  // the carpet's colour
+  RbpfConfig cfg;
+  cfg.particles = 50;
+  cfg.adapt_priors_to_image = true;
+  cfg.balance_retry_images = 3;
+  const std::vector<color::LightingPrior> priors = {
+      color::LightingPrior::loadYaml(kConfig + "color_priors/dark.yaml"),
+      color::LightingPrior::loadYaml(kConfig + "color_priors/bright.yaml")};
+  RbpfLocalizer rbpf(s.map, s.nao.camera, priors, cfg);
+  rbpf.initGaussian(pose, Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.03 * 0.03).asDiagonal());
+  rbpf.step(math::SE2(), 0.0, carpet, head);
+  EXPECT_TRUE(rbpf.whiteBalance().identity);
+  rbpf.step(math::SE2(), 1.0 / 30, view, head);
+  rbpf.step(math::SE2(), 1.0 / 30, view, head);
+  EXPECT_TRUE(rbpf.whiteBalance().identity);  // not yet the third image
+  rbpf.step(math::SE2(), 1.0 / 30, view, head);
+  ASSERT_FALSE(rbpf.whiteBalance().identity);
+  const Eigen::Vector3d undone = rbpf.whiteBalance().gains_rgb.cwiseProduct(light);
+  EXPECT_NEAR(undone[1] / undone[0], 1.0, 0.02);
+  EXPECT_NEAR(undone[2] / undone[0], 1.0, 0.02);
 }
 
 }  // namespace
