@@ -22,8 +22,9 @@
 // for paint was not white). Then all three are scaled by paint_luma over that luma (0: not),
 // held within [1 / max_exposure_gain, max_exposure_gain]. With fewer than min_paint_pixels such
 // pixels there is no balance (identity). Applied per pixel: to RGB, each channel scaled and clipped
-// to 0..255 there (a blown-out window stays white instead of taking the gains' tint), back to YUV,
-// rounded; deterministic.
+// at 255 there (a blown-out window stays white instead of taking the gains' tint; not at 0, where a
+// saturated colour's YUV can stand for a slightly negative channel), back to YUV, rounded and
+// clipped to 0..255; deterministic.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 

@@ -63,7 +63,7 @@ Eigen::Vector3d WhiteBalance::apply(const Eigen::Vector3d& yuv) const {
   if (identity) return yuv;
   const Eigen::Vector3d o(0, 128, 128);
   const Eigen::Vector3d rgb =
-      (gains_rgb.asDiagonal() * (toRgb() * (yuv - o))).cwiseMax(0.0).cwiseMin(255.0);
+      (gains_rgb.asDiagonal() * (toRgb() * (yuv - o))).cwiseMin(255.0);
   return fromRgb() * rgb + o;
 }
 
@@ -72,14 +72,15 @@ cv::Mat WhiteBalance::apply(const cv::Mat& yuv) const {
     throw std::invalid_argument("WhiteBalance::apply: expected a YUV (CV_8UC3) image, got type " +
                                 std::to_string(yuv.type()));
   if (identity) return yuv.clone();
-  // R, G and B scaled and clipped there (a blown-out window stays white, not tinted), then back.
+  // R, G and B scaled and clipped at 255 there (a blown-out window stays white, not tinted), then
+  // back. Not at 0: a saturated colour's YUV, after the camera's chroma subsampling and JPEG, can
+  // stand for a slightly negative channel, and its hue is what the landmark test reads.
   const Eigen::Vector3d o(0, 128, 128);
   const Eigen::Matrix3d scaled = gains_rgb.asDiagonal() * toRgb();
   cv::Mat f, rgb, out;
   yuv.convertTo(f, CV_32FC3);
   cv::transform(f, rgb, affine(scaled, -scaled * o));
   cv::min(rgb, cv::Scalar::all(255.0), rgb);
-  cv::max(rgb, cv::Scalar::all(0.0), rgb);
   cv::transform(rgb, f, affine(fromRgb(), o));
   f.convertTo(out, CV_8UC3);  // rounded and saturated
   return out;
