@@ -21,10 +21,10 @@
 // luma; gains beyond [1 / max_gain, max_gain] are refused (no balance: what the segmentation took
 // for paint was not white). Then all three are scaled by paint_luma over that luma (0: not),
 // held within [1 / max_exposure_gain, max_exposure_gain]. With fewer than min_paint_pixels such
-// pixels there is no balance (identity). Applied per pixel: to RGB, each channel scaled and clipped
-// at 255 there (a blown-out window stays white instead of taking the gains' tint; not at 0, where a
-// saturated colour's YUV can stand for a slightly negative channel), back to YUV, rounded and
-// clipped to 0..255; deterministic.
+// pixels there is no balance (identity). The balance is one affine map of YUV (YUV and RGB are
+// linear in each other), applied per pixel with rounding and clipping to 0..255 in YUV: a pixel
+// pushed beyond white keeps its chroma (clipping in RGB instead was tried and not kept:
+// docs/field_localization.md); deterministic.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
@@ -67,7 +67,7 @@ struct WhiteBalance {
   /// `yuv` (CV_8UC3: Y, U, V) with R, G and B scaled by gains_rgb; a copy of it when identity.
   /// std::invalid_argument for another type.
   cv::Mat apply(const cv::Mat& yuv) const;
-  /// One colour (Y, U, V) balanced (clipped in RGB as the image is), unrounded.
+  /// One colour (Y, U, V) balanced, unrounded and unclipped.
   Eigen::Vector3d apply(const Eigen::Vector3d& yuv) const;
 };
 

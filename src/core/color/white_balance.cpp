@@ -62,9 +62,7 @@ cv::Matx34f affine(const Eigen::Matrix3d& m, const Eigen::Vector3d& t) {
 Eigen::Vector3d WhiteBalance::apply(const Eigen::Vector3d& yuv) const {
   if (identity) return yuv;
   const Eigen::Vector3d o(0, 128, 128);
-  const Eigen::Vector3d rgb =
-      (gains_rgb.asDiagonal() * (toRgb() * (yuv - o))).cwiseMin(255.0);
-  return fromRgb() * rgb + o;
+  return fromRgb() * (gains_rgb.asDiagonal() * (toRgb() * (yuv - o))) + o;
 }
 
 cv::Mat WhiteBalance::apply(const cv::Mat& yuv) const {
@@ -72,17 +70,11 @@ cv::Mat WhiteBalance::apply(const cv::Mat& yuv) const {
     throw std::invalid_argument("WhiteBalance::apply: expected a YUV (CV_8UC3) image, got type " +
                                 std::to_string(yuv.type()));
   if (identity) return yuv.clone();
-  // R, G and B scaled and clipped at 255 there (a blown-out window stays white, not tinted), then
-  // back. Not at 0: a saturated colour's YUV, after the camera's chroma subsampling and JPEG, can
-  // stand for a slightly negative channel, and its hue is what the landmark test reads.
+  // One affine map of YUV (R, G and B scaled, between the two conversions), saturated in YUV.
   const Eigen::Vector3d o(0, 128, 128);
-  const Eigen::Matrix3d scaled = gains_rgb.asDiagonal() * toRgb();
-  cv::Mat f, rgb, out;
-  yuv.convertTo(f, CV_32FC3);
-  cv::transform(f, rgb, affine(scaled, -scaled * o));
-  cv::min(rgb, cv::Scalar::all(255.0), rgb);
-  cv::transform(rgb, f, affine(fromRgb(), o));
-  f.convertTo(out, CV_8UC3);  // rounded and saturated
+  const Eigen::Matrix3d m = fromRgb() * gains_rgb.asDiagonal() * toRgb();
+  cv::Mat out;
+  cv::transform(yuv, out, affine(m, o - m * o));  // rounded and clipped to 0..255
   return out;
 }
 

@@ -210,7 +210,8 @@ cv::Mat RbpfLocalizer::adaptToImage(const cv::Mat& yuv) {
            .identity)
     adapt_pending_ = true;
   if (adapt_pending_) {
-    color::FieldSegmentation seg = color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
+    const color::FieldSegmentation seg =
+        color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
     // An image without carpet (the head up, a dark start-up frame) says nothing: the next one
     // adapts.
     if (cv::countNonZero(seg.labels == world::kGreen) >= config_.model.min_pixels_per_color) {
@@ -219,10 +220,9 @@ cv::Mat RbpfLocalizer::adaptToImage(const cv::Mat& yuv) {
       cv::Mat image = yuv;
       if (config_.balance_to_paint) {
         balance_ = color::whiteBalanceFromPaint(yuv, seg, config_.white_balance);
-        if (!balance_.identity) {
-          image = balance_.apply(yuv);
-          seg = color::segmentFieldYuv(image, color::FieldSegmentationConfig());
-        }
+        // The segmentation's labels stand (it judges paint and carpet against each other in the
+        // same image, which the balance scales alike); the colours are the balanced image's.
+        if (!balance_.identity) image = balance_.apply(yuv);
       }
       const std::vector<color::LightingPrior> adapted =
           color::adaptPriorsToImage(priors_, image, seg, config_.model);

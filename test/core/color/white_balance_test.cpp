@@ -118,26 +118,25 @@ TEST(WhiteBalance, HoldsTheExposureGainWithinItsBound) {
   EXPECT_NEAR(wb.apply(wb.white_yuv)[0], 1.25 * wb.white_yuv[0], 0.5);
 }
 
-TEST(WhiteBalance, ClipsInRgbSoABlownOutPixelStaysWhite) {
-  // A pale pixel (RGB about 211, 197, 186) brightened twice clips in every channel: white, with no
-  // chroma left (clipped in YUV it kept its amplified chroma, 22.6 levels).
+TEST(WhiteBalance, IsTheChannelsScaledInRgb) {
+  // By hand: a dark pixel under gains of 2 doubles its distance from black and from neutral (to
+  // 1e-4: color_space.h's rounded BT.601 constants invert each other to about 1e-5).
   ap::color::WhiteBalance wb;
   wb.identity = false;
   wb.gains_rgb = Eigen::Vector3d(2.0, 2.0, 2.0);
-  const Eigen::Vector3d one = wb.apply(Eigen::Vector3d(200, 120, 136));
-  EXPECT_NEAR(one[0], 255.0, 0.5);
-  EXPECT_NEAR(one[1], 128.0, 0.5);
-  EXPECT_NEAR(one[2], 128.0, 0.5);
-  const cv::Mat image(2, 3, CV_8UC3, cv::Scalar(200, 120, 136));
-  const cv::Mat out = wb.apply(image);
-  for (int ch = 0; ch < 3; ++ch)
-    EXPECT_NEAR(out.at<cv::Vec3b>(1, 2)[ch], one[ch], 0.51) << "channel " << ch;
-  // Unclipped, the map is linear: a dark pixel doubles its distance from black and neutral (to
-  // 1e-4: color_space.h's rounded BT.601 constants invert each other to about 1e-5).
   const Eigen::Vector3d dark = wb.apply(Eigen::Vector3d(40, 120, 136));
   EXPECT_NEAR(dark[0], 80.0, 1e-4);
   EXPECT_NEAR(dark[1], 112.0, 1e-4);
   EXPECT_NEAR(dark[2], 144.0, 1e-4);
+  // Against the conversions of color_space.h: R, G, B scaled one by one.
+  wb.gains_rgb = Eigen::Vector3d(0.8, 1.1, 1.3);
+  const Eigen::Vector3d yuv(120, 110, 150);
+  const Eigen::Vector3d expected =
+      ap::color::rgbToYuv(ap::color::yuvToRgb(yuv).cwiseProduct(wb.gains_rgb));
+  EXPECT_LT((wb.apply(yuv) - expected).norm(), 1e-4);
+  const cv::Mat image(2, 3, CV_8UC3, cv::Scalar(120, 110, 150));
+  const cv::Vec3b q = wb.apply(image).at<cv::Vec3b>(1, 2);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(q[ch], expected[ch], 0.51) << "channel " << ch;
 }
 
 TEST(WhiteBalance, ANeutralLightIsLeftAsItIs) {
