@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -198,38 +199,38 @@ std::vector<math::SE2> RbpfLocalizer::goalProposals(const cv::Mat& yuv,
 }
 
 cv::Mat RbpfLocalizer::adaptToImage(const cv::Mat& yuv) {
+  std::optional<color::FieldSegmentation> seg;  // this image's, made once
+  const auto segmentation = [&]() -> const color::FieldSegmentation& {
+    if (!seg) seg = color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
+    return *seg;
+  };
   // Adapted, but the image it was adapted to gave no balance (no paint in view, or none white
   // enough): every balance_retry_images images another is tried, and once one gives a balance the
   // adaptation is made again on it.
   if (!adapt_pending_ && config_.adapt_priors_to_image && config_.balance_to_paint &&
       balance_.identity && config_.balance_retry_images > 0 &&
       ++unbalanced_images_ % config_.balance_retry_images == 0 &&
-      !color::whiteBalanceFromPaint(yuv,
-                                    color::segmentFieldYuv(yuv, color::FieldSegmentationConfig()),
-                                    config_.white_balance)
-           .identity)
+      !color::whiteBalanceFromPaint(yuv, segmentation(), config_.white_balance).identity)
     adapt_pending_ = true;
-  if (adapt_pending_) {
-    const color::FieldSegmentation seg =
-        color::segmentFieldYuv(yuv, color::FieldSegmentationConfig());
-    // An image without carpet (the head up, a dark start-up frame) says nothing: the next one
-    // adapts.
-    if (cv::countNonZero(seg.labels == world::kGreen) >= config_.model.min_pixels_per_color) {
-      adapt_pending_ = false;
-      unbalanced_images_ = 0;
-      cv::Mat image = yuv;
-      if (config_.balance_to_paint) {
-        balance_ = color::whiteBalanceFromPaint(yuv, seg, config_.white_balance);
-        // The segmentation's labels stand (it judges paint and carpet against each other in the
-        // same image, which the balance scales alike); the colours are the balanced image's.
-        if (!balance_.identity) image = balance_.apply(yuv);
-      }
-      const std::vector<color::LightingPrior> adapted =
-          color::adaptPriorsToImage(priors_, image, seg, config_.model);
-      prior_lighting_ = color::SwitchingColorFilter(adapted, config_.model, config_.switching);
-      mirror_test_ = MirrorTest(adapted, config_.model, config_.switching, config_.mirror_test);
-      for (Particle& p : particles_) p.lighting = prior_lighting_;
+  // An image without carpet (the head up, a dark start-up frame) says nothing: the next one
+  // adapts.
+  if (adapt_pending_ && cv::countNonZero(segmentation().labels == world::kGreen) >=
+                            config_.model.min_pixels_per_color) {
+    adapt_pending_ = false;
+    unbalanced_images_ = 0;
+    cv::Mat image = yuv;
+    if (config_.balance_to_paint) {
+      balance_ = color::whiteBalanceFromPaint(yuv, segmentation(), config_.white_balance);
+      // The segmentation's labels stand (it judges paint and carpet against each other in the
+      // same image, which the balance scales alike); the colours are the balanced image's.
+      if (!balance_.identity) image = balance_.apply(yuv);
     }
+    const std::vector<color::LightingPrior> adapted =
+        color::adaptPriorsToImage(priors_, image, segmentation(), config_.model);
+    prior_lighting_ = color::SwitchingColorFilter(adapted, config_.model, config_.switching);
+    mirror_test_ = MirrorTest(adapted, config_.model, config_.switching, config_.mirror_test);
+    for (Particle& p : particles_) p.lighting = prior_lighting_;
+    return image;
   }
   return balance_.identity ? yuv : balance_.apply(yuv);
 }
